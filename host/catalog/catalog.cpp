@@ -1,0 +1,199 @@
+#include "catalog/catalog.hpp"
+
+#include "catalog/roughness.hpp"
+#include "reference/reference.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace mfv {
+namespace ref_ = ::mfv::ref;
+
+const char* kind_name(Kind k) {
+  switch (k) {
+    case Kind::D: return "D";
+    case Kind::G: return "G";
+    case Kind::F: return "F";
+  }
+  return "?";
+}
+
+namespace {
+
+// Parameter ranges. alpha spans the stiff 1e-7 to very rough 10; the Phong
+// exponent reaches 1e7 (alpha ~ 4.5e-4).
+Param p_alpha() { return {"alpha", 1e-7, 10.0, 0.3, "microfacet width (slope RMS)"}; }
+Param p_alpha_p() { return {"alpha_p", 0.0, 1e7, 100.0, "Phong exponent, 0 rough .. inf mirror"}; }
+
+std::vector<Term> build_catalog() {
+  std::vector<Term> c;
+  auto D = [&](std::string id, std::string fn, std::string src, std::string formula, Param p, Roughness r, RefD ref) {
+    Term t;
+    t.id = std::move(id);
+    t.kind = Kind::D;
+    t.kernel_fn = std::move(fn);
+    t.source = std::move(src);
+    t.formula = std::move(formula);
+    t.params = {std::move(p)};
+    t.roughness = r;
+    t.ref_d = ref;
+    c.push_back(t);
+    return &c.back();
+  };
+  D("phong", "D_phong", "seed 000 \"Phong\"; seed 003 Blinn normalisation", "(ap+2)/(2pi) (n.h)^ap", p_alpha_p(),
+    Roughness::PhongExponent, ref_::D_phong);
+  D("beckmann", "D_beckmann", "seed 000 \"Beckman\"", "exp(-tan^2/a^2) / (pi a^2 cos^4)", p_alpha(), Roughness::Alpha,
+    ref_::D_beckmann);
+  D("ggx", "D_ggx", "seed 000 \"GGX\"; Walter et al. 2007 eq. 33", "a^2 / (pi ((n.h)^2 (a^2-1) + 1)^2)", p_alpha(),
+    Roughness::Alpha, ref_::D_ggx);
+  D("blinn_rho", "D_blinn_rho", "seed 004 Cook-Torrance \"blinn version\"", "(h.n)^(2/rho^2-2) / (pi rho^2)",
+    Param{"rho", 1e-4, 1.0, 0.3, "roughness rho (= alpha)"}, Roughness::Rho, ref_::D_blinn_rho);
+  D("beckmann_ct82", "D_beckmann_ct82", "seed 001 Cook-Torrance, as written", "exp(-(tan/m)^2) / (4 m^2 cos^4)",
+    Param{"m", 1e-7, 10.0, 0.3, "RMS slope m (= alpha)"}, Roughness::BeckmannM, ref_::D_beckmann_ct82)
+      ->known_bad = "4 m^2 in place of pi m^2: integrates to pi/4, not 1";
+
+  auto G = [&](std::string id, std::string fn, std::string src, std::string formula, std::optional<Param> p,
+               Roughness r, RefG ref) {
+    Term t;
+    t.id = std::move(id);
+    t.kind = Kind::G;
+    t.kernel_fn = std::move(fn);
+    t.source = std::move(src);
+    t.formula = std::move(formula);
+    if (p) t.params = {*p};
+    t.roughness = r;
+    t.ref_g = ref;
+    c.push_back(t);
+    return &c.back();
+  };
+  G("implicit", "G_implicit", "seed 000 \"V(L,V) = 1\"", "(n.l)(n.v)", std::nullopt, Roughness::None,
+    ref_::G_implicit);
+  G("kelemen", "G_kelemen", "seed 000 \"G/((L.N)(V.N)) ~ 1/(L.H)^2\"; Kelemen 2001", "(n.l)(n.v)/(l.h)^2",
+    std::nullopt, Roughness::None, ref_::G_kelemen);
+  G("cook_torrance", "G_cook_torrance", "seeds 001, 003, 004 (V-cavity)",
+    "min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h))", std::nullopt, Roughness::None, ref_::G_cook_torrance);
+  {
+    auto* t = G("smith_beckmann_approx", "G_smith_beckmann_approx", "seed 000 Beckman rational G1",
+                "G1(l)G1(v), G1 = (3.535a+2.181a^2)/(1+2.276a+2.577a^2), a = 1/(alpha tan)", p_alpha(),
+                Roughness::Alpha, ref_::G_smith_beckmann_approx);
+    t->g1_kernel_fn = "G1_smith_beckmann_approx";
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->ref_g1 = ref_::G1_smith_beckmann_approx;
+    t->smith_of = "beckmann";
+    t->approx_tol = 0.004;  // seed 000: "very accurate"; Walter et al. 2007 report < 0.35 %
+  }
+  {
+    auto* t = G("smith_beckmann", "G_smith_beckmann", "Walter et al. 2007 eq. 23-25 (exact Lambda, erf)",
+                "G1(l)G1(v), G1 = 1/(1+Lambda_beckmann)", p_alpha(), Roughness::Alpha, ref_::G_smith_beckmann);
+    t->g1_kernel_fn = "G1_smith_beckmann";
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->ref_g1 = ref_::G1_smith_beckmann;
+    t->smith_of = "beckmann";
+  }
+  {
+    auto* t = G("smith_phong", "G_smith_phong", "seed 000 \"Phong\" G1", "Beckman rational G1 with a = sqrt(ap/2+1)/tan",
+                p_alpha_p(), Roughness::PhongExponent, ref_::G_smith_phong);
+    t->g1_kernel_fn = "G1_smith_phong";
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->ref_g1 = ref_::G1_smith_phong;
+    t->smith_of = "phong";
+    t->approx_tol = 0.02;  // Beckmann G1 stands in for Phong's: Walter et al. 2007 §5.2
+  }
+  {
+    auto* t = G("smith_ggx", "G_smith_ggx", "seed 000 \"GGX\"; Walter et al. 2007 eq. 34",
+                "G1(l)G1(v), G1 = 2/(1+sqrt(1+alpha^2 tan^2))", p_alpha(), Roughness::Alpha, ref_::G_smith_ggx);
+    t->g1_kernel_fn = "G1_smith_ggx";
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->ref_g1 = ref_::G1_smith_ggx;
+    t->smith_of = "ggx";
+  }
+  {
+    auto* t = G("smith_ggx_correlated", "G_smith_ggx_correlated", "Heitz 2014 eq. 99 (height-correlated)",
+                "1/(1 + Lambda(l) + Lambda(v))", p_alpha(), Roughness::Alpha, ref_::G_smith_ggx_correlated);
+    t->g1_kernel_fn = "G1_smith_ggx";
+    t->ref_g1 = ref_::G1_smith_ggx;
+    t->smith_of = "ggx";
+  }
+  G("hammon_002", "G_hammon_002", "seed 002 `geometry` (Hammon 2017 visibility)",
+    "4(n.l)(n.v) * 0.5/max(0.01, mix(2(n.l)(n.v), n.l+n.v, alpha))",
+    Param{"alpha", 0.0, 1.0, 0.3, "mix weight = alpha (seed 002 squares roughness first)"}, Roughness::Alpha,
+    ref_::G_hammon_002);
+
+  auto F = [&](std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> p, RefF ref) {
+    Term t;
+    t.id = std::move(id);
+    t.kind = Kind::F;
+    t.kernel_fn = std::move(fn);
+    t.source = std::move(src);
+    t.formula = std::move(formula);
+    t.params = std::move(p);
+    t.ref_f = ref;
+    c.push_back(t);
+    return &c.back();
+  };
+  F("none", "F_none", "white furnace", "1", {}, ref_::F_none);
+  F("schlick", "F_schlick", "seed 000; Schlick 1994", "F0 + (1-F0)(1-l.h)^5",
+    {{"f0", 0.0, 1.0, 0.04, "reflectance at normal incidence (per channel)"}}, ref_::F_schlick);
+  F("dielectric", "F_dielectric", "seed 000 exact (seed 001's form has sign typos)",
+    "1/2 (g-c)^2/(g+c)^2 (1 + ((c(g+c)-1)/(c(g-c)+1))^2), g^2 = eta^2-1+c^2",
+    {{"eta", 0.1, 10.0, 1.5, "relative index eta_t/eta_i; < 1 gives total internal reflection"}},
+    ref_::F_dielectric)
+      ->ulp_budget = 24;  // ~20 roundings, squared twice; measured worst 19 ulps at grazing, eta ~ 3
+  F("conductor", "F_conductor", "Born and Wolf 14.2 (complex index n + ik)", "(|r_s|^2 + |r_p|^2)/2",
+    {{"n", 0.01, 10.0, 0.2, "real part of the index"}, {"k", 0.0, 20.0, 3.0, "extinction coefficient"}},
+    ref_::F_conductor)
+      ->ulp_budget = 16;  // ~40 operations with three square roots; measured worst 8.6 ulps at grazing
+  return c;
+}
+
+}  // namespace
+
+const std::vector<Term>& catalog() {
+  static const std::vector<Term> c = build_catalog();
+  return c;
+}
+
+std::vector<const Term*> terms_of(Kind k) {
+  std::vector<const Term*> out;
+  for (auto& t : catalog())
+    if (t.kind == k) out.push_back(&t);
+  return out;
+}
+
+const Term* try_find_term(const std::string& id, Kind k) {
+  for (auto& t : catalog())
+    if (t.kind == k && t.id == id) return &t;
+  return nullptr;
+}
+
+const Term& find_term(const std::string& id) {
+  for (auto& t : catalog())
+    if (t.id == id) return t;
+  std::string known;
+  for (auto& t : catalog()) known += (known.empty() ? "" : ", ") + t.id;
+  throw Error(fmt::format("unknown term '{}' (known: {})", id, known));
+}
+
+void validate_param(const Term& t, size_t index, double value) {
+  if (index >= t.params.size())
+    throw Error(fmt::format("term '{}' has no parameter #{} (it takes {})", t.id, index, t.params.size()));
+  const Param& p = t.params[index];
+  if (std::isnan(value)) throw Error(fmt::format("{}.{} is NaN; give a number in [{}, {}]", t.id, p.name, p.lo, p.hi));
+  if (value < p.lo || value > p.hi)
+    throw Error(fmt::format("{}.{} = {} is out of range [{}, {}]", t.id, p.name, value, p.lo, p.hi));
+}
+
+double native_from_alpha(Roughness r, double alpha) {
+  switch (r) {
+    case Roughness::None: return 0.0;
+    case Roughness::Alpha: return alpha;
+    case Roughness::PhongExponent: return phong_exponent_from_alpha(alpha);
+    case Roughness::Rho: return alpha;
+    case Roughness::BeckmannM: return alpha;
+  }
+  return alpha;
+}
+
+}  // namespace mfv

@@ -1,0 +1,70 @@
+// The one catalog (DESIGN.md §1): every term is declared here once, with its
+// parameters and valid ranges, its source, its kernel function and reference
+// twin, its agreement tolerance and the physical properties it is expected to
+// have. Kernels (through generated dispatch), reference, checks, CLI listing
+// and reports all read these declarations.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+enum class Kind { D, G, F };
+const char* kind_name(Kind k);
+
+// How the shared microfacet width alpha (GGX/Beckmann slope RMS) maps onto a
+// term's native parameter; see roughness.hpp.
+enum class Roughness { None, Alpha, PhongExponent, Rho, BeckmannM };
+
+struct Param {
+  std::string name;  // alpha, alpha_p, rho, m, f0, eta, n, k
+  double lo, hi;     // valid closed range [lo, hi]
+  double fallback;   // default when a command needs one value
+  std::string doc;
+};
+
+using RefD = double (*)(double NoH, double p);
+using RefG = double (*)(double NoL, double NoV, double NoH, double VoH, double p);
+using RefG1 = double (*)(double NoV, double p);
+using RefF = double (*)(double VoH, double p0, double p1);
+
+struct Term {
+  std::string id;         // catalog name: ggx, smith_ggx_correlated, schlick...
+  Kind kind;
+  std::string kernel_fn;  // function in kernels/terms_*.cl
+  std::string source;     // seed file and formula, or paper and equation
+  std::string formula;    // one line, for the listing
+  std::vector<Param> params;  // D and G: at most one (roughness); F: up to two
+  Roughness roughness = Roughness::None;
+
+  RefD ref_d = nullptr;  // exactly one of these is set, by kind
+  RefG ref_g = nullptr;
+  RefF ref_f = nullptr;
+  // Smith G terms: the G1 they are built from (kernel and reference), used by
+  // the masking check; empty for G terms that are no Smith G1 of any D.
+  std::string g1_kernel_fn;
+  RefG1 ref_g1 = nullptr;
+
+  // Agreement budget (kernel float vs double reference, identical inputs):
+  // ULPs of the float result, and an absolute floor for results near zero.
+  double ulp_budget = 8;
+  double abs_floor = 1e-30;
+
+  // Expected properties, used by the conformance checks.
+  std::string known_bad;    // non-empty: why this term is kept as a known-bad model
+  std::string smith_of;     // Smith G: the D whose exact (or approximated) G1 this is
+  double approx_tol = 0.0;  // documented approximation tolerance (relative)
+};
+
+const std::vector<Term>& catalog();
+const Term& find_term(const std::string& id);           // throws mfv::Error naming the known ids
+const Term* try_find_term(const std::string& id, Kind k);
+std::vector<const Term*> terms_of(Kind k);
+
+// Parameter values checked at the boundary: NaN and out-of-range values are
+// rejected with a message naming the term, the parameter and its range.
+void validate_param(const Term& t, size_t index, double value);
+
+}  // namespace mfv

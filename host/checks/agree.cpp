@@ -1,0 +1,306 @@
+#include "checks/agree.hpp"
+
+#include "catalog/catalog.hpp"
+#include "reference/brdf.hpp"
+#include "runtime/dispatch.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <thread>
+
+namespace mfv {
+namespace {
+
+enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4 };  // = EvalMode, = AGREE_* in agree.cl
+constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
+constexpr int kSlots = 5;     // D param, G param, F p0, F p1, kd
+
+struct Case {
+  std::string name;
+  Mode mode;
+  const Term* d = nullptr;
+  const Term* g = nullptr;
+  const Term* f = nullptr;
+  double ulp_budget = 0, abs_floor = 0;
+};
+
+// Sampling range of one parameter: log-uniform where it spans decades.
+void put_range(std::array<float, 3 * kSlots>& r, int slot, const Param* p) {
+  double lo = p ? p->lo : 0.0, hi = p ? p->hi : 1.0;
+  bool log_scale = hi > 100.0 * std::max(lo, 1e-300);
+  if (log_scale && lo <= 0.0) lo = 1e-3 * std::max(1.0, hi * 1e-6);  // an exponent from 0: sample from ~1
+  r[3 * slot] = static_cast<float>(lo);
+  r[3 * slot + 1] = static_cast<float>(hi);
+  r[3 * slot + 2] = log_scale ? 1.0f : 0.0f;
+}
+
+const Param* param(const Term* t, size_t i) { return t && i < t->params.size() ? &t->params[i] : nullptr; }
+
+std::vector<Case> make_cases(const AgreeOptions& opt) {
+  std::vector<Case> cases;
+  for (auto& t : catalog()) {
+    Mode m = t.kind == Kind::D ? kD : t.kind == Kind::G ? kG : kF;
+    Case c{fmt::format("{} {}", kind_name(t.kind), t.id), m, nullptr, nullptr, nullptr, t.ulp_budget, t.abs_floor};
+    (t.kind == Kind::D ? c.d : t.kind == Kind::G ? c.g : c.f) = &t;
+    cases.push_back(c);
+    if (!t.g1_kernel_fn.empty() && t.id != "smith_ggx_correlated")  // shares smith_ggx's G1
+      cases.push_back({fmt::format("G1 {}", t.id), kG1, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
+  }
+  if (opt.combinations)
+    for (auto* d : terms_of(Kind::D))
+      for (auto* g : terms_of(Kind::G))
+        for (auto* f : terms_of(Kind::F))
+          cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdf, d, g, f,
+                           d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
+                           std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
+  if (!opt.only.empty()) {
+    std::vector<Case> kept;
+    for (auto& c : cases)
+      for (auto& o : opt.only)
+        if (c.name.find(o) != std::string::npos) {
+          kept.push_back(c);
+          break;
+        }
+    if (kept.empty()) throw Error("--only matches no agreement case (see 'mfv list')");
+    cases = kept;
+  }
+  return cases;
+}
+
+// The reference value of one record, with every input optionally scaled by
+// (1 + bump) one at a time: index -1 means no bump.
+struct Evaluator {
+  const Case& c;
+  const float* r;
+  double eval(int bump_index, double bump) const {
+    double in[6 + kSlots];
+    for (int k = 0; k < 6; ++k) in[k] = r[k];
+    for (int k = 0; k < kSlots; ++k) in[6 + k] = r[6 + k];
+    // inputs 0..3 are the cosines; for the BRDF they are derived from wi, wo
+    // below and bumped there (index 11..14), so float rounding inside the
+    // kernel's half-vector formation is covered too.
+    if (bump_index >= 0 && bump_index < 11) in[bump_index] *= 1.0 + bump;
+    switch (c.mode) {
+      case kD: return c.d->ref_d(in[2], in[6]);
+      case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
+      case kG1: return c.g->ref_g1(in[1], in[7]);
+      case kF: return c.f->ref_f(in[3], in[8], in[9]);
+      case kBrdf: {
+        ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
+        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
+        ref::Shading sh = ref::shading_from(wi, wo);
+        double* cs[4] = {&sh.NoL, &sh.NoV, &sh.NoH, &sh.VoH};
+        if (bump_index >= 11 && bump_index < 15) *cs[bump_index - 11] *= 1.0 + bump;
+        return ref::brdf(s, sh);
+      }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  int inputs() const { return c.mode == kBrdf ? 15 : 11; }
+};
+
+std::string describe(const Case& c, const float* r, double k, double ref) {
+  std::string in;
+  if (c.mode == kBrdf)
+    in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[0], r[1], r[2], r[3], r[4], r[5]);
+  else
+    in = fmt::format("NoL={:a} NoV={:a} NoH={:a} VoH={:a}", r[0], r[1], r[2], r[3]);
+  std::string ps;
+  const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd"};
+  for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[6 + s]);
+  return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
+}
+
+struct Stats {
+  std::vector<double> rel;
+  double max_rel = 0, max_ulps = 0, worst_score = -1;
+  uint64_t failures = 0;
+  std::string worst;
+};
+
+void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool fp64, Stats& st) {
+  const double eps = fp64 ? 0x1p-52 : 0x1p-23;
+  for (size_t i = begin; i < end; ++i) {
+    const float* r = rec + i * kRecord;
+    double k = r[12];
+    if (std::isfinite(k)) k += r[13];
+    Evaluator ev{c, r};
+    double ref = ev.eval(-1, 0.0);
+    double diff = std::fabs(k - ref);
+    bool same_nonfinite = (std::isinf(k) && k == ref);
+    if (same_nonfinite) diff = 0;
+    double ulps = diff / ulp_of(ref, fp64);
+    double rel = diff / std::max(std::fabs(ref), std::numeric_limits<double>::min());
+    if (std::isnan(k) || std::isnan(ref)) ulps = rel = std::numeric_limits<double>::infinity();
+    st.rel.push_back(rel);
+    st.max_rel = std::max(st.max_rel, rel);
+    st.max_ulps = std::max(st.max_ulps, ulps);
+    // In float64 the double reference rounds as much as the kernel does, so
+    // the two budgets add up; in float32 the reference's share is negligible.
+    double allowed = std::max((fp64 ? 2.0 : 1.0) * c.ulp_budget * ulp_of(ref, fp64), c.abs_floor);
+    bool fail = !(diff <= allowed);
+    if (fail && std::isfinite(ref) && std::isfinite(k)) {
+      // Conditioning allowance: what the exact function itself does when one
+      // input moves by 2 units of rounding. A kernel within twice that is as
+      // good as its format allows at this input.
+      double dev = 0;
+      for (int j = 0; j < ev.inputs(); ++j)
+        for (double b : {2 * eps, -2 * eps}) dev = std::max(dev, std::fabs(ev.eval(j, b) - ref));
+      fail = diff > std::max(allowed, 2.0 * dev);
+    }
+    double score = fail ? 1e300 + ulps : ulps;
+    if (fail) st.failures++;
+    if (score > st.worst_score || (std::isnan(ulps) && st.worst.empty())) {
+      st.worst_score = score;
+      st.worst = describe(c, r, k, ref);
+    }
+  }
+}
+
+}  // namespace
+
+double ulp_of(double x, bool fp64) {
+  double a = std::fabs(x);
+  int mant = fp64 ? 52 : 23;
+  double tiny = fp64 ? std::numeric_limits<double>::denorm_min() : std::numeric_limits<float>::denorm_min();
+  if (!std::isfinite(a)) return std::numeric_limits<double>::infinity();
+  if (a < (fp64 ? std::numeric_limits<double>::min() : std::numeric_limits<float>::min())) return tiny;
+  int e;
+  std::frexp(a, &e);  // a = m 2^e, m in [0.5, 1)
+  return std::ldexp(1.0, e - 1 - mant);
+}
+
+namespace {
+cl::Program build_agree_program(Runtime& rt, bool fp64);
+}
+
+AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
+  if (opt.samples == 0) throw Error("--samples must be at least 1");
+  if (opt.fp64 && !rt.device().fp64)
+    throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
+  auto cases = make_cases(opt);
+
+  AgreeReport rep;
+  auto build0 = rt.build_stats().seconds;
+  cl::Program prog = build_agree_program(rt, opt.fp64);
+  rep.build_seconds = rt.build_stats().seconds - build0;
+  cl::Kernel kern(prog, "agree_eval");
+
+  const size_t chunk = static_cast<size_t>(std::min<uint64_t>(opt.samples, 1u << 18));
+  cl::Buffer rec_buf(rt.context(), CL_MEM_WRITE_ONLY, chunk * kRecord * sizeof(float));
+  cl::Buffer range_buf(rt.context(), CL_MEM_READ_ONLY, 3 * kSlots * sizeof(float));
+  std::vector<float> rec(chunk * kRecord);
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+
+  for (size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    std::array<float, 3 * kSlots> ranges{};
+    put_range(ranges, 0, param(c.d, 0));
+    put_range(ranges, 1, param(c.g, 0));
+    put_range(ranges, 2, param(c.f, 0));
+    put_range(ranges, 3, param(c.f, 1));
+    put_range(ranges, 4, nullptr);  // kd in [0, 1]
+    if (c.mode != kBrdf) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
+    rt.queue().enqueueWriteBuffer(range_buf, CL_TRUE, 0, sizeof(ranges), ranges.data());
+
+    Stats total;
+    total.rel.reserve(opt.samples);
+    for (uint64_t first = 0; first < opt.samples; first += chunk) {
+      size_t n = static_cast<size_t>(std::min<uint64_t>(chunk, opt.samples - first));
+      // Sentinel: an unwritten record reads as NaN and cannot pass.
+      rt.queue().enqueueFillBuffer(rec_buf, std::numeric_limits<float>::quiet_NaN(), 0, n * kRecord * sizeof(float));
+      kern.setArg(0, static_cast<cl_ulong>(opt.seed));
+      kern.setArg(1, static_cast<cl_uint>(ci));
+      kern.setArg(2, static_cast<cl_ulong>(first));
+      kern.setArg(3, static_cast<cl_int>(c.mode));
+      kern.setArg(4, static_cast<cl_int>(c.d ? term_index(*c.d) : 0));
+      kern.setArg(5, static_cast<cl_int>(c.g ? term_index(*c.g) : 0));
+      kern.setArg(6, static_cast<cl_int>(c.f ? term_index(*c.f) : 0));
+      kern.setArg(7, range_buf);
+      kern.setArg(8, rec_buf);
+      auto t0 = std::chrono::steady_clock::now();
+      rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(n));
+      rt.queue().enqueueReadBuffer(rec_buf, CL_TRUE, 0, n * kRecord * sizeof(float), rec.data());
+      auto t1 = std::chrono::steady_clock::now();
+      std::vector<Stats> part(threads);
+      std::vector<std::thread> pool;
+      for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] { check_range(c, rec.data(), n * t / threads, n * (t + 1) / threads, opt.fp64, part[t]); });
+      for (auto& th : pool) th.join();
+      auto t2 = std::chrono::steady_clock::now();
+      rep.kernel_seconds += std::chrono::duration<double>(t1 - t0).count();
+      rep.reference_seconds += std::chrono::duration<double>(t2 - t1).count();
+      for (auto& p : part) {
+        total.rel.insert(total.rel.end(), p.rel.begin(), p.rel.end());
+        total.max_rel = std::max(total.max_rel, p.max_rel);
+        total.max_ulps = std::max(total.max_ulps, p.max_ulps);
+        total.failures += p.failures;
+        if (p.worst_score > total.worst_score) {
+          total.worst_score = p.worst_score;
+          total.worst = p.worst;
+        }
+      }
+    }
+    AgreeResult r;
+    r.name = c.name;
+    r.samples = opt.samples;
+    r.ulp_budget = c.ulp_budget;
+    r.max_rel = total.max_rel;
+    r.max_ulps = total.max_ulps;
+    r.failures = total.failures;
+    r.worst = total.worst;
+    auto mid = total.rel.begin() + total.rel.size() / 2;
+    std::nth_element(total.rel.begin(), mid, total.rel.end());
+    r.median_rel = *mid;
+    rep.results.push_back(r);
+    rep.samples += opt.samples;
+  }
+  return rep;
+}
+
+namespace {
+cl::Program build_agree_program(Runtime& rt, bool fp64) {
+  std::vector<std::string> defines;
+  if (fp64) defines.push_back("MFV_DOUBLE");
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "agree.cl"}, defines,
+                  generate_dispatch(TermSelection::all()), "brdf.cl");
+}
+}  // namespace
+
+PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
+  if (fp64 && !rt.device().fp64)
+    throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
+  cl::Program prog = build_agree_program(rt, fp64);
+  cl::Kernel kern(prog, "eval_records");
+  std::array<float, kRecord> rec{};
+  for (int k = 0; k < 6; ++k) rec[k] = p.inputs[k];
+  for (int k = 0; k < kSlots; ++k) rec[6 + k] = p.params[k];
+  rec[12] = std::numeric_limits<float>::quiet_NaN();  // sentinel
+  cl::Buffer buf(rt.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(rec), rec.data());
+  kern.setArg(0, static_cast<cl_int>(p.mode));
+  kern.setArg(1, static_cast<cl_int>(p.d ? term_index(*p.d) : 0));
+  kern.setArg(2, static_cast<cl_int>(p.g ? term_index(*p.g) : 0));
+  kern.setArg(3, static_cast<cl_int>(p.f ? term_index(*p.f) : 0));
+  kern.setArg(4, buf);
+  rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(1));
+  rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, sizeof(rec), rec.data());
+  Case c{"point", static_cast<Mode>(p.mode), p.d, p.g, p.f, 0, 0};
+  PointResult r;
+  r.kernel = rec[12];
+  if (std::isfinite(r.kernel)) r.kernel += rec[13];
+  r.reference = Evaluator{c, rec.data()}.eval(-1, 0.0);
+  double diff = r.kernel == r.reference ? 0.0 : std::fabs(r.kernel - r.reference);
+  r.ulps = diff / ulp_of(r.reference, fp64);
+  r.rel = diff / std::max(std::fabs(r.reference), std::numeric_limits<double>::min());
+  return r;
+}
+
+}  // namespace mfv

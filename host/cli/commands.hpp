@@ -1,0 +1,21 @@
+// mfv subcommands. Each returns the process exit code: 0 all good, 1 a check
+// did not match expectation; errors throw mfv::Error (exit 2, one line).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace mfv::cli {
+
+struct Globals {
+  std::string device;      // --device: index or name substring
+  std::string kernel_dir;  // --kernel-dir: read kernels from here instead of the binary
+};
+
+void add_devices(CLI::App& app, Globals& g, int& rc);
+void add_list(CLI::App& app, Globals& g, int& rc);
+void add_agree(CLI::App& app, Globals& g, int& rc);
+void add_eval(CLI::App& app, Globals& g, int& rc);
+
+}  // namespace mfv::cli

@@ -1,0 +1,28 @@
+// The assembled reference BRDF, in double with GLM (twin of kernels/brdf.cl).
+#pragma once
+
+#include "catalog/catalog.hpp"
+
+#include <glm/vec3.hpp>
+
+namespace mfv::ref {
+
+// One BRDF: a D, G and F term with their native parameters, plus a Lambert
+// diffuse albedo kd (0 for a pure microfacet BRDF).
+struct BrdfSpec {
+  const Term* d = nullptr;
+  const Term* g = nullptr;
+  const Term* f = nullptr;
+  double pd = 0, pg = 0, f0 = 0, f1 = 0, kd = 0;
+};
+
+// The cosines a microfacet BRDF depends on, formed from the directions.
+struct Shading {
+  double NoL, NoV, NoH, VoH;
+};
+
+Shading shading_from(const glm::dvec3& wi, const glm::dvec3& wo);  // n = +z
+double brdf(const BrdfSpec& s, const Shading& c);
+double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo);
+
+}  // namespace mfv::ref

@@ -1,0 +1,50 @@
+// Scalar double-precision reference for every catalog term (DESIGN.md §2).
+//
+// Written from the seeds' formulas (../shared/seeds/) and the cited papers,
+// independently of kernels/: agreement between the two is the evidence.
+// Conventions shared with the kernels:
+//   * local shading frame, n = +z; all directions point away from the surface;
+//   * D(m) is normalised so that  ∫ D(m) (m·n) dm = 1  over the hemisphere;
+//   * G terms return the full G2 (not the visibility G2 / (4 NoL NoV));
+//   * every term takes its *native* parameter (alpha, alpha_p, rho, m, eta...);
+//     conversions from the shared width alpha live in host/catalog/roughness.hpp.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace mfv::ref {
+
+// ---- D: microfacet distributions, argument NoH = cos(theta_h) -------------
+double D_phong(double NoH, double alpha_p);        // seed 000 "Phong", seed 003 Blinn
+double D_beckmann(double NoH, double alpha);        // seed 000 "Beckman"
+double D_ggx(double NoH, double alpha);             // seed 000 "GGX"
+double D_blinn_rho(double NoH, double rho);         // seed 004 Cook-Torrance "blinn version"
+double D_beckmann_ct82(double NoH, double m);       // seed 001, as written (known bad)
+
+// ---- Smith Lambda and G1 (one direction), argument NoV = cos(theta_v) -----
+double Lambda_beckmann(double NoV, double alpha);   // exact, with erf
+double Lambda_ggx(double NoV, double alpha);
+double G1_smith_beckmann(double NoV, double alpha);        // 1 / (1 + Lambda)
+double G1_smith_beckmann_approx(double NoV, double alpha); // seed 000 rational
+double G1_smith_phong(double NoV, double alpha_p);         // seed 000, a = sqrt(ap/2+1)/tan
+double G1_smith_ggx(double NoV, double alpha);             // seed 000 "GGX"
+
+// ---- G2: shadowing-masking for the pair, all return G (not visibility) ----
+// Arguments: NoL, NoV, NoH, VoH (= LoH for the exact half vector), param.
+double G_implicit(double NoL, double NoV, double NoH, double VoH, double unused);
+double G_kelemen(double NoL, double NoV, double NoH, double VoH, double unused);
+double G_cook_torrance(double NoL, double NoV, double NoH, double VoH, double unused);
+double G_smith_beckmann_approx(double NoL, double NoV, double NoH, double VoH, double alpha);
+double G_smith_beckmann(double NoL, double NoV, double NoH, double VoH, double alpha);
+double G_smith_phong(double NoL, double NoV, double NoH, double VoH, double alpha_p);
+double G_smith_ggx(double NoL, double NoV, double NoH, double VoH, double alpha);
+double G_smith_ggx_correlated(double NoL, double NoV, double NoH, double VoH, double alpha);
+double G_hammon_002(double NoL, double NoV, double NoH, double VoH, double alpha);
+
+// ---- F: Fresnel reflectance of one colour channel, argument VoH ----------
+double F_none(double VoH, double unused0, double unused1);
+double F_schlick(double VoH, double f0, double unused);
+double F_dielectric(double VoH, double eta, double unused);   // eta = eta_t / eta_i
+double F_conductor(double VoH, double n, double k);           // complex index n + i k
+
+}  // namespace mfv::ref

@@ -1,0 +1,91 @@
+// Reference microfacet distributions D(h), argument NoH = cos(theta_h).
+//
+// Normalisation convention (reference.hpp): ∫_H D(m) (m·n) dω_m = 1.
+// Every D returns 0 for NoH <= 0 (the χ+(m·n) factor: no facet faces away
+// from the macro-surface), and treats a cosine that rounded above 1 as exactly
+// 1 (tan²θ = 0), so D(1 + ε) == D(1) and nothing turns into NaN.
+//
+// Parameter ranges (alpha > 0, alpha_p >= 0, rho > 0, m > 0) are validated at
+// the catalog boundary, not here; the reference evaluates the formula as the
+// source writes it.
+#include "reference/reference.hpp"
+
+#include <cmath>
+
+#include "reference/math_util.hpp"
+
+namespace mfv::ref {
+
+using detail::kPi;
+using detail::saturate;
+using detail::sin2_from_cos;
+using detail::tan2_from_cos;
+
+double D_phong(double NoH, double alpha_p) {
+    // seed 000, "Phong": D_p = (alpha_p + 2) / (2π) (N·H)^alpha_p
+    // (seed 003, "Blinn Microfacet Distribution", derives the same constant
+    //  c = (e + 2) / 2π from ∫ D cosθ dω = 1.)
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    return (alpha_p + 2.0) / (2.0 * kPi) * std::pow(c, alpha_p);
+}
+
+double D_beckmann(double NoH, double alpha) {
+    // seed 000, "Beckman"; Walter et al. 2007, eq. 25:
+    //   D_b = exp(-tan²θ / alpha²) / (π alpha² cos⁴θ)
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    const double tan2 = tan2_from_cos(c);  // 0 at c = 1, +inf as c → 0
+    const double e = std::exp(-tan2 / (alpha * alpha));
+    // θ→π/2: exp(-tan²θ/α²) vanishes faster than cos⁴θ, so D→0.  Returning
+    // here also avoids 0/0 once cos⁴θ underflows.
+    if (e == 0.0) return 0.0;
+    const double c2 = c * c;
+    // At c = 1: e = 1 and c2 * c2 = 1, so this is exactly 1 / (π alpha²).
+    return e / ((kPi * (alpha * alpha)) * (c2 * c2));
+}
+
+double D_ggx(double NoH, double alpha) {
+    // Walter et al. 2007, eq. 33; seed 000, "GGX":
+    //   D_g = alpha² / (π cos⁴θ (alpha² + tan²θ)²)
+    //       = 1 / (π alpha² [cos⁴θ (1 + tan²θ/alpha²)²])
+    //       = 1 / (π alpha² (cos²θ + sin²θ/alpha²)²)
+    // The last form has no tan²θ, hence no singularity at θ = π/2 (where it
+    // tends to alpha²/π), and it is exactly 1/(π alpha²) at NoH = 1 because
+    // sin²θ = (1 − c)(1 + c) is exactly 0 there.  Seed 000's second form,
+    // alpha² / (π (c²(alpha² − 1) + 1)²), loses that: (alpha² − 1) + 1 rounds
+    // (≈200 ULP of D at alpha = 0.05, NoH = 1).
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    const double k = c * c + sin2_from_cos(c) / (alpha * alpha);
+    return 1.0 / ((kPi * (alpha * alpha)) * (k * k));
+}
+
+double D_blinn_rho(double NoH, double rho) {
+    // seed 004, Cook-Torrance "blinn version":
+    //   D = (h·n)^(2/rho² − 2) / (π rho²)
+    // This is D_phong with alpha_p = 2/rho² − 2: (alpha_p + 2)/(2π) = 1/(π rho²),
+    // so it is normalised.  For rho > 1 the exponent is negative (but > −2) and
+    // D grows without bound toward θ = π/2, while staying integrable.
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    const double exponent = 2.0 / (rho * rho) - 2.0;
+    return std::pow(c, exponent) / (kPi * (rho * rho));
+}
+
+double D_beckmann_ct82(double NoH, double m) {
+    // seed 001, "Use Beckmann distribution instead", as written:
+    //   D(δ) = exp(-(tan δ / m)²) / (4 m² cos⁴δ)
+    // KNOWN BAD (kept on purpose, catalog expected-fail): the constant is 4
+    // where seed 000 / Walter eq. 25 have π, so D_beckmann_ct82 =
+    // (π/4) D_beckmann and ∫ D cosθ dω = π/4 ≈ 0.785 instead of 1.
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    const double tan2 = tan2_from_cos(c);
+    const double e = std::exp(-tan2 / (m * m));
+    if (e == 0.0) return 0.0;  // θ→π/2: the exponential wins, D→0 (no 0/0)
+    const double c2 = c * c;
+    return e / ((4.0 * (m * m)) * (c2 * c2));
+}
+
+}  // namespace mfv::ref

@@ -1,0 +1,196 @@
+// Reference shadowing-masking terms: Smith Λ, G1 (one direction) and G2.
+//
+// G1 argument: NoV = cos(theta_v) of the direction being masked.
+// G2 functions return the full G2 (not the visibility G2 / (4 NoL NoV)).
+//
+// Guards shared by every G1 (seed 000, "Beware roundoff errors in calculating
+// the G1 function"):
+//   * NoV <= 0      → G1 = 0: θ→π/2 makes tanθ→∞, so Λ→∞ and G1→0; a
+//                     direction below the horizon is fully masked.
+//   * NoV >= 1      → G1 = 1: a dot product that rounded above 1 is normal
+//                     incidence, where nothing is masked (seed 000: "return 1").
+//   * tan²θ == 0    → G1 = 1: never divide by tanθ (seed 000: "return 1").
+// Parameter ranges (alpha > 0, alpha_p >= 0) are validated by the catalog.
+#include "reference/reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "reference/math_util.hpp"
+
+namespace mfv::ref {
+
+using detail::kPi;
+using detail::tan2_from_cos;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// χ+ factors of a two-sided G2 built on the half vector: both directions above
+// the macro-surface and in front of the facet (VoH = LoH for the exact half
+// vector, so one test covers both χ+(v·h) and χ+(l·h)).
+bool pair_visible(double NoL, double NoV, double VoH) {
+    return NoL > 0.0 && NoV > 0.0 && VoH > 0.0;
+}
+
+// Walter et al. 2007, eq. 27; seed 000, "Beckman" G1: rational approximation
+// of the Smith-Beckmann G1 in a = cotθ / width.  The constants 3.535, 2.181,
+// 2.276, 2.577 and the cut-off 1.6 are the seed's (Walter's) values.
+double g1_beckmann_rational(double a) {
+    if (a >= 1.6) return 1.0;
+    return (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+}
+
+}  // namespace
+
+// ---- Smith Lambda ---------------------------------------------------------
+
+double Lambda_beckmann(double NoV, double alpha) {
+    // Heitz 2014, "Understanding the masking-shadowing function", Λ of the
+    // Beckmann distribution (Walter et al. 2007, eq. 26, is 1 / (1 + Λ)):
+    //   a = 1 / (alpha tanθ),  Λ = (erf(a) − 1)/2 + exp(−a²) / (2 a √π)
+    // erf(a) − 1 is written −erfc(a): the same value without the cancellation
+    // that erases it for large a.
+    if (NoV <= 0.0) return kInf;  // θ→π/2 (or below): Λ→∞
+    const double tan2 = tan2_from_cos(NoV);
+    if (tan2 == 0.0) return 0.0;  // θ = 0 (NoV >= 1): a = ∞, Λ = 0
+    const double a = 1.0 / (alpha * std::sqrt(tan2));
+    // a → 0 (tanθ = +inf for NoV below ~1e-162): exp(0)/0 = +inf, Λ = +inf.
+    return -0.5 * std::erfc(a) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPi));
+}
+
+double Lambda_ggx(double NoV, double alpha) {
+    // Heitz 2014, Λ of the GGX distribution (its G1 is Walter et al. 2007,
+    // eq. 34):  Λ = (−1 + sqrt(1 + alpha² tan²θ)) / 2
+    // Evaluated as x / (2 (1 + sqrt(1 + x))), x = alpha² tan²θ, the same value
+    // multiplied through by (1 + sqrt(1 + x)): no cancellation for small x.
+    if (NoV <= 0.0) return kInf;  // θ→π/2 (or below): Λ→∞
+    const double tan2 = tan2_from_cos(NoV);
+    if (tan2 == 0.0) return 0.0;  // θ = 0: Λ = 0
+    const double x = alpha * alpha * tan2;
+    if (std::isinf(x)) return kInf;  // tanθ overflowed: Λ→∞ (and no inf/inf)
+    return x / (2.0 * (1.0 + std::sqrt(1.0 + x)));
+}
+
+// ---- G1 -------------------------------------------------------------------
+
+double G1_smith_beckmann(double NoV, double alpha) {
+    // Smith 1967 / Heitz 2014: G1 = 1 / (1 + Λ)   (Walter et al. 2007, eq. 26)
+    if (NoV <= 0.0) return 0.0;  // θ→π/2: Λ→∞, so G1→0
+    if (NoV >= 1.0) return 1.0;  // seed 000: NoV rounded above 1 → G1 = 1
+    return 1.0 / (1.0 + Lambda_beckmann(NoV, alpha));
+}
+
+double G1_smith_beckmann_approx(double NoV, double alpha) {
+    // seed 000, "Beckman" G1 (Walter et al. 2007, eq. 27), a = 1/(alpha_b tanθ)
+    if (NoV <= 0.0) return 0.0;  // θ→π/2: a→0 and the rational →0
+    if (NoV >= 1.0) return 1.0;  // seed 000: NoV rounded above 1 → G1 = 1
+    const double tan2 = tan2_from_cos(NoV);
+    if (tan2 == 0.0) return 1.0;  // seed 000: tanθ = 0 → do not divide, G1 = 1
+    const double a = 1.0 / (alpha * std::sqrt(tan2));
+    return g1_beckmann_rational(a);
+}
+
+double G1_smith_phong(double NoV, double alpha_p) {
+    // seed 000, "Phong" G1: the Beckmann rational with a = sqrt(alpha_p/2 + 1) / tanθ
+    if (NoV <= 0.0) return 0.0;  // θ→π/2: a→0 and the rational →0
+    if (NoV >= 1.0) return 1.0;  // seed 000: NoV rounded above 1 → G1 = 1
+    const double tan2 = tan2_from_cos(NoV);
+    if (tan2 == 0.0) return 1.0;  // seed 000: tanθ = 0 → do not divide, G1 = 1
+    const double a = std::sqrt(alpha_p / 2.0 + 1.0) / std::sqrt(tan2);
+    return g1_beckmann_rational(a);
+}
+
+double G1_smith_ggx(double NoV, double alpha) {
+    // seed 000, "GGX"; Walter et al. 2007, eq. 34:
+    //   G1 = 2 / (1 + sqrt(1 + alpha² tan²θ))
+    if (NoV <= 0.0) return 0.0;  // θ→π/2: tanθ→∞, so G1→0
+    if (NoV >= 1.0) return 1.0;  // seed 000: NoV rounded above 1 → G1 = 1
+    const double tan2 = tan2_from_cos(NoV);
+    if (tan2 == 0.0) return 1.0;  // seed 000: tanθ = 0 → G1 = 1
+    // tan2 = +inf (NoV below ~1e-162) gives 2 / inf = 0: the θ→π/2 limit.
+    return 2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha * tan2));
+}
+
+// ---- G2 -------------------------------------------------------------------
+
+double G_implicit(double NoL, double NoV, double, double, double) {
+    // seed 000, "A simple approx is: V(L, V) = 1", V = G / (NoL NoV)
+    //   ⇒ G = NoL NoV
+    if (NoL <= 0.0 || NoV <= 0.0) return 0.0;  // below the horizon
+    return NoL * NoV;
+}
+
+double G_kelemen(double NoL, double NoV, double, double VoH, double) {
+    // seed 000, "Better approx is: V(L, V) ≈ 1/(L·H)²" (Kelemen and
+    // Szirmay-Kalos 2001), V = G / (NoL NoV)  ⇒  G = NoL NoV / (L·H)²,
+    // with L·H = V·H for the exact half vector.  Not bounded by 1.
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // also: never divide by VoH = 0
+    return NoL * NoV / (VoH * VoH);
+}
+
+double G_cook_torrance(double NoL, double NoV, double NoH, double VoH, double) {
+    // seed 003, "The Geometric Term"; seed 004, G; seed 001, "Geometric Term, G"
+    // (V-cavity, Torrance-Sparrow 1967 / Cook-Torrance 1982):
+    //   G = min(1, 2 (n·h)(n·v) / (v·h), 2 (n·h)(n·l) / (v·h))
+    // seed 001 prints "G = (1, G_m, G_s)": the "min" is lost in the slide; 003
+    // and 004 have it.  Its two quotients use h·s (= L·H) where 004 uses
+    // v·h; both are the same number for the exact half vector.
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // also: never divide by VoH = 0
+    const double masking = 2.0 * NoH * NoV / VoH;
+    const double shadowing = 2.0 * NoH * NoL / VoH;
+    return std::min({1.0, masking, shadowing});
+}
+
+double G_smith_beckmann_approx(double NoL, double NoV, double, double VoH, double alpha) {
+    // seed 000, Smith form G = G1(L, H) G1(V, H), G1 the Beckmann rational
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_beckmann_approx(NoL, alpha) * G1_smith_beckmann_approx(NoV, alpha);
+}
+
+double G_smith_beckmann(double NoL, double NoV, double, double VoH, double alpha) {
+    // seed 000, Smith form G = G1(L, H) G1(V, H); G1 exact (Walter 2007, eq. 26)
+    // (Heitz 2014, eq. 98: separable, uncorrelated)
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_beckmann(NoL, alpha) * G1_smith_beckmann(NoV, alpha);
+}
+
+double G_smith_phong(double NoL, double NoV, double, double VoH, double alpha_p) {
+    // seed 000, Smith form G = G1(L, H) G1(V, H), G1 "Phong"
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_phong(NoL, alpha_p) * G1_smith_phong(NoV, alpha_p);
+}
+
+double G_smith_ggx(double NoL, double NoV, double, double VoH, double alpha) {
+    // seed 000, Smith form G = G1(L, H) G1(V, H), G1 "GGX"
+    // (Heitz 2014, eq. 98: separable, uncorrelated)
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_ggx(NoL, alpha) * G1_smith_ggx(NoV, alpha);
+}
+
+double G_smith_ggx_correlated(double NoL, double NoV, double, double VoH, double alpha) {
+    // Heitz 2014, "Understanding the masking-shadowing function", eq. 99
+    // (height-correlated):  G2 = 1 / (1 + Λ(ω_o) + Λ(ω_i))
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
+    return 1.0 / (1.0 + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));
+}
+
+double G_hammon_002(double NoL, double NoV, double, double, double alpha) {
+    // seed 002, `geometry` (Hammon 2017's fit to height-correlated Smith-GGX):
+    //   V = 0.5 / max(0.01, mix(2 NoL NoV, NoL + NoV, roughness)),
+    //   mix(a, b, t) = a (1 − t) + b t (GLSL), and G = 4 NoL NoV V.
+    // The seed squares its roughness before the call, so its `roughness`
+    // argument is already the width alpha.  The seed takes |N·L|, |N·V|
+    // (mirroring back faces); this reference returns 0 below the horizon like
+    // every other G2.  0.01 is the seed's floor on the denominator.
+    if (NoL <= 0.0 || NoV <= 0.0) return 0.0;  // below the horizon
+    const double a = 2.0 * NoL * NoV;
+    const double b = NoL + NoV;
+    const double mixed = a * (1.0 - alpha) + b * alpha;
+    const double V = 0.5 / std::max(0.01, mixed);
+    return 4.0 * NoL * NoV * V;
+}
+
+}  // namespace mfv::ref

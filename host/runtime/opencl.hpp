@@ -1,0 +1,63 @@
+// One owner for OpenCL platform, device, context, queue and program builds.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+struct DeviceInfo {
+  int index = -1;  // position in list_devices()
+  std::string platform;
+  std::string name;
+  std::string type;  // "GPU", "CPU", "ACCELERATOR", "OTHER"
+  std::string driver;
+  std::string version;
+  unsigned compute_units = 0;
+  bool fp64 = false;
+  cl::Device device;
+};
+
+// Every device of every platform. Throws mfv::Error when no platform exists.
+std::vector<DeviceInfo> list_devices();
+
+// "" picks the first GPU, else the first device; a number picks by index;
+// anything else is a case-insensitive substring of "platform device".
+DeviceInfo select_device(const std::string& selector);
+
+struct BuildStats {
+  int builds = 0;
+  double seconds = 0.0;  // wall time spent in clBuildProgram, kept apart from run time
+};
+
+class Runtime {
+ public:
+  explicit Runtime(const std::string& device_selector = "", std::string kernel_dir = "");
+
+  const DeviceInfo& device() const { return info_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+
+  // Concatenates the named kernels/ files (with `generated` inserted before
+  // the file named `insert_before`, or at the end) and builds them with the
+  // given -D definitions. Throws mfv::Error with the build log on failure.
+  cl::Program build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
+                    const std::string& generated = "", const std::string& insert_before = "");
+
+  // Pinned options shared by every build, recorded in results files.
+  std::string base_options() const;
+  const BuildStats& build_stats() const { return stats_; }
+
+ private:
+  std::string kernel_text(const std::string& file) const;
+
+  DeviceInfo info_;
+  std::string kernel_dir_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  BuildStats stats_;
+};
+
+}  // namespace mfv

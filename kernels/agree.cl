@@ -1,0 +1,90 @@
+// Pointwise agreement: evaluates one term or one assembled BRDF on
+// Philox-generated inputs and writes the inputs it used beside the value, so
+// the reference evaluates the identical (float-rounded) inputs.
+//
+// Record layout (16 floats): [0..5] geometry, [6..10] parameters, [11] unused,
+// [12] value (float part), [13] value - float part (double builds), [14..15] unused.
+// Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; mode BRDF stores wi.xyz, wo.xyz.
+
+#define AGREE_D 0
+#define AGREE_G 1
+#define AGREE_F 2
+#define AGREE_G1 3
+#define AGREE_BRDF 4
+#define AGREE_RECORD 16
+
+// ranges: 5 slots (D param, G param, F p0, F p1, kd) x (lo, hi, log flag)
+static inline real draw_param(__global const float* ranges, int slot, real u) {
+  real lo = ranges[3 * slot], hi = ranges[3 * slot + 1];
+  if (ranges[3 * slot + 2] != 0.0f) return exp(log(lo) + u * (log(hi) - log(lo)));
+  return lo + u * (hi - lo);
+}
+
+// Evaluates one record: the value depends only on what the record holds.
+static inline real eval_record(int mode, int d, int g, int f, __global const float* r) {
+  if (mode == AGREE_BRDF)
+    return brdf_eval(d, g, f, (real3)(r[0], r[1], r[2]), (real3)(r[3], r[4], r[5]), r[6], r[7], r[8], r[9], r[10]);
+  if (mode == AGREE_D) return eval_D(d, r[2], r[6]);
+  if (mode == AGREE_G) return eval_G(g, r[0], r[1], r[2], r[3], r[7]);
+  if (mode == AGREE_G1) return eval_G1(g, r[1], r[7]);
+  return eval_F(f, r[3], r[8], r[9]);
+}
+
+// The value as float plus the float remainder (a double survives to ~48 bits).
+static inline void store_value(__global float* r, real value) {
+  float hi = (float)value;
+  r[12] = hi;
+  r[13] = isfinite(value) ? (float)(value - (real)hi) : 0.0f;
+}
+
+__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
+                         __global const float* ranges, __global float* rec) {
+  size_t i = get_global_id(0);
+  ulong idx = first + i;
+  uint4 rg = mfv_philox(seed, stream, 0, idx);
+  uint4 rp = mfv_philox(seed, stream, 1, idx);
+  uint4 rk = mfv_philox(seed, stream, 2, idx);
+
+  // View: cosθ = u² (dense at grazing); half vector: θ = (π/2) u³ (dense at
+  // the normal, where D peaks); light = view mirrored about the half vector
+  // (it may fall below the horizon: terms must return 0 there).
+  real co = sqr(u01_open(rg.x));
+  real so = safe_sqrt(R(1.0) - co * co);
+  real po = R(2.0) * MFV_PI * u01_open(rg.y);
+  real th = R(0.5) * MFV_PI * pow(u01_open(rg.z), R(3.0));
+  real ph = R(2.0) * MFV_PI * u01_open(rg.w);
+  real3 wo = (real3)(so * cos(po), so * sin(po), co);
+  real3 h = (real3)(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+  // Keep the half vector on the view's side (v·h >= 0), the terms' domain:
+  // turning it by π about the normal makes v·h >= 2 (n·v)(n·h).
+  if (dot(wo, h) < R(0.0)) h = (real3)(-h.x, -h.y, h.z);
+  real3 wi = R(2.0) * dot(wo, h) * h - wo;
+
+  // Inputs are written to the float record first and evaluated from there,
+  // so the value belongs to exactly the recorded numbers.
+  real p[5];
+  p[0] = draw_param(ranges, 0, u01_open(rp.x));
+  p[1] = draw_param(ranges, 1, u01_open(rp.y));
+  p[2] = draw_param(ranges, 2, u01_open(rp.z));
+  p[3] = draw_param(ranges, 3, u01_open(rp.w));
+  p[4] = draw_param(ranges, 4, u01_open(rk.x));
+
+  __global float* r = rec + i * AGREE_RECORD;
+  if (mode == AGREE_BRDF) {
+    r[0] = wi.x; r[1] = wi.y; r[2] = wi.z;
+    r[3] = wo.x; r[4] = wo.y; r[5] = wo.z;
+  } else {
+    r[0] = wi.z; r[1] = wo.z; r[2] = h.z; r[3] = dot(wo, h); r[4] = 0.0f; r[5] = 0.0f;
+  }
+  for (int k = 0; k < 5; ++k) r[6 + k] = p[k];
+  r[11] = 0.0f;
+  r[14] = 0.0f;
+  r[15] = 0.0f;
+  store_value(r, eval_record(mode, d, g, f, r));
+}
+
+// Evaluates records the host wrote (mfv eval): the same path as agree_eval.
+__kernel void eval_records(int mode, int d, int g, int f, __global float* rec) {
+  __global float* r = rec + get_global_id(0) * AGREE_RECORD;
+  store_value(r, eval_record(mode, d, g, f, r));
+}

@@ -1,0 +1,28 @@
+// Shared by every program: the working precision, constants, named helpers.
+// Build with -DMFV_DOUBLE for a float64 program (needs cl_khr_fp64).
+#ifdef MFV_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+typedef double3 real3;
+#define R(x) (x)
+#else
+typedef float real;
+typedef float3 real3;
+#define R(x) (x##f)
+#endif
+
+#define MFV_PI R(3.14159265358979323846)
+#define MFV_INV_PI R(0.31830988618379067154)
+#define MFV_SQRT_PI R(1.77245385090551602730)
+
+static inline real saturate(real x) { return clamp(x, R(0.0), R(1.0)); }
+static inline real safe_sqrt(real x) { return sqrt(max(x, R(0.0))); }
+static inline real sqr(real x) { return x * x; }
+
+// sin^2 from cos without cancellation: (1-c)(1+c); 1-c is exact for
+// c in [0.5, 1] (Sterbenz), where 1-c*c would lose every digit near c = 1.
+// Dot products that round above 1 give 0, never a negative square.
+static inline real sin2_from_cos(real c) { return max((R(1.0) - c) * (R(1.0) + c), R(0.0)); }
+
+// tan^2 = sin^2 / cos^2; callers guard cos <= 0 (tan -> infinity) themselves.
+static inline real tan2_from_cos(real c) { return sin2_from_cos(c) / (c * c); }

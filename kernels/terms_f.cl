@@ -1,0 +1,69 @@
+// F terms: Fresnel reflectance of one colour channel at the microfacet,
+// argument VoH = cos of the angle of incidence on the facet. An RGB material
+// is three channels. Reference twin: host/reference/terms_f.cpp.
+
+static inline real F_none(real VoH, real unused0, real unused1) {
+  // F = 1: the white furnace's perfect reflector
+  return R(1.0);
+}
+
+static inline real F_schlick(real VoH, real f0, real unused) {
+  // seed 000 / Schlick 1994: F0 + (1 - F0)(1 - l·h)^5
+  real m = R(1.0) - saturate(VoH);
+  real m2 = m * m;
+  return f0 + (R(1.0) - f0) * (m2 * m2 * m);
+}
+
+static inline real F_dielectric(real VoH, real eta, real unused) {
+  // seed 000 exact form: g = sqrt(η² - 1 + c²), c = |l·h|,
+  // F = ½ (g-c)²/(g+c)² (1 + ((c(g+c) - 1)/(c(g-c) + 1))²).
+  // Seed 001 prints c(g-c) - 1 and g² = η² + c² + 1: typos; this is the physics.
+  real c = min(fabs(VoH), R(1.0));
+  real g2 = eta * eta - R(1.0) + c * c;
+  if (g2 <= R(0.0)) return R(1.0);              // sinθt >= 1: total internal reflection
+  real g = sqrt(g2);
+  // g - c = (η² - 1)/(g + c): as printed it cancels for η near 1, where F -> 0.
+  real g_minus_c = (eta - R(1.0)) * (eta + R(1.0)) / (g + c);
+  real a = g_minus_c / (g + c);
+  real b = (c * (g + c) - R(1.0)) / (c * g_minus_c + R(1.0));
+  return R(0.5) * a * a * (R(1.0) + b * b);
+}
+
+static inline real F_conductor(real VoH, real n, real k) {
+  // Exact unpolarised Fresnel for a complex index n + ik in real arithmetic
+  // (Born and Wolf §14.2; form of Lagarde 2013, "Memo on Fresnel equations"):
+  // a²+b² = sqrt(t0² + 4n²k²), t0 = n²-k²-s², a² - b² = t0, ab = nk,
+  // Rs = (a²+b² - 2ac + c²)/(a²+b² + 2ac + c²),
+  // Rp = Rs (c²(a²+b²) - 2ac s² + s⁴)/(c²(a²+b²) + 2ac s² + s⁴).
+  // Written as sums of squares, Rs = ((a-c)² + b²)/((a+c)² + b²) and
+  // Rp/Rs = ((ac-s²)² + b²c²)/((ac+s²)² + b²c²), so nothing cancels when the
+  // conductor is nearly a dielectric (n ~ 1, k ~ 0), where the printed form
+  // loses every digit in float.
+  real c = saturate(VoH);
+  real c2 = c * c;
+  real s2 = sin2_from_cos(c);
+  real n2k2 = n * n * k * k;
+  // e = n² - k² - 1 formed directly (exact-ish near n = 1), and
+  // t0 = n² - k² - s² = e + c² from whichever side does not cancel: e + c²
+  // towards grazing, (n-k)(n+k) - s² towards normal incidence.
+  real e = (n - R(1.0)) * (n + R(1.0)) - k * k;
+  real t0 = c2 < R(0.5) ? e + c2 : (n - k) * (n + k) - s2;
+  real a2b2 = sqrt(t0 * t0 + R(4.0) * n2k2);
+  real a2, b2;  // each from the side where it does not cancel
+  if (t0 >= R(0.0)) {
+    b2 = a2b2 + t0 > R(0.0) ? R(2.0) * n2k2 / (a2b2 + t0) : R(0.0);
+    a2 = t0 + b2;
+  } else {
+    a2 = R(2.0) * n2k2 / (a2b2 - t0);
+    b2 = a2 - t0;
+  }
+  real a = sqrt(a2);
+  real den_s = sqr(a + c) + b2;
+  if (den_s <= R(0.0)) return R(1.0);           // a = b = c = 0: grazing on n = 1, k = 0, as TIR
+  // a - c = (a² - c²)/(a + c); a² - c² = e + b² where b² is small (t0 >= 0),
+  // else a² and c² are both accurate and their difference is safer.
+  real a_minus_c = (t0 >= R(0.0) ? e + b2 : a2 - c2) / (a + c);
+  real rs = (sqr(a_minus_c) + b2) / den_s;
+  real rp = rs * (sqr(a * c - s2) + b2 * c2) / (sqr(a * c + s2) + b2 * c2);
+  return R(0.5) * (rp + rs);
+}

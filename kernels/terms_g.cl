@@ -1,0 +1,121 @@
+// G terms: Smith Lambda and G1 for one direction (argument NoV = cos θ), and
+// the full G2 for a pair (NoL, NoV, NoH, VoH; VoH = LoH for the half vector).
+// G2 functions return G itself, not the visibility G/(4 NoL NoV).
+// Reference twin: host/reference/terms_g.cpp.
+
+// ---- Lambda and G1 ------------------------------------------------------
+
+static inline real Lambda_ggx(real NoV, real alpha) {
+  // Walter et al. 2007 eq. 34 via Heitz 2014 eq. 72: Λ = (-1 + sqrt(1 + α² tan²θ)) / 2,
+  // rearranged as x / (2 (1 + sqrt(1 + x))) with x = α² tan²θ: no cancellation at small x.
+  if (NoV >= R(1.0)) return R(0.0);             // seed 000: (v·n) rounding above 1 -> G1 = 1
+  if (NoV <= R(0.0)) return INFINITY;           // θ -> π/2: Λ -> ∞, so G1 -> 0
+  real x = alpha * alpha * tan2_from_cos(NoV);
+  return x / (R(2.0) * (R(1.0) + sqrt(R(1.0) + x)));
+}
+
+static inline real Lambda_beckmann(real NoV, real alpha) {
+  // Walter et al. 2007 eq. 25 (exact Smith for Beckmann): a = 1/(α tanθ),
+  // Λ = (erf(a) - 1)/2 + exp(-a²)/(2 a √π), with erf(a) - 1 = -erfc(a).
+  if (NoV >= R(1.0)) return R(0.0);             // seed 000: rounding above 1 -> G1 = 1
+  if (NoV <= R(0.0)) return INFINITY;           // θ -> π/2: Λ -> ∞
+  real s2 = sin2_from_cos(NoV);
+  if (s2 <= R(0.0)) return R(0.0);              // seed 000: tanθ = 0, do not divide by it
+  real a = NoV / (alpha * sqrt(s2));
+  return R(0.5) * (exp(-a * a) / (a * MFV_SQRT_PI) - erfc(a));
+}
+
+static inline real G1_smith_ggx(real NoV, real alpha) {
+  // seed 000 "GGX": 2 / (1 + sqrt(1 + α² tan²θ)) = 1 / (1 + Λ)
+  return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));
+}
+
+static inline real G1_smith_beckmann(real NoV, real alpha) {
+  // Smith 1967 / Walter et al. 2007 eq. 24: G1 = 1 / (1 + Λ)
+  return R(1.0) / (R(1.0) + Lambda_beckmann(NoV, alpha));
+}
+
+static inline real G1_rational_beckmann(real a) {
+  // seed 000: (3.535a + 2.181a²) / (1 + 2.276a + 2.577a²) for a < 1.6, else 1
+  if (a >= R(1.6)) return R(1.0);
+  return (R(3.535) * a + R(2.181) * a * a) / (R(1.0) + R(2.276) * a + R(2.577) * a * a);
+}
+
+static inline real G1_smith_beckmann_approx(real NoV, real alpha) {
+  // seed 000 "Beckman" G1 with a = 1/(α tanθ)
+  if (NoV >= R(1.0)) return R(1.0);             // seed 000: rounding above 1 -> 1
+  if (NoV <= R(0.0)) return R(0.0);             // grazing: a -> 0, rational -> 0
+  real s2 = sin2_from_cos(NoV);
+  if (s2 <= R(0.0)) return R(1.0);              // seed 000: tanθ = 0 -> 1
+  return G1_rational_beckmann(NoV / (alpha * sqrt(s2)));
+}
+
+static inline real G1_smith_phong(real NoV, real alpha_p) {
+  // seed 000 "Phong": the Beckmann rational with a = sqrt(αp/2 + 1) / tanθ
+  if (NoV >= R(1.0)) return R(1.0);
+  if (NoV <= R(0.0)) return R(0.0);
+  real s2 = sin2_from_cos(NoV);
+  if (s2 <= R(0.0)) return R(1.0);
+  return G1_rational_beckmann(sqrt(R(0.5) * alpha_p + R(1.0)) * NoV / sqrt(s2));
+}
+
+// ---- G2 ---------------------------------------------------------------
+// Below the horizon (NoL or NoV <= 0) every G2 is 0: no light, no view.
+
+static inline real G_implicit(real NoL, real NoV, real NoH, real VoH, real unused) {
+  // seed 000 "V(L,V) = 1": G = (n·l)(n·v)
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
+  return NoL * NoV;
+}
+
+static inline real G_kelemen(real NoL, real NoV, real NoH, real VoH, real unused) {
+  // seed 000: G / ((L·N)(V·N)) ≈ 1 / (L·H)²  (Kelemen and Szirmay-Kalos 2001)
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return NoL * NoV / (VoH * VoH);
+}
+
+static inline real G_cook_torrance(real NoL, real NoV, real NoH, real VoH, real unused) {
+  // seeds 001, 003, 004 (V-cavity, Torrance-Sparrow 1967):
+  // min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h)), using v·h = l·h
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  real k = R(2.0) * NoH / VoH;
+  return min(R(1.0), k * min(NoV, NoL));
+}
+
+static inline real G_smith_beckmann_approx(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // seed 000 Smith form G = G1(L) G1(V), rational Beckmann G1
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_beckmann_approx(NoL, alpha) * G1_smith_beckmann_approx(NoV, alpha);
+}
+
+static inline real G_smith_beckmann(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // Walter et al. 2007 eq. 23, separable: G1(L) G1(V) with exact Λ
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_beckmann(NoL, alpha) * G1_smith_beckmann(NoV, alpha);
+}
+
+static inline real G_smith_phong(real NoL, real NoV, real NoH, real VoH, real alpha_p) {
+  // seed 000 "Phong": Smith form with the Phong G1
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_phong(NoL, alpha_p) * G1_smith_phong(NoV, alpha_p);
+}
+
+static inline real G_smith_ggx(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // seed 000 "GGX", separable Smith: G1(L) G1(V)
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_ggx(NoL, alpha) * G1_smith_ggx(NoV, alpha);
+}
+
+static inline real G_smith_ggx_correlated(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // Heitz 2014 eq. 99 (height-correlated): 1 / (1 + Λ(L) + Λ(V))
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));
+}
+
+static inline real G_hammon_002(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // seed 002 `geometry`: visibility V = 0.5 / max(0.01, mix(2 NoL NoV, NoL + NoV, α))
+  // (Hammon 2017's approximation); G = 4 NoL NoV V.
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
+  real v = R(0.5) / max(R(0.01), mix(R(2.0) * NoL * NoV, NoL + NoV, alpha));
+  return R(4.0) * NoL * NoV * v;
+}
