@@ -12,6 +12,7 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
   real3 h = normalize(wi + wo);
   real NoH = h.z;
   real VoH = saturate(dot(wo, h));
-  real spec = eval_D(d, NoH, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
+  real sin2H = h.x * h.x + h.y * h.y;  // |n×h|², exact where 1 - NoH is not
+  real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
   return kd * MFV_INV_PI + spec / (R(4.0) * NoL * NoV);
 }

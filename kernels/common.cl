@@ -26,3 +26,9 @@ static inline real sin2_from_cos(real c) { return max((R(1.0) - c) * (R(1.0) + c
 
 // tan^2 = sin^2 / cos^2; callers guard cos <= 0 (tan -> infinity) themselves.
 static inline real tan2_from_cos(real c) { return sin2_from_cos(c) / (c * c); }
+
+// log(cos θ) from both cos and sin²: ½ log1p(-sin²) near the normal, where
+// cos has lost the small angle, and log(cos) elsewhere, where 1 - sin² cancels.
+static inline real log_cos(real c, real sin2) {
+  return sin2 < R(0.5) ? R(0.5) * log1p(-sin2) : log(c);
+}

@@ -1,45 +1,51 @@
 // D terms: microfacet normal distributions, D(m) normalised so that
 // the projected area integrates to one:  ∫ D(m) (m·n) dm = 1.
-// Argument NoH = cos(theta_h); every term returns 0 below the horizon and
-// treats NoH rounded above 1 as 1. Reference twin: host/reference/terms_d.cpp.
+// Arguments: NoH = cos(theta_h) and sin2H = sin²(theta_h) = |n×h|², formed by
+// the caller from the half vector's components (h.x² + h.y²): near the normal
+// float cannot hold 1 - NoH (it rounds to 0 below ~6e-8), but it holds sin²
+// to full relative precision, so peaks as narrow as alpha = 1e-7 resolve.
+// Every term returns 0 below the horizon and treats NoH above 1 as 1.
+// Reference twin: host/reference/terms_d.cpp.
 
-static inline real D_phong(real NoH, real alpha_p) {
+static inline real D_phong(real NoH, real sin2H, real alpha_p) {
   // seed 000 "Phong" and seed 003 "Blinn microfacet distribution": (ap+2)/(2π) (n·h)^ap
   if (NoH <= R(0.0)) return R(0.0);
-  return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * pow(min(NoH, R(1.0)), alpha_p);
+  // (n·h)^ap = exp(ap log cos): log_cos keeps the tiny sin² of a sharp lobe
+  return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
 }
 
-static inline real D_beckmann(real NoH, real alpha) {
+static inline real D_beckmann(real NoH, real sin2H, real alpha) {
   // seed 000 "Beckman": exp(-tan²θ/α²) / (π α² cos⁴θ)
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real a2 = alpha * alpha;
-  return exp(-sin2_from_cos(NoH) / (c2 * a2)) / (MFV_PI * a2 * c2 * c2);
+  return exp(-sin2H / (c2 * a2)) / (MFV_PI * a2 * c2 * c2);
 }
 
-static inline real D_ggx(real NoH, real alpha) {
+static inline real D_ggx(real NoH, real sin2H, real alpha) {
   // seed 000 "GGX", second form α²/(π((n·h)²(α²-1)+1)²), rewritten as
-  // α²/(π(c²α² + s²)²) with s² = (1-c)(1+c): no cancellation as c -> 1.
+  // α²/(π(c²α² + s²)²) with s² = |n×h|²: no cancellation as c -> 1.
   if (NoH <= R(0.0)) return R(0.0);
   real c = min(NoH, R(1.0));
   // divide by α² first so α⁴ never underflows: 1/(π α² (c² + s²/α²)²)
   real a2 = alpha * alpha;
-  real k = c * c + sin2_from_cos(c) / a2;
+  real k = c * c + sin2H / a2;
   return R(1.0) / (MFV_PI * a2 * k * k);
 }
 
-static inline real D_blinn_rho(real NoH, real rho) {
+static inline real D_blinn_rho(real NoH, real sin2H, real rho) {
   // seed 004 Cook-Torrance, "blinn version": (h·n)^(2/ρ² - 2) / (π ρ²)
   if (NoH <= R(0.0)) return R(0.0);
   real r2 = rho * rho;
-  return pow(min(NoH, R(1.0)), R(2.0) / r2 - R(2.0)) / (MFV_PI * r2);
+  // (h·n)^e = exp(e log cos), e = 2/ρ² - 2, as in D_phong
+  return exp((R(2.0) / r2 - R(2.0)) * log_cos(min(NoH, R(1.0)), sin2H)) / (MFV_PI * r2);
 }
 
-static inline real D_beckmann_ct82(real NoH, real m) {
+static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
   // seed 001 as written: exp(-(tanδ/m)²) / (4 m² cos⁴δ). Known bad: the 4 in
   // place of π makes ∫ D cos = π/4 (Cook and Torrance 1982 omit the π).
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real m2 = m * m;
-  return exp(-sin2_from_cos(NoH) / (c2 * m2)) / (R(4.0) * m2 * c2 * c2);
+  return exp(-sin2H / (c2 * m2)) / (R(4.0) * m2 * c2 * c2);
 }

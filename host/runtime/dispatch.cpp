@@ -33,7 +33,7 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
 std::string generate_dispatch(const TermSelection& s) {
   std::string out;
   auto kfn = [](const Term& t) { return t.kernel_fn; };
-  if (!s.d.empty()) out += switch_fn("eval_D", "real NoH, real p", "NoH, p", s.d, kfn);
+  if (!s.d.empty()) out += switch_fn("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d, kfn);
   if (!s.g.empty())
     out += switch_fn("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g, kfn);
   if (!s.f.empty()) out += switch_fn("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f, kfn);
