@@ -22,8 +22,17 @@ static inline real draw_param(__global const float* ranges, int slot, real u) {
 
 // Evaluates one record: the value depends only on what the record holds.
 static inline real eval_record(int mode, int d, int g, int f, __global const float* r) {
-  if (mode == AGREE_BRDF)
-    return brdf_eval(d, g, f, (real3)(r[0], r[1], r[2]), (real3)(r[3], r[4], r[5]), r[6], r[7], r[8], r[9], r[10]);
+  // A record names directions. In double builds the float-rounded record is
+  // unit only to ~1e-8, far above double rounding, so it is made unit first
+  // (the reference does the same in double); float builds take it as it is.
+  if (mode == AGREE_BRDF) {
+    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
+#ifdef MFV_DOUBLE
+    wi = normalize(wi);
+    wo = normalize(wo);
+#endif
+    return brdf_eval(d, g, f, wi, wo, r[6], r[7], r[8], r[9], r[10]);
+  }
   if (mode == AGREE_D) return eval_D(d, r[2], sin2_from_cos(r[2]), r[6]);
   if (mode == AGREE_G) return eval_G(g, r[0], r[1], r[2], r[3], r[7]);
   if (mode == AGREE_G1) return eval_G1(g, r[1], r[7]);

@@ -9,9 +9,14 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
   real NoV = wo.z;
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   // Both above the horizon, so wi + wo != 0 and the half vector is defined.
-  real3 h = normalize(wi + wo);
+  // v·h = l·h = |l + v| / 2 for unit l, v: symmetric in l and v (so f is
+  // reciprocal to the last bit) and free of the cancellation dot(v, h) has
+  // when l and v are nearly opposite and v·h -> 0.
+  real3 sum = wi + wo;
+  real len = length(sum);
+  real3 h = sum / len;
   real NoH = h.z;
-  real VoH = saturate(dot(wo, h));
+  real VoH = min(R(0.5) * len, R(1.0));
   real sin2H = h.x * h.x + h.y * h.y;  // |n×h|², exact where 1 - NoH is not
   real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
   return kd * MFV_INV_PI + spec / (R(4.0) * NoL * NoV);

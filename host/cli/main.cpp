@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   mfv::cli::add_list(app, g, rc);
   mfv::cli::add_agree(app, g, rc);
   mfv::cli::add_eval(app, g, rc);
+  mfv::cli::add_run(app, g, rc);
   try {
     // Name an unknown command instead of CLI11's "a subcommand is required".
     for (int i = 1; i < argc; ++i) {
@@ -30,8 +31,12 @@ int main(int argc, char** argv) {
       }
       if (a.rfind("-", 0) == 0) continue;
       bool known = false;
-      for (auto* sub : app.get_subcommands({})) known = known || sub->get_name() == a;
-      if (!known) throw mfv::Error("unknown command '" + a + "' (commands: devices, list, eval, agree; see 'mfv --help')");
+      std::string names;
+      for (auto* sub : app.get_subcommands({})) {
+        known = known || sub->get_name() == a;
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      if (!known) throw mfv::Error("unknown command '" + a + "' (commands: " + names + "; see 'mfv --help')");
       break;
     }
     app.parse(argc, argv);

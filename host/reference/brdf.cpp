@@ -2,14 +2,23 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mfv::ref {
 
-Shading shading_from(const glm::dvec3& wi, const glm::dvec3& wo) {
-  const glm::dvec3 n(0.0, 0.0, 1.0);
-  const glm::dvec3 h = glm::normalize(wi + wo);  // seed 000: H = (L + V) / |L + V|
-  return {glm::dot(n, wi), glm::dot(n, wo), glm::dot(n, h), glm::dot(wo, h)};
+Shading shading_from(const glm::dvec3& wi_in, const glm::dvec3& wo_in) {
+  // f is a function of directions: float inputs are unit only to ~1e-7, and
+  // for nearly opposite l and v that slack is larger than |l + v|^2 itself,
+  // so the directions are made unit in double before anything else.
+  const glm::dvec3 wi = glm::normalize(wi_in), wo = glm::normalize(wo_in);
+  // seed 000: H = (L + V) / |L + V|. For unit L, V: V·H = (1 + L·V) / |L + V|
+  // = |L + V| / 2, which keeps full precision where L and V are nearly
+  // opposite and the dot product V·H would cancel.
+  const glm::dvec3 sum = wi + wo;
+  const double len = glm::length(sum);
+  const glm::dvec3 h = sum / len;
+  return {wi.z, wo.z, h.z, std::min(0.5 * len, 1.0)};  // n = +z
 }
 
 double brdf(const BrdfSpec& s, const Shading& c) {

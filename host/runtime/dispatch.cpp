@@ -33,10 +33,16 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
 std::string generate_dispatch(const TermSelection& s) {
   std::string out;
   auto kfn = [](const Term& t) { return t.kernel_fn; };
-  if (!s.d.empty()) out += switch_fn("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d, kfn);
-  if (!s.g.empty())
-    out += switch_fn("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g, kfn);
-  if (!s.f.empty()) out += switch_fn("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f, kfn);
+  // A kind left out still gets a function (returning NaN, so a stray call
+  // cannot pass silently): shared code such as brdf_eval must compile.
+  auto emit = [&](const char* name, const std::string& params, const std::string& args,
+                  const std::vector<const Term*>& terms) {
+    out += terms.empty() ? fmt::format("static inline real {}(int id, {}) {{ return NAN; }}\n", name, params)
+                         : switch_fn(name, params, args, terms, kfn);
+  };
+  emit("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d);
+  emit("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g);
+  emit("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f);
   if (s.g1) {
     std::vector<const Term*> smith;
     for (auto* t : s.g)

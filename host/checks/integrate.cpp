@@ -1,0 +1,100 @@
+#include "checks/integrate.hpp"
+
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mfv {
+
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : rt_(rt), acc_double_(rt.device().fp64) {
+  std::vector<std::string> defines;
+  if (acc_double_) defines.push_back("MFV_ACC_DOUBLE");
+  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+                      defines, generate_dispatch(terms), "brdf.cl");
+  size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  while (local_size_ > max_wg) local_size_ /= 2;
+}
+
+void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
+  if (samples == 0) throw Error("samples per integral must be at least 1");
+  per_item = static_cast<uint32_t>(std::clamp<uint64_t>((samples + local_size_ - 1) / local_size_, 1, 64));
+  uint64_t per_slice = local_size_ * per_item;
+  uint64_t s = (samples + per_slice - 1) / per_slice;
+  if (s > (1u << 24)) throw Error(fmt::format("{} samples per integral is too many", samples));
+  slices = static_cast<uint32_t>(s);
+}
+
+uint64_t Integrator::samples_used(uint64_t requested) const {
+  uint32_t per_item, slices;
+  layout(requested, per_item, slices);
+  return uint64_t(slices) * local_size_ * per_item;
+}
+
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed) {
+  uint32_t per_item, slices;
+  layout(samples, per_item, slices);
+  const uint64_t n = uint64_t(slices) * local_size_ * per_item;
+  std::vector<Estimate> out(specs.size());
+  if (specs.empty()) return out;
+  cl::Kernel k(program_, "integrate");
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  // Batches of at most ~2^15 work-groups keep buffers small and launches short.
+  const size_t per_batch = std::max<size_t>(1, (size_t(1) << 15) / slices);
+  for (size_t first = 0; first < specs.size(); first += per_batch) {
+    size_t count = std::min(per_batch, specs.size() - first);
+    size_t groups = count * slices;
+    cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
+                        const_cast<IntegralSpec*>(specs.data() + first));
+    cl::Buffer sums(rt_.context(), CL_MEM_WRITE_ONLY, groups * 2 * acc);
+    k.setArg(0, spec_buf);
+    k.setArg(1, static_cast<cl_uint>(slices));
+    k.setArg(2, static_cast<cl_uint>(per_item));
+    k.setArg(3, static_cast<cl_ulong>(seed));
+    k.setArg(4, sums);
+    k.setArg(5, cl::Local(2 * local_size_ * acc));
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
+    std::vector<double> host(groups * 2);
+    if (acc_double_) {
+      rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * acc, host.data());
+    } else {
+      std::vector<float> f(groups * 2);
+      rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * acc, f.data());
+      std::copy(f.begin(), f.end(), host.begin());
+    }
+    for (size_t i = 0; i < count; ++i) {
+      double s = 0, ss = 0;
+      for (uint32_t j = 0; j < slices; ++j) {
+        s += host[2 * (i * slices + j)];
+        ss += host[2 * (i * slices + j) + 1];
+      }
+      Estimate& e = out[first + i];
+      e.samples = n;
+      e.mean = s / double(n);
+      double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
+      e.stderr_ = std::sqrt(var / double(n));
+      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return out;
+}
+
+std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
+  std::vector<float> out(specs.size() * n);
+  if (out.empty()) return out;
+  cl::Kernel k(program_, "sample_values");
+  cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                      const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer vals(rt_.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(float));
+  k.setArg(0, spec_buf);
+  k.setArg(1, static_cast<cl_uint>(n));
+  k.setArg(2, static_cast<cl_ulong>(seed));
+  k.setArg(3, vals);
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
+  rt_.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+  return out;
+}
+
+}  // namespace mfv

@@ -1,0 +1,51 @@
+// Batched Monte Carlo integration on the device (kernels/integrate.cl).
+#pragma once
+
+#include "runtime/dispatch.hpp"
+#include "runtime/opencl.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace mfv {
+
+enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2 };
+
+// Twin of IntegralSpec in kernels/integrate.cl: sixteen 4-byte fields.
+struct IntegralSpec {
+  int32_t check = 0, d = 0, g = 0, f = 0;
+  float pd = 0, pg = 0, f0 = 0, f1 = 0;
+  float kd = 0, width = 0.1f, cos_o = 1, unused0 = 0;
+  uint32_t stream = 0, unused1 = 0, unused2 = 0, unused3 = 0;
+};
+static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's layout");
+
+struct Estimate {
+  double mean = 0, stderr_ = 0;
+  uint64_t samples = 0;
+};
+
+class Integrator {
+ public:
+  // Builds one program with the given terms (one build for a whole check).
+  Integrator(Runtime& rt, const TermSelection& terms);
+
+  // Samples per integral are rounded up to a whole number of work-group
+  // slices; samples_used() tells the count actually taken.
+  std::vector<Estimate> run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed);
+  uint64_t samples_used(uint64_t requested) const;
+
+  // The first n per-sample values of each integral, for the reference.
+  std::vector<float> sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
+
+  bool double_accumulation() const { return acc_double_; }
+
+ private:
+  void layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const;
+  Runtime& rt_;
+  cl::Program program_;
+  bool acc_double_;
+  size_t local_size_ = 64;
+};
+
+}  // namespace mfv

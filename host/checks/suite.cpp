@@ -1,0 +1,449 @@
+#include "checks/suite.hpp"
+
+#include "catalog/roughness.hpp"
+#include "checks/integrate.hpp"
+#include "reference/estimators.hpp"
+#include "runtime/dispatch.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <thread>
+
+namespace mfv {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::Pass: return "pass";
+    case Verdict::Fail: return "FAIL";
+    case Verdict::XFail: return "xfail";
+    case Verdict::XPass: return "XPASS";
+  }
+  return "?";
+}
+
+bool SuiteReport::gate_ok() const {
+  for (auto& g : groups)
+    if (g.verdict == Verdict::Fail || g.verdict == Verdict::XPass) return false;
+  return true;
+}
+
+const std::vector<std::string>& suite_checks() {
+  static const std::vector<std::string> c = {"d_norm", "masking", "furnace", "energy", "energy_diffuse",
+                                             "reciprocity"};
+  return c;
+}
+
+double normal_two_sided_quantile(double p) {
+  // Solve erfc(z / sqrt 2) = p by bisection on z in [0, 40]: monotone, exact enough.
+  double lo = 0, hi = 40;
+  for (int i = 0; i < 200; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+namespace {
+
+// ---- grids ---------------------------------------------------------------
+
+// Widths from extreme to rough, for d_norm; each D keeps those in its range.
+const std::vector<double> kNormAlphas = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0};
+const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 1e5, 1e6};
+// Shared widths and view cosines for the combination checks.
+const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
+std::vector<double> view_cosines(int n) {
+  // dense towards grazing: cos from 1e-3 to 1
+  std::vector<double> c;
+  for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -3.0 * double(n - 1 - i) / double(n - 1)));
+  return c;
+}
+
+struct FParams {
+  double f0, f1;
+  std::string label;
+};
+std::vector<FParams> f_points(const Term& f) {
+  if (f.id == "schlick") return {{0.0, 0, "f0=0"}, {0.04, 0, "f0=0.04"}, {0.5, 0, "f0=0.5"}, {1.0, 0, "f0=1"}};
+  if (f.id == "dielectric") return {{1 / 1.5, 0, "eta=0.667"}, {1.33, 0, "eta=1.33"}, {1.5, 0, "eta=1.5"}, {3.0, 0, "eta=3"}};
+  if (f.id == "conductor")  // silver, aluminium, gold, iron at ~550 nm (Palik)
+    return {{0.059, 3.6, "Ag"}, {0.96, 6.69, "Al"}, {0.43, 2.45, "Au"}, {2.87, 3.0, "Fe"}};
+  return {{0, 0, ""}};
+}
+
+double width_of(const Term& d, double native) {
+  switch (d.roughness) {
+    case Roughness::PhongExponent: return alpha_from_phong_exponent(native);
+    default: return native;
+  }
+}
+
+// ---- expectations --------------------------------------------------------
+// Which models must fail which check, and why, from catalog properties.
+
+struct Expectation {
+  bool fail = false;
+  std::string reason;
+  double tolerance = 0;
+};
+
+bool same_family(const std::string& smith_of, const Term& d) {
+  // seed 004's rho-D is the Phong D with alpha_p = 2/rho^2 - 2 (same function)
+  return smith_of == d.id || (smith_of == "phong" && d.id == "blinn_rho");
+}
+
+Expectation expect(const std::string& check, const Term* d, const Term* g, const Term* f, double kd_max) {
+  Expectation e;
+  if (check == "reciprocity") return e;
+  if (d && !d->known_bad.empty() && check != "reciprocity") {
+    if (check == "d_norm" || check == "masking") return {true, "D " + d->id + ": " + d->known_bad, 0};
+  }
+  if (check == "d_norm") return e;
+  if (check == "masking") {
+    if (g->smith_of.empty())
+      return {true, g->id + " is not the Smith G1 of any D (Heitz 2014 §5): it is not normalised against D", 0};
+    if (!same_family(g->smith_of, *d))
+      return {true, g->id + "'s G1 belongs to " + g->smith_of + ", not to " + d->id, 0};
+    e.tolerance = g->approx_tol;
+    return e;
+  }
+  if (check == "energy_diffuse" && kd_max > 0)
+    return {true, "seed 000's kd/pi + specular adds the diffuse albedo to the specular one with no (1-F) weight", 0};
+  e.tolerance = g ? g->approx_tol : 0.0;
+  return e;
+}
+
+// ---- running ---------------------------------------------------------------
+
+struct Plan {
+  std::string check;
+  std::vector<IntegralSpec> specs;
+  std::vector<PointResult> points;
+  uint64_t samples = 0;
+  TermSelection terms;
+};
+
+bool check_wanted(const SuiteOptions& opt, const std::string& check) {
+  return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
+}
+
+bool wanted(const std::vector<std::string>& filter, const std::string& name) {
+  if (filter.empty()) return true;
+  for (auto& f : filter)
+    if (name.find(f) != std::string::npos) return true;
+  return false;
+}
+
+std::string model_name(const PointResult& p) {
+  std::string m = p.d ? p.d->id : "";
+  if (p.g) m += "/" + p.g->id;
+  if (p.f) m += "/" + p.f->id;
+  return m;
+}
+
+void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
+               double pg, double f0, double f1, double kd, double cos_o, double expected, bool upper,
+               std::map<std::string, double> params) {
+  IntegralSpec s;
+  s.check = static_cast<int32_t>(kind);
+  s.d = term_index(*d);
+  s.g = g ? term_index(*g) : 0;
+  s.f = f ? term_index(*f) : 0;
+  s.pd = float(pd);
+  s.pg = float(pg);
+  s.f0 = float(f0);
+  s.f1 = float(f1);
+  s.kd = float(kd);
+  s.width = float(alpha);
+  s.cos_o = float(cos_o);
+  plan.specs.push_back(s);
+  PointResult p;
+  p.check = plan.check;
+  p.d = d;
+  p.g = g;
+  p.f = f;
+  p.params = std::move(params);
+  p.expected = expected;
+  p.upper_only = upper;
+  plan.points.push_back(p);
+}
+
+std::vector<Plan> make_plans(const SuiteOptions& opt) {
+  std::vector<Plan> plans;
+  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  auto Ds = terms_of(Kind::D), Gs = terms_of(Kind::G), Fs = terms_of(Kind::F);
+  const Term* none = try_find_term("none", Kind::F);
+  auto ok = [&](const std::string& m) { return wanted(opt.models, m); };
+
+  if (check_wanted(opt, "d_norm")) {
+    Plan p{"d_norm", {}, {}, scaled(1 << 18), {}};
+    for (auto* d : Ds) {
+      if (!ok(d->id)) continue;
+      p.terms.d.push_back(d);
+      const Param& par = d->params[0];
+      for (double v : d->roughness == Roughness::PhongExponent ? kNormPhong : kNormAlphas) {
+        if (v < par.lo || v > par.hi) continue;
+        add_point(p, IntegralKind::DNorm, d, nullptr, nullptr, width_of(*d, v), v, 0, 0, 0, 0, 1, 1.0, false,
+                  {{par.name, v}});
+      }
+    }
+    plans.push_back(p);
+  }
+  auto combos = [&](const std::string& check, IntegralKind kind, uint64_t samples, int n_alpha, int n_view,
+                    const std::vector<const Term*>& fs, std::vector<double> kds) {
+    if (!check_wanted(opt, check)) return;
+    Plan p{check, {}, {}, scaled(samples), {}};
+    std::vector<double> views = view_cosines(n_view);
+    for (auto* d : Ds)
+      for (auto* g : Gs)
+        for (auto* f : fs) {
+          std::string m = d->id + "/" + g->id + (kind == IntegralKind::Masking ? "" : "/" + f->id);
+          if (!ok(m)) continue;
+          for (int ai = 0; ai < n_alpha; ++ai) {
+            double alpha = kAlphas[size_t(ai) * kAlphas.size() / size_t(n_alpha)];
+            double pd = native_from_alpha(d->roughness, alpha);
+            double pg = g->params.empty() ? 0.0 : std::min(native_from_alpha(g->roughness, alpha), g->params[0].hi);
+            for (auto& fp : kind == IntegralKind::Masking ? std::vector<FParams>{{0, 0, ""}} : f_points(*f))
+              for (double kd : kds)
+                for (double co : views) {
+                  std::map<std::string, double> params{{"alpha", alpha}, {"cos_o", co}};
+                  if (!fp.label.empty()) {
+                    params[f->params[0].name] = fp.f0;
+                    if (f->params.size() > 1) params[f->params[1].name] = fp.f1;
+                  }
+                  if (kd > 0) params["kd"] = kd;
+                  add_point(p, kind, d, g, kind == IntegralKind::Masking ? nullptr : f, alpha, pd, pg, fp.f0, fp.f1, kd,
+                            co, 1.0, kind != IntegralKind::Masking, params);
+                }
+          }
+        }
+    p.terms.d = Ds;
+    p.terms.g = Gs;
+    p.terms.f = kind == IntegralKind::Masking ? std::vector<const Term*>{} : fs;
+    plans.push_back(p);
+  };
+  std::vector<const Term*> real_fs;
+  for (auto* f : Fs)
+    if (f->id != "none") real_fs.push_back(f);
+  combos("masking", IntegralKind::Masking, 1 << 12, 12, 32, {none}, {0.0});
+  combos("furnace", IntegralKind::Albedo, 1 << 12, 12, 32, {none}, {0.0});
+  combos("energy", IntegralKind::Albedo, 1 << 11, 6, 16, real_fs, {0.0});
+  combos("energy_diffuse", IntegralKind::Albedo, 1 << 11, 3, 8, {try_find_term("schlick", Kind::F)}, {0.5, 1.0});
+  return plans;
+}
+
+// z-test verdicts for every point, then one verdict per model x check.
+void judge(SuiteReport& rep, const SuiteOptions& opt) {
+  rep.tests = 0;
+  for (auto& p : rep.points)
+    if (p.check != "reciprocity") ++rep.tests;
+  rep.z_threshold = normal_two_sided_quantile(opt.family_alpha / double(std::max<size_t>(rep.tests, 1)));
+  std::map<std::pair<std::string, std::string>, size_t> index;
+  for (size_t i = 0; i < rep.points.size(); ++i) {
+    PointResult& p = rep.points[i];
+    auto key = std::make_pair(p.check, model_name(p));
+    auto it = index.find(key);
+    if (it == index.end()) {
+      GroupResult g;
+      g.check = p.check;
+      g.model = key.second;
+      double kd_max = p.params.count("kd") ? 1.0 : 0.0;
+      Expectation e = expect(p.check, p.d, p.g, p.f, kd_max);
+      g.expect_fail = e.fail;
+      g.reason = e.reason;
+      g.tolerance = e.tolerance;
+      it = index.emplace(key, rep.groups.size()).first;
+      rep.groups.push_back(g);
+    }
+    GroupResult& g = rep.groups[it->second];
+    if (p.check == "reciprocity") {
+      p.bound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
+      p.deviation = p.estimate;
+      p.failed = !(p.estimate <= p.bound);
+    } else {
+      double allowance = rep.z_threshold * p.stderr_ + g.tolerance * std::fabs(p.expected);
+      p.deviation = p.estimate - p.expected;
+      p.bound = p.upper_only ? p.expected + allowance : allowance;
+      p.failed = p.upper_only ? !(p.deviation <= allowance) : !(std::fabs(p.deviation) <= allowance);
+    }
+    g.points.push_back(i);
+    auto score = [&](const PointResult& q) {
+      if (!std::isfinite(q.estimate)) return std::numeric_limits<double>::infinity();
+      if (q.check == "reciprocity") return q.estimate / q.bound;
+      double noise = rep.z_threshold * q.stderr_ + g.tolerance * std::fabs(q.expected) + 1e-300;
+      return (q.upper_only ? q.deviation : std::fabs(q.deviation)) / noise;
+    };
+    if (g.points.size() == 1 || score(p) > score(rep.points[g.worst])) g.worst = i;
+    if (p.failed) ++g.failures;
+  }
+  for (auto& g : rep.groups) {
+    bool failed = g.failures > 0;
+    g.verdict = g.expect_fail ? (failed ? Verdict::XFail : Verdict::XPass) : (failed ? Verdict::Fail : Verdict::Pass);
+  }
+}
+
+ref::IntegralRef to_reference(const IntegralSpec& s) {
+  ref::IntegralRef r;
+  r.kind = static_cast<ref::Integral>(s.check);
+  r.brdf.d = &catalog()[size_t(s.d)];
+  r.brdf.g = &catalog()[size_t(s.g)];
+  r.brdf.f = &catalog()[size_t(s.f)];
+  r.brdf.pd = s.pd;
+  r.brdf.pg = s.pg;
+  r.brdf.f0 = s.f0;
+  r.brdf.f1 = s.f1;
+  r.brdf.kd = s.kd;
+  r.width = s.width;
+  r.cos_o = s.cos_o;
+  r.stream = s.stream;
+  return r;
+}
+
+// The reference runs the same estimator on the identical first N samples of
+// every k-th integral; the two means must agree to rounding.
+void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
+  if (opt.reference_samples == 0) return;
+  std::vector<IntegralSpec> subset;
+  std::vector<size_t> which;
+  for (size_t i = 0; i < plan.specs.size(); i += std::max<uint32_t>(1, opt.reference_every)) {
+    subset.push_back(plan.specs[i]);
+    which.push_back(i);
+  }
+  const uint32_t n = opt.reference_samples;
+  std::vector<float> kv = in.sample_values(subset, n, opt.seed);
+  for (size_t j = 0; j < subset.size(); ++j) {
+    ref::IntegralRef r = to_reference(subset[j]);
+    double ks = 0, rs = 0, scale = 0;
+    for (uint32_t k = 0; k < n; ++k) {
+      double rv = ref::sample_value(r, opt.seed, k);
+      ks += kv[j * n + k];
+      rs += rv;
+      scale += std::fabs(rv);
+    }
+    double rel = std::fabs(ks - rs) / std::max(scale, 1e-300);
+    if (!std::isfinite(ks) || !std::isfinite(rs)) rel = std::isnan(ks) == std::isnan(rs) && ks == rs ? 0 : INFINITY;
+    rep.reference_compared++;
+    if (rel > rep.reference_worst || rep.reference_worst_at.empty()) {
+      rep.reference_worst = std::max(rel, rep.reference_worst);
+      if (rel >= rep.reference_worst) {
+        const PointResult& p = plan.points[which[j]];
+        std::string ps;
+        for (auto& [k, v] : p.params) ps += fmt::format(" {}={:g}", k, v);
+        rep.reference_worst_at = fmt::format("{} {}{} (kernel mean {:.9g}, reference {:.9g})", p.check, model_name(p), ps,
+                                             ks / n, rs / n);
+      }
+    }
+  }
+}
+
+void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, double& build_seconds) {
+  auto t0 = std::chrono::steady_clock::now();
+  TermSelection all = TermSelection::all();
+  all.g1 = false;  // the reciprocity kernel shares integrate.cl's program
+  double b0 = rt.build_stats().seconds;
+  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
+                              generate_dispatch(all), "brdf.cl");
+  build_seconds += rt.build_stats().seconds - b0;
+  std::vector<IntegralSpec> specs;
+  std::vector<PointResult> pts;
+  const double alpha = 0.3;
+  for (auto* d : terms_of(Kind::D))
+    for (auto* g : terms_of(Kind::G))
+      for (auto* f : terms_of(Kind::F)) {
+        std::string m = d->id + "/" + g->id + "/" + f->id;
+        if (!wanted(opt.models, m)) continue;
+        for (auto& fp : f_points(*f)) {
+          IntegralSpec s;
+          s.d = term_index(*d);
+          s.g = term_index(*g);
+          s.f = term_index(*f);
+          s.pd = float(native_from_alpha(d->roughness, alpha));
+          s.pg = g->params.empty() ? 0.f : float(native_from_alpha(g->roughness, alpha));
+          s.f0 = float(fp.f0);
+          s.f1 = float(fp.f1);
+          s.kd = 0.2f;
+          s.stream = uint32_t(specs.size());
+          specs.push_back(s);
+          PointResult p;
+          p.check = "reciprocity";
+          p.d = d;
+          p.g = g;
+          p.f = f;
+          p.params = {{"alpha", alpha}, {"kd", 0.2}};
+          if (!fp.label.empty()) p.params[f->params[0].name] = fp.f0;
+          pts.push_back(p);
+        }
+      }
+  if (specs.empty()) return;
+  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * opt.scale));
+  cl::Kernel k(prog, "reciprocity");
+  cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
+  cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
+  cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
+  k.setArg(0, sb);
+  k.setArg(1, per_item);
+  k.setArg(2, static_cast<cl_ulong>(opt.seed));
+  k.setArg(3, wb);
+  k.setArg(4, ib);
+  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
+  std::vector<float> w(specs.size() * local);
+  std::vector<cl_uint> wi(specs.size() * local);
+  rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
+  for (size_t i = 0; i < specs.size(); ++i) {
+    float worst = 0;
+    uint32_t at = 0;
+    for (uint32_t l = 0; l < local; ++l)
+      if (!(w[i * local + l] <= worst)) worst = w[i * local + l], at = wi[i * local + l];
+    pts[i].estimate = worst;
+    pts[i].samples = uint64_t(local) * per_item;
+    pts[i].params["worst_pair"] = at;
+    rep.points.push_back(pts[i]);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(local) * per_item * 2, secs});
+}
+
+}  // namespace
+
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
+  for (auto& c : opt.checks)
+    if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
+      throw Error(fmt::format("unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity)", c));
+  if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
+  if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
+  SuiteReport rep;
+  uint32_t stream = 0;
+  std::vector<Plan> plans = make_plans(opt);
+  for (auto& plan : plans) {
+    if (plan.specs.empty()) continue;
+    for (auto& s : plan.specs) s.stream = stream++;
+    double b0 = rt.build_stats().seconds;
+    Integrator in(rt, plan.terms);
+    rep.build_seconds += rt.build_stats().seconds - b0;
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (size_t i = 0; i < est.size(); ++i) {
+      plan.points[i].estimate = est[i].mean;
+      plan.points[i].stderr_ = est[i].stderr_;
+      plan.points[i].samples = est[i].samples;
+    }
+    rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
+    compare_with_reference(in, plan, opt, rep);
+    rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
+  }
+  if (check_wanted(opt, "reciprocity")) run_reciprocity(rt, opt, rep, rep.build_seconds);
+  if (rep.points.empty()) throw Error("no model matches the --model filter");
+  judge(rep, opt);
+  return rep;
+}
+
+}  // namespace mfv

@@ -1,0 +1,81 @@
+// The conformance suite (mfv run): D normalisation, masking (weak white
+// furnace), furnace albedo, energy with F (and with diffuse), reciprocity,
+// over every catalog combination, with verdicts a CI can trust.
+#pragma once
+
+#include "catalog/catalog.hpp"
+#include "runtime/opencl.hpp"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+enum class Verdict { Pass, Fail, XFail, XPass };
+const char* verdict_name(Verdict v);
+
+// One integral (or one reciprocity batch) at one parameter point.
+struct PointResult {
+  std::string check;
+  const Term *d = nullptr, *g = nullptr, *f = nullptr;
+  std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
+  double estimate = 0, stderr_ = 0;
+  double expected = 0;  // the value a correct model gives (d_norm, masking)
+  double bound = 0;     // the threshold the estimate was tested against
+  bool upper_only = false;  // test is estimate <= expected (albedo) rather than ==
+  uint64_t samples = 0;
+  bool failed = false;      // deviation beyond noise and tolerance
+  double deviation = 0;     // estimate - expected
+};
+
+// All points of one model under one check, with its expectation.
+struct GroupResult {
+  std::string check;
+  std::string model;  // "ggx", "ggx/smith_ggx", "ggx/smith_ggx/schlick"
+  bool expect_fail = false;
+  std::string reason;  // why a failure is expected (catalog), empty if none
+  double tolerance = 0;  // documented approximation tolerance applied
+  std::vector<size_t> points;  // indices into SuiteReport::points
+  size_t worst = 0;            // the point with the largest |deviation| / (noise + tolerance)
+  size_t failures = 0;
+  Verdict verdict = Verdict::Pass;
+};
+
+struct CheckStats {
+  std::string check;
+  uint64_t integrals = 0, samples = 0;
+  double seconds = 0;
+};
+
+struct SuiteOptions {
+  uint64_t seed = 1;
+  double scale = 1.0;            // multiplies every check's sample count
+  double family_alpha = 1e-6;    // family-wise false-alarm rate for the run
+  std::vector<std::string> checks;   // empty: all
+  std::vector<std::string> models;   // substrings of model names; empty: all
+  uint32_t reference_samples = 256;  // same-sample comparison, first N samples
+  uint32_t reference_every = 97;     // compare every k-th integral (1 = all)
+};
+
+struct SuiteReport {
+  std::vector<PointResult> points;
+  std::vector<GroupResult> groups;
+  std::vector<CheckStats> stats;
+  double z_threshold = 0;  // noise multiple a deviation must exceed
+  size_t tests = 0;        // statistical tests in the run (Bonferroni count)
+  double build_seconds = 0;
+  double reference_worst = 0;  // worst relative kernel/reference disagreement
+  std::string reference_worst_at;
+  uint64_t reference_compared = 0;
+  bool gate_ok() const;
+};
+
+const std::vector<std::string>& suite_checks();
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
+
+// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
+double normal_two_sided_quantile(double p);
+
+}  // namespace mfv

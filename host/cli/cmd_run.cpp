@@ -1,0 +1,35 @@
+// mfv run: the conformance suite and CI gate.
+#include "checks/suite.hpp"
+#include "cli/commands.hpp"
+#include "report/suite_report.hpp"
+
+#include <fmt/format.h>
+
+namespace mfv::cli {
+
+void add_run(CLI::App& app, Globals& g, int& rc) {
+  auto* cmd = app.add_subcommand("run", "run the conformance suite over the catalog; exit 0 exactly when every "
+                                        "verdict matches expectation");
+  static SuiteOptions opt;
+  static std::string out_dir;
+  cmd->add_option("--seed", opt.seed, "Philox key");
+  cmd->add_option("--scale", opt.scale, "multiply every check's samples (budget)")->check(CLI::PositiveNumber);
+  cmd->add_option("--alpha-fw", opt.family_alpha, "family-wise false-alarm rate for the whole run")
+      ->check(CLI::Range(1e-300, 0.5));
+  cmd->add_option("--check", opt.checks, "only these checks (d_norm, masking, furnace, energy, energy_diffuse, "
+                                         "reciprocity)");
+  cmd->add_option("--model", opt.models, "only models whose D/G/F name contains one of these");
+  cmd->add_option("--reference-samples", opt.reference_samples, "samples compared with the reference per integral");
+  cmd->add_option("--reference-every", opt.reference_every, "compare every k-th integral with the reference (1 = all)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
+  cmd->callback([&g, &rc] {
+    Runtime rt(g.device, g.kernel_dir);
+    SuiteReport rep = run_suite(rt, opt);
+    print_suite_console(rep, rt, opt);
+    if (!out_dir.empty()) write_suite_outputs(rep, rt, opt, out_dir);
+    rc = rep.gate_ok() ? 0 : 1;
+  });
+}
+
+}  // namespace mfv::cli

@@ -1,0 +1,82 @@
+#include "reference/estimators.hpp"
+
+#include "rng/philox.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace mfv::ref {
+namespace {
+
+constexpr double kMixCos = 0.2;   // cosine lobe share of the microfacet proposal
+constexpr double kMixICos = 0.2;  // cosine-weighted share of light directions
+
+// 2D Cauchy (Student-t, one degree of freedom) slopes of width w, as a
+// density over solid angle: p(slope) / cos³θ, p = (1/(2πw²)) (1 + tan²/w²)^(-3/2).
+double pdf_slope(double c, double s2, double w) {
+  const double tan2 = s2 / (c * c);
+  return std::pow(1.0 + tan2 / (w * w), -1.5) / (2.0 * M_PI * w * w) / (c * c * c);
+}
+
+double pdf_m(double c, double s2, double w) {
+  return kMixCos * c / M_PI + (1.0 - kMixCos) * pdf_slope(c, s2, w);
+}
+
+// The microfacet normal for uniforms (pick, phi, r): a Malley cosine lobe,
+// or a slope of length w tan from the inverse CDF 1 - (1 + t²/w²)^(-1/2).
+glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c, double& s2) {
+  const double phi = 2.0 * M_PI * u_phi;
+  double theta;
+  if (u_pick < kMixCos) {
+    theta = std::asin(std::sqrt(u_r));
+  } else {
+    const double t = w * std::sqrt(1.0 / ((1.0 - u_r) * (1.0 - u_r)) - 1.0);
+    theta = std::atan(t);
+  }
+  c = std::cos(theta);
+  s2 = std::sin(theta) * std::sin(theta);
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), c};
+}
+
+}  // namespace
+
+double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  auto r = philox(seed, s.stream, 0, index);
+  const double u_branch = u01_open(r[0]), u_pick = u01_open(r[1]), u_phi = u01_open(r[2]), u_r = u01_open(r[3]);
+  const double w = s.width;
+  const BrdfSpec& b = s.brdf;
+  if (s.kind == Integral::DNorm) {
+    double c, s2;
+    sample_m(u_pick, u_phi, u_r, w, c, s2);
+    return b.d->ref_d(c, b.pd) * c / pdf_m(c, s2, w);
+  }
+  const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
+  if (s.kind == Integral::Masking) {
+    // Heitz 2014 eq. 19 with G1(o,m) = G2(n, o, m)
+    double c, s2;
+    const glm::dvec3 m = sample_m(u_pick, u_phi, u_r, w, c, s2);
+    const double om = glm::dot(o, m);
+    if (om <= 0.0) return 0.0;
+    const double g1 = b.g->ref_g(1.0, s.cos_o, c, om, b.pg);
+    return g1 * b.d->ref_d(c, b.pd) * om / (pdf_m(c, s2, w) * s.cos_o);
+  }
+  glm::dvec3 i;
+  if (u_branch < kMixICos) {
+    const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
+    i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
+  } else {
+    double c, s2;
+    const glm::dvec3 m = sample_m(u_pick, u_phi, u_r, w, c, s2);
+    i = 2.0 * glm::dot(o, m) * m - o;
+  }
+  if (i.z <= 0.0) return 0.0;
+  const glm::dvec3 h = glm::normalize(i + o);
+  const double oh = glm::dot(o, h);
+  if (oh <= 0.0) return 0.0;
+  const double hs2 = h.x * h.x + h.y * h.y;
+  const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pdf_m(h.z, hs2, w) / (4.0 * oh);
+  return brdf(b, i, o) * i.z / pdf;
+}
+
+}  // namespace mfv::ref

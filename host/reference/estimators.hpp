@@ -1,0 +1,24 @@
+// The conformance estimators in double (twin of kernels/integrate.cl):
+// the same Philox uniforms, the same proposal, written from the formulas.
+#pragma once
+
+#include "reference/brdf.hpp"
+
+#include <cstdint>
+
+namespace mfv::ref {
+
+enum class Integral { DNorm = 0, Masking = 1, Albedo = 2 };
+
+struct IntegralRef {
+  Integral kind = Integral::DNorm;
+  BrdfSpec brdf;         // D, G, F and their native parameters, kd
+  double width = 0.1;    // proposal width (equivalent alpha)
+  double cos_o = 1.0;    // view for masking and albedo, in the xz-plane
+  uint32_t stream = 0;   // Philox stream = integral id
+};
+
+// The index-th sample of the estimator: its mean over samples is the integral.
+double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);
+
+}  // namespace mfv::ref

@@ -1,0 +1,66 @@
+#include "report/files.hpp"
+
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+namespace mfv {
+
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> temps;
+  auto cleanup = [&] {
+    std::error_code ec;
+    for (auto& t : temps) fs::remove(t, ec);
+  };
+  for (auto& [path, text] : files) {
+    std::error_code ec;
+    fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty()) fs::create_directories(parent, ec);
+    std::string tmp = path + ".tmp-mfv";
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (out) out << text;
+    out.flush();
+    temps.push_back(tmp);
+    if (!out) {
+      cleanup();
+      throw Error(fmt::format("cannot write {}; earlier results are untouched", path));
+    }
+  }
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], files[i].first, ec);
+    if (ec) {
+      cleanup();
+      throw Error(fmt::format("cannot move {} into place: {}", files[i].first, ec.message()));
+    }
+  }
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
+std::string utc_timestamp() {
+  std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace mfv

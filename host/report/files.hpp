@@ -1,0 +1,19 @@
+// Files are written whole or not at all (DESIGN.md §7): each goes to a
+// temporary name beside its target and is renamed into place only after
+// every file of the set was written and flushed.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mfv {
+
+// (path, contents) pairs; throws mfv::Error and leaves earlier files intact
+// if any of them cannot be written.
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files);
+
+std::string xml_escape(const std::string& s);
+std::string utc_timestamp();
+
+}  // namespace mfv

@@ -1,0 +1,143 @@
+#include "report/suite_report.hpp"
+
+#include "report/files.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace mfv {
+namespace {
+
+std::string params_text(const PointResult& p) {
+  std::string s;
+  for (auto& [k, v] : p.params) s += fmt::format("{}{}={:g}", s.empty() ? "" : " ", k, v);
+  return s;
+}
+
+std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
+  const PointResult& p = rep.points[g.worst];
+  if (p.check == "reciprocity")
+    return fmt::format("max asymmetry {:.3g} (bound {:.0e}) at {}", p.estimate, p.bound, params_text(p));
+  return fmt::format("{:.6f} ± {:.1e} vs {:g}{} at {}", p.estimate, p.stderr_, p.expected, p.upper_only ? " (max)" : "",
+                     params_text(p));
+}
+
+double total_seconds(const SuiteReport& rep) {
+  double s = 0;
+  for (auto& c : rep.stats) s += c.seconds;
+  return s;
+}
+
+}  // namespace
+
+void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
+  fmt::print("device: {} ({}), {}\n", rt.device().name, rt.device().platform, rt.device().driver);
+  fmt::print("{:<16} {:>10} {:>14} {:>8} {:>14}\n", "check", "integrals", "samples", "seconds", "samples/s");
+  for (auto& c : rep.stats)
+    fmt::print("{:<16} {:>10} {:>14} {:>8.2f} {:>14.3g}\n", c.check, c.integrals, c.samples, c.seconds,
+               c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
+  fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests, family-wise false-alarm {:g} -> "
+             "|z| > {:.2f}\n",
+             rep.build_seconds, rep.tests, opt.family_alpha, rep.z_threshold);
+  fmt::print("reference on the same samples: {} integrals compared, worst relative disagreement {:.2e}{}{}\n",
+             rep.reference_compared, rep.reference_worst, rep.reference_worst_at.empty() ? "" : " at ",
+             rep.reference_worst_at);
+  size_t counts[4] = {0, 0, 0, 0};
+  for (auto& g : rep.groups) counts[int(g.verdict)]++;
+  for (auto& g : rep.groups) {
+    // pass lines are many; print the ones a person should read
+    if (g.verdict == Verdict::Pass) continue;
+    fmt::print("{:<6} {:<15} {:<42} {}\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g));
+    if (!g.reason.empty() && g.verdict != Verdict::Fail) fmt::print("       {:<15} reason: {}\n", "", g.reason);
+  }
+  fmt::print("{} model x check verdicts: {} pass, {} xfail, {} FAIL, {} XPASS; {:.1f} s of integration\n",
+             rep.groups.size(), counts[0], counts[2], counts[1], counts[3], total_seconds(rep));
+  fmt::print("gate: {}\n", rep.gate_ok() ? "ok (every verdict matches expectation)" : "FAILED");
+}
+
+std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
+  using nlohmann::json;
+  json j;
+  j["schema_version"] = 1;
+  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["run"] = {{"seed", opt.seed},       {"scale", opt.scale},
+              {"family_alpha", opt.family_alpha}, {"z_threshold", rep.z_threshold},
+              {"tests", rep.tests},     {"date", utc_timestamp()},
+              {"checks", opt.checks},   {"models", opt.models}};
+  j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
+                 {"version", rt.device().version}, {"fp64", rt.device().fp64}};
+  j["build"] = {{"options", rt.base_options()}, {"seconds", rep.build_seconds}, {"builds", rt.build_stats().builds}};
+  j["timings"] = json::array();
+  for (auto& c : rep.stats)
+    j["timings"].push_back({{"check", c.check}, {"integrals", c.integrals}, {"samples", c.samples}, {"seconds", c.seconds}});
+  j["reference"] = {{"compared", rep.reference_compared}, {"samples_each", opt.reference_samples},
+                    {"worst_relative", rep.reference_worst}, {"worst_at", rep.reference_worst_at}};
+  j["groups"] = json::array();
+  for (auto& g : rep.groups)
+    j["groups"].push_back({{"check", g.check}, {"model", g.model}, {"verdict", verdict_name(g.verdict)},
+                           {"expected_fail", g.expect_fail}, {"reason", g.reason}, {"tolerance", g.tolerance},
+                           {"points", g.points.size()}, {"failures", g.failures}, {"worst", worst_text(rep, g)}});
+  j["results"] = json::array();
+  for (auto& p : rep.points) {
+    json r{{"check", p.check},
+           {"D", p.d ? p.d->id : ""},
+           {"G", p.g ? p.g->id : ""},
+           {"F", p.f ? p.f->id : ""},
+           {"params", p.params},
+           {"estimate", std::isfinite(p.estimate) ? json(p.estimate) : json(nullptr)},
+           {"stderr", p.stderr_},
+           {"expected", p.expected},
+           {"bound", p.bound},
+           {"samples", p.samples},
+           {"verdict", p.failed ? "fail" : "pass"}};
+    j["results"].push_back(r);
+  }
+  return j.dump(1);
+}
+
+void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt, const std::string& dir) {
+  // report.md
+  std::string md = "# microfacet-verify conformance report\n\n";
+  md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, commit {}.\n\n", rt.device().name,
+                    rt.device().platform, rt.device().driver, opt.seed, opt.scale, MFV_GIT_COMMIT);
+  md += fmt::format("{} statistical tests; family-wise false-alarm rate {:g}, so a deviation must exceed {:.2f} "
+                    "standard errors plus the model's documented tolerance to fail.\n\n",
+                    rep.tests, opt.family_alpha, rep.z_threshold);
+  md += "| check | integrals | samples | seconds | samples/s |\n|---|---:|---:|---:|---:|\n";
+  for (auto& c : rep.stats)
+    md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
+                      c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
+  md += fmt::format("\nKernel builds: {:.2f} s. Reference on the same samples: {} integrals, worst relative "
+                    "disagreement {:.2e}.\n\n",
+                    rep.build_seconds, rep.reference_compared, rep.reference_worst);
+  md += "| verdict | check | model | worst case | expected failure because |\n|---|---|---|---|---|\n";
+  for (auto& g : rep.groups)
+    md += fmt::format("| {} | {} | {} | {} | {} |\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g),
+                      g.reason);
+  md += fmt::format("\nGate: **{}**\n", rep.gate_ok() ? "ok" : "FAILED");
+
+  // junit.xml: one testcase per model x check
+  size_t failures = 0;
+  for (auto& g : rep.groups) failures += g.verdict == Verdict::Fail || g.verdict == Verdict::XPass;
+  std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  xml += fmt::format("<testsuites><testsuite name=\"mfv run\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
+                     rep.groups.size(), failures);
+  for (auto& g : rep.groups) {
+    xml += fmt::format("  <testcase classname=\"{}\" name=\"{}\">", xml_escape(g.check), xml_escape(g.model));
+    std::string w = xml_escape(worst_text(rep, g));
+    if (g.verdict == Verdict::Fail)
+      xml += fmt::format("<failure message=\"deviation beyond noise and tolerance\">{}</failure>", w);
+    else if (g.verdict == Verdict::XPass)
+      xml += fmt::format("<failure message=\"expected to fail ({}) but passed\">{}</failure>", xml_escape(g.reason), w);
+    else if (g.verdict == Verdict::XFail)
+      xml += fmt::format("<system-out>expected failure: {}; {}</system-out>", xml_escape(g.reason), w);
+    xml += "</testcase>\n";
+  }
+  xml += "</testsuite></testsuites>\n";
+  write_files_atomically({{dir + "/results.json", suite_json(rep, rt, opt)}, {dir + "/report.md", md},
+                          {dir + "/junit.xml", xml}});
+}
+
+}  // namespace mfv
