@@ -27,6 +27,14 @@ namespace {
 Param p_alpha() { return {"alpha", 1e-7, 10.0, 0.3, "microfacet width (slope RMS)"}; }
 Param p_alpha_p() { return {"alpha_p", 0.0, 1e7, 100.0, "Phong exponent, 0 rough .. inf mirror"}; }
 
+// Beckmann's G1 used for the Phong D (and seed 004's rho form of it).
+SmithFit beckmann_as_phong(double tol, const char* d) {
+  return {d, tol, 0.2,
+          "Walter et al. 2007 §5.2: Beckmann's G1 with alpha_p = 2/alpha^2 - 2 stands in for Phong's; measured within "
+          "2.5 % up to alpha = 0.2, 4 % at 0.3, 7 % at 0.4 and 77 % at alpha = 1 (grazing view), where Phong's "
+          "tails outgrow Beckmann's"};
+}
+
 std::vector<Term> build_catalog() {
   std::vector<Term> c;
   auto D = [&](std::string id, std::string fn, std::string src, std::string formula, Param p, Roughness r, RefD ref) {
@@ -73,7 +81,10 @@ std::vector<Term> build_catalog() {
   G("kelemen", "G_kelemen", "seed 000 \"G/((L.N)(V.N)) ~ 1/(L.H)^2\"; Kelemen 2001", "(n.l)(n.v)/(l.h)^2",
     std::nullopt, Roughness::None, ref_::G_kelemen);
   G("cook_torrance", "G_cook_torrance", "seeds 001, 003, 004 (V-cavity)",
-    "min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h))", std::nullopt, Roughness::None, ref_::G_cook_torrance);
+    "min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h))", std::nullopt, Roughness::None, ref_::G_cook_torrance)
+      ->masking_exact =
+      "the V-cavity masking is exact for its own microsurface of V-grooves, so it conserves projected area for "
+      "every D (Heitz 2014 §5.3), although that surface is unrealistic at grazing angles";
   {
     auto* t = G("smith_beckmann_approx", "G_smith_beckmann_approx", "seed 000 Beckman rational G1",
                 "G1(l)G1(v), G1 = (3.535a+2.181a^2)/(1+2.276a+2.577a^2), a = 1/(alpha tan)", p_alpha(),
@@ -81,8 +92,10 @@ std::vector<Term> build_catalog() {
     t->g1_kernel_fn = "G1_smith_beckmann_approx";
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_beckmann_approx;
-    t->smith_of = "beckmann";
-    t->approx_tol = 0.004;  // seed 000: "very accurate"; Walter et al. 2007 report < 0.35 %
+    // seed 000: "very accurate"; Walter et al. 2007 eq. 27 report under 0.35 %
+    t->smith_for = {{"beckmann", 0.004, 1e300, "Walter et al. 2007 eq. 27"}, beckmann_as_phong(0.03, "phong"),
+                    beckmann_as_phong(0.03, "blinn_rho")};
+    t->under_masks = {"ggx"};
   }
   {
     auto* t = G("smith_beckmann", "G_smith_beckmann", "Walter et al. 2007 eq. 23-25 (exact Lambda, erf)",
@@ -90,7 +103,9 @@ std::vector<Term> build_catalog() {
     t->g1_kernel_fn = "G1_smith_beckmann";
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_beckmann;
-    t->smith_of = "beckmann";
+    t->smith_for = {{"beckmann", 0.0, 1e300, "Walter et al. 2007 eq. 25 (exact)"},
+                    beckmann_as_phong(0.03, "phong"), beckmann_as_phong(0.03, "blinn_rho")};
+    t->under_masks = {"ggx"};
   }
   {
     auto* t = G("smith_phong", "G_smith_phong", "seed 000 \"Phong\" G1", "Beckman rational G1 with a = sqrt(ap/2+1)/tan",
@@ -98,8 +113,11 @@ std::vector<Term> build_catalog() {
     t->g1_kernel_fn = "G1_smith_phong";
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_phong;
-    t->smith_of = "phong";
-    t->approx_tol = 0.02;  // Beckmann G1 stands in for Phong's: Walter et al. 2007 §5.2
+    // a = sqrt(alpha_p/2 + 1)/tan with alpha_p = 2/alpha^2 - 2 is a = 1/(alpha tan):
+    // exactly seed 000's rational Beckmann G1, so it fits Beckmann to 0.4 %.
+    t->smith_for = {{"beckmann", 0.004, 1e300, "alpha_p = 2/alpha^2 - 2 makes a = 1/(alpha tan): Walter et al. 2007 eq. 27"},
+                    beckmann_as_phong(0.03, "phong"), beckmann_as_phong(0.03, "blinn_rho")};
+    t->under_masks = {"ggx"};
   }
   {
     auto* t = G("smith_ggx", "G_smith_ggx", "seed 000 \"GGX\"; Walter et al. 2007 eq. 34",
@@ -107,14 +125,14 @@ std::vector<Term> build_catalog() {
     t->g1_kernel_fn = "G1_smith_ggx";
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_ggx;
-    t->smith_of = "ggx";
+    t->smith_for = {{"ggx", 0.0, 1e300, "Walter et al. 2007 eq. 34 (exact)"}};
   }
   {
     auto* t = G("smith_ggx_correlated", "G_smith_ggx_correlated", "Heitz 2014 eq. 99 (height-correlated)",
                 "1/(1 + Lambda(l) + Lambda(v))", p_alpha(), Roughness::Alpha, ref_::G_smith_ggx_correlated);
     t->g1_kernel_fn = "G1_smith_ggx";
     t->ref_g1 = ref_::G1_smith_ggx;
-    t->smith_of = "ggx";
+    t->smith_for = {{"ggx", 0.0, 1e300, "Walter et al. 2007 eq. 34 (exact)"}};
   }
   G("hammon_002", "G_hammon_002", "seed 002 `geometry` (Hammon 2017 visibility)",
     "4(n.l)(n.v) * 0.5/max(0.01, mix(2(n.l)(n.v), n.l+n.v, alpha))",
@@ -149,6 +167,12 @@ std::vector<Term> build_catalog() {
 }
 
 }  // namespace
+
+const SmithFit* Term::fit_for(const std::string& d_id) const {
+  for (auto& f : smith_for)
+    if (f.d == d_id) return &f;
+  return nullptr;
+}
 
 const std::vector<Term>& catalog() {
   static const std::vector<Term> c = build_catalog();

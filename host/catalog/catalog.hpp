@@ -25,6 +25,15 @@ struct Param {
   std::string doc;
 };
 
+// A D whose masking a Smith G1 reproduces (Heitz 2014 eq. 43: the weak
+// white furnace), exactly or within `tol` up to the width `alpha_max`.
+struct SmithFit {
+  std::string d;
+  double tol = 0;              // documented relative approximation tolerance
+  double alpha_max = 1e300;    // beyond this width the fit is known not to hold
+  std::string why;             // the source of the fit, or of its limit
+};
+
 using RefD = double (*)(double NoH, double p);
 using RefG = double (*)(double NoL, double NoV, double NoH, double VoH, double p);
 using RefG1 = double (*)(double NoV, double p);
@@ -54,8 +63,11 @@ struct Term {
 
   // Expected properties, used by the conformance checks.
   std::string known_bad;    // non-empty: why this term is kept as a known-bad model
-  std::string smith_of;     // Smith G: the D whose exact (or approximated) G1 this is
-  double approx_tol = 0.0;  // documented approximation tolerance (relative)
+  // G terms, for the masking, furnace and energy checks:
+  std::vector<SmithFit> smith_for;       // Smith G: the Ds its G1 belongs to
+  std::vector<std::string> under_masks;  // Smith G: Ds whose heavier tails its G1 under-masks (albedo > 1)
+  std::string masking_exact;             // non-Smith G normalised against every D anyway: why
+  const SmithFit* fit_for(const std::string& d) const;
 };
 
 const std::vector<Term>& catalog();

@@ -16,6 +16,11 @@ namespace mfv {
 enum class Verdict { Pass, Fail, XFail, XPass };
 const char* verdict_name(Verdict v);
 
+// What the catalog predicts for one point: it must hold, it must fail (a
+// known deficiency large enough to show at any seed), or it may fail (a
+// deficiency whose size depends on F, so either outcome is accepted).
+enum class Expect { Hold, Fail, May };
+
 // One integral (or one reciprocity batch) at one parameter point.
 struct PointResult {
   std::string check;
@@ -28,15 +33,18 @@ struct PointResult {
   uint64_t samples = 0;
   bool failed = false;      // deviation beyond noise and tolerance
   double deviation = 0;     // estimate - expected
+  Expect expect = Expect::Hold;
+  double tolerance = 0;     // documented approximation tolerance (relative)
+  std::string reason;       // why the point is expected to (or may) fail
 };
 
 // All points of one model under one check, with its expectation.
 struct GroupResult {
   std::string check;
   std::string model;  // "ggx", "ggx/smith_ggx", "ggx/smith_ggx/schlick"
-  bool expect_fail = false;
-  std::string reason;  // why a failure is expected (catalog), empty if none
-  double tolerance = 0;  // documented approximation tolerance applied
+  bool expect_fail = false;  // some points must fail
+  std::string reason;  // why failures are expected (catalog), empty if none
+  double tolerance = 0;  // largest documented approximation tolerance applied
   std::vector<size_t> points;  // indices into SuiteReport::points
   size_t worst = 0;            // the point with the largest |deviation| / (noise + tolerance)
   size_t failures = 0;
@@ -48,6 +56,10 @@ struct CheckStats {
   uint64_t integrals = 0, samples = 0;
   double seconds = 0;
 };
+
+// Samples per masking or furnace integral at scale 1; every check's count is
+// proportional to the scale.
+constexpr uint64_t kSuiteBaseSamples = 4096;
 
 struct SuiteOptions {
   uint64_t seed = 1;
@@ -69,10 +81,17 @@ struct SuiteReport {
   double reference_worst = 0;  // worst relative kernel/reference disagreement
   std::string reference_worst_at;
   uint64_t reference_compared = 0;
-  bool gate_ok() const;
+  // Kernel and reference means on identical samples, |k - r| / max(mean |r|, 1).
+  // Float rounding of ill-conditioned samples (Kelemen's 1/(v.m)^2 at grazing
+  // view, where v.m ~ 1e-3) reached 9.2e-4 over 20 seeds; a term off by 1 %
+  // shows as 1e-2.
+  double reference_bound = 5e-3;
+  bool reference_ok() const;
+  bool gate_ok() const;  // every verdict as expected and the reference agrees
 };
 
 const std::vector<std::string>& suite_checks();
+void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
 // z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.

@@ -36,8 +36,13 @@ void add_list(CLI::App& app, Globals&, int& rc) {
         for (auto& p : t.params)
           j["params"].push_back({{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
         if (!t.known_bad.empty()) j["known_bad"] = t.known_bad;
-        if (!t.smith_of.empty()) j["smith_of"] = t.smith_of;
-        if (t.approx_tol > 0) j["approx_tol"] = t.approx_tol;
+        for (auto& f : t.smith_for) {
+          nlohmann::json fj{{"d", f.d}, {"tol", f.tol}, {"why", f.why}};
+          if (f.alpha_max < 1e300) fj["alpha_max"] = f.alpha_max;
+          j["smith_for"].push_back(fj);
+        }
+        if (!t.under_masks.empty()) j["under_masks"] = t.under_masks;
+        if (!t.masking_exact.empty()) j["masking_exact"] = t.masking_exact;
         out.push_back(j);
       }
       std::cout << out.dump(2) << "\n";

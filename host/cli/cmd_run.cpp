@@ -2,8 +2,12 @@
 #include "checks/suite.hpp"
 #include "cli/commands.hpp"
 #include "report/suite_report.hpp"
+#include "report/files.hpp"
+#include "runtime/error.hpp"
 
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace mfv::cli {
 
@@ -12,8 +16,11 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
                                         "verdict matches expectation");
   static SuiteOptions opt;
   static std::string out_dir;
+  static int64_t samples = 0;
   cmd->add_option("--seed", opt.seed, "Philox key");
-  cmd->add_option("--scale", opt.scale, "multiply every check's samples (budget)")->check(CLI::PositiveNumber);
+  cmd->add_option("--scale", opt.scale, "multiply every check's samples (budget); 1 = about a minute on 2 cores");
+  auto* samples_opt = cmd->add_option("--samples", samples,
+                  "samples per masking/furnace integral (default 4096); the other checks scale in proportion");
   cmd->add_option("--alpha-fw", opt.family_alpha, "family-wise false-alarm rate for the whole run")
       ->check(CLI::Range(1e-300, 0.5));
   cmd->add_option("--check", opt.checks, "only these checks (d_norm, masking, furnace, energy, energy_diffuse, "
@@ -23,7 +30,14 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--reference-every", opt.reference_every, "compare every k-th integral with the reference (1 = all)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
-  cmd->callback([&g, &rc] {
+  cmd->callback([&g, &rc, samples_opt] {
+    if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
+    if (samples_opt->count() > 0) {
+      if (samples <= 0) throw Error(fmt::format("--samples must be a positive count, not {}", samples));
+      opt.scale = double(samples) / double(kSuiteBaseSamples);
+    }
+    validate_suite_options(opt);
+    if (!out_dir.empty()) prepare_output_dir(out_dir);
     Runtime rt(g.device, g.kernel_dir);
     SuiteReport rep = run_suite(rt, opt);
     print_suite_console(rep, rt, opt);

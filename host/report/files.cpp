@@ -11,6 +11,15 @@
 
 namespace mfv {
 
+void prepare_output_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error(fmt::format("--out {}: exists and is not a folder", dir));
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("--out {}: cannot create the folder ({})", dir, ec.message()));
+}
+
 void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
   namespace fs = std::filesystem;
   std::vector<std::string> temps;

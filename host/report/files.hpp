@@ -13,6 +13,11 @@ namespace mfv {
 // if any of them cannot be written.
 void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files);
 
+// Creates `dir` (and parents) if missing; throws mfv::Error if it names
+// something that is not a folder or cannot be created. Called before a long
+// run so a bad --out fails at once.
+void prepare_output_dir(const std::string& dir);
+
 std::string xml_escape(const std::string& s);
 std::string utc_timestamp();
 

@@ -10,6 +10,14 @@
 namespace mfv {
 namespace {
 
+// x to n significant digits, so the JSON carries what the statistics support
+// and stays a few tens of bytes per record.
+double sig(double x, int n) {
+  if (!std::isfinite(x) || x == 0) return x;
+  return std::stod(fmt::format("{:.{}g}", x, n));
+}
+
+
 std::string params_text(const PointResult& p) {
   std::string s;
   for (auto& [k, v] : p.params) s += fmt::format("{}{}={:g}", s.empty() ? "" : " ", k, v);
@@ -41,9 +49,9 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests, family-wise false-alarm {:g} -> "
              "|z| > {:.2f}\n",
              rep.build_seconds, rep.tests, opt.family_alpha, rep.z_threshold);
-  fmt::print("reference on the same samples: {} integrals compared, worst relative disagreement {:.2e}{}{}\n",
-             rep.reference_compared, rep.reference_worst, rep.reference_worst_at.empty() ? "" : " at ",
-             rep.reference_worst_at);
+  fmt::print("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}{}\n",
+             rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
+             rep.reference_worst_at.empty() ? "" : " at ", rep.reference_worst_at);
   size_t counts[4] = {0, 0, 0, 0};
   for (auto& g : rep.groups) counts[int(g.verdict)]++;
   for (auto& g : rep.groups) {
@@ -73,7 +81,8 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   for (auto& c : rep.stats)
     j["timings"].push_back({{"check", c.check}, {"integrals", c.integrals}, {"samples", c.samples}, {"seconds", c.seconds}});
   j["reference"] = {{"compared", rep.reference_compared}, {"samples_each", opt.reference_samples},
-                    {"worst_relative", rep.reference_worst}, {"worst_at", rep.reference_worst_at}};
+                    {"worst_relative", rep.reference_worst}, {"bound", rep.reference_bound},
+                    {"ok", rep.reference_ok()}, {"worst_at", rep.reference_worst_at}};
   j["groups"] = json::array();
   for (auto& g : rep.groups)
     j["groups"].push_back({{"check", g.check}, {"model", g.model}, {"verdict", verdict_name(g.verdict)},
@@ -81,20 +90,24 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
                            {"points", g.points.size()}, {"failures", g.failures}, {"worst", worst_text(rep, g)}});
   j["results"] = json::array();
   for (auto& p : rep.points) {
+    json params = json::object();
+    for (auto& [k, v] : p.params) params[k] = sig(v, 6);
     json r{{"check", p.check},
            {"D", p.d ? p.d->id : ""},
            {"G", p.g ? p.g->id : ""},
            {"F", p.f ? p.f->id : ""},
-           {"params", p.params},
-           {"estimate", std::isfinite(p.estimate) ? json(p.estimate) : json(nullptr)},
-           {"stderr", p.stderr_},
+           {"params", params},
+           {"estimate", std::isfinite(p.estimate) ? json(sig(p.estimate, 9)) : json(nullptr)},
+           {"stderr", sig(p.stderr_, 3)},
            {"expected", p.expected},
-           {"bound", p.bound},
+           {"bound", sig(p.bound, 4)},
            {"samples", p.samples},
            {"verdict", p.failed ? "fail" : "pass"}};
+    // the catalog's prediction where it is not "holds"; the reason is in the group
+    if (p.expect != Expect::Hold) r["expect"] = p.expect == Expect::Fail ? "fail" : "may_fail";
     j["results"].push_back(r);
   }
-  return j.dump(1);
+  return j.dump();  // compact: one record per integral, over 10^5 of them
 }
 
 void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt, const std::string& dir) {
@@ -109,9 +122,11 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
   for (auto& c : rep.stats)
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
                       c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
-  md += fmt::format("\nKernel builds: {:.2f} s. Reference on the same samples: {} integrals, worst relative "
-                    "disagreement {:.2e}.\n\n",
-                    rep.build_seconds, rep.reference_compared, rep.reference_worst);
+  md += fmt::format("\nKernel builds: {:.2f} s. Reference on the same samples: {} integrals, worst "
+                    "disagreement {:.2e} (bound {:g}: {}){}{}.\n\n",
+                    rep.build_seconds, rep.reference_compared, rep.reference_worst, rep.reference_bound,
+                    rep.reference_ok() ? "ok" : "FAILED", rep.reference_worst_at.empty() ? "" : " at ",
+                    rep.reference_worst_at);
   md += "| verdict | check | model | worst case | expected failure because |\n|---|---|---|---|---|\n";
   for (auto& g : rep.groups)
     md += fmt::format("| {} | {} | {} | {} | {} |\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g),
@@ -121,9 +136,15 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
   // junit.xml: one testcase per model x check
   size_t failures = 0;
   for (auto& g : rep.groups) failures += g.verdict == Verdict::Fail || g.verdict == Verdict::XPass;
+  failures += !rep.reference_ok();
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   xml += fmt::format("<testsuites><testsuite name=\"mfv run\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
-                     rep.groups.size(), failures);
+                     rep.groups.size() + 1, failures);
+  xml += fmt::format("  <testcase classname=\"reference\" name=\"kernel and reference on the same samples\">{}</testcase>\n",
+                     rep.reference_ok() ? ""
+                                        : fmt::format("<failure message=\"disagreement {:.3g} above {:g}\">{}</failure>",
+                                                      rep.reference_worst, rep.reference_bound,
+                                                      xml_escape(rep.reference_worst_at)));
   for (auto& g : rep.groups) {
     xml += fmt::format("  <testcase classname=\"{}\" name=\"{}\">", xml_escape(g.check), xml_escape(g.model));
     std::string w = xml_escape(worst_text(rep, g));

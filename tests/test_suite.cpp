@@ -1,0 +1,250 @@
+// The conformance suite (mfv run): every check fails on a planted bad model
+// and passes on the correct one; verdicts are stable across seeds; the gate's
+// exit code and outputs are what a CI needs.
+#include "checks/suite.hpp"
+#include "device_fixture.hpp"
+#include "kernel_dir.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace mfv;
+
+namespace {
+
+const GroupResult* group(const SuiteReport& rep, const std::string& check, const std::string& model) {
+  for (auto& g : rep.groups)
+    if (g.check == check && g.model == model) return &g;
+  return nullptr;
+}
+
+Verdict verdict_of(const SuiteReport& rep, const std::string& check, const std::string& model) {
+  const GroupResult* g = group(rep, check, model);
+  REQUIRE(g != nullptr);
+  return g->verdict;
+}
+
+SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> models) {
+  SuiteOptions o;
+  o.checks = std::move(checks);
+  o.models = std::move(models);
+  o.seed = 7;
+  return o;
+}
+
+struct Run {
+  int code;
+  std::string out;
+};
+
+Run run_mfv(const std::string& args) {
+  std::string cmd = std::string(MFV_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[device][suite][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  auto opt = only({"d_norm"}, {"ggx"});
+  SuiteReport good = run_suite(*rt, opt);
+  CHECK(verdict_of(good, "d_norm", "ggx") == Verdict::Pass);
+  CHECK(good.gate_ok());
+
+  test::PlantedKernelDir dir;
+  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
+  Runtime planted("", dir.path());
+  SuiteReport bad = run_suite(planted, opt);
+  CHECK(verdict_of(bad, "d_norm", "ggx") == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
+  // the reference still evaluates the true D, so the same-sample comparison
+  // catches the plant independently of the statistics
+  CHECK_FALSE(bad.reference_ok());
+}
+
+TEST_CASE("masking fails on a G1 that does not belong to its D and passes on the correct one",
+          "[device][suite][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  auto opt = only({"masking"}, {"ggx/smith_ggx"});
+  opt.reference_samples = 0;  // the plant is in the kernel only; test the statistics alone
+  SuiteReport good = run_suite(*rt, opt);
+  CHECK(verdict_of(good, "masking", "ggx/smith_ggx") == Verdict::Pass);
+
+  test::PlantedKernelDir dir;  // GGX's G1 built on Beckmann's Lambda
+  REQUIRE(dir.replace("terms_g.cl", "return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));",
+                      "return R(1.0) / (R(1.0) + Lambda_beckmann(NoV, alpha));"));
+  Runtime planted("", dir.path());
+  SuiteReport bad = run_suite(planted, opt);
+  CHECK(verdict_of(bad, "masking", "ggx/smith_ggx") == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
+}
+
+TEST_CASE("furnace and energy fail on a BRDF that adds energy and pass on the correct one", "[device][suite][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  auto opt = only({"furnace", "energy"}, {"ggx/smith_ggx_correlated"});
+  opt.reference_samples = 0;
+  opt.scale = 4;  // a 10 % excess needs about 4x the default samples per integral to stand out
+  SuiteReport good = run_suite(*rt, opt);
+  CHECK(verdict_of(good, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Pass);
+  CHECK(verdict_of(good, "energy", "ggx/smith_ggx_correlated/schlick") == Verdict::Pass);
+
+  test::PlantedKernelDir dir;  // 10 % more specular than the model
+  REQUIRE(dir.replace("brdf.cl", "return kd * MFV_INV_PI + spec / (R(4.0) * NoL * NoV);",
+                      "return kd * MFV_INV_PI + R(1.1) * spec / (R(4.0) * NoL * NoV);"));
+  Runtime planted("", dir.path());
+  SuiteReport bad = run_suite(planted, opt);
+  CHECK(verdict_of(bad, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Fail);
+  CHECK(verdict_of(bad, "energy", "ggx/smith_ggx_correlated/schlick") == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
+}
+
+TEST_CASE("reciprocity fails on a BRDF that evaluates F at n.l and passes on the correct one",
+          "[device][suite][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  auto opt = only({"reciprocity"}, {"ggx/smith_ggx/schlick"});
+  SuiteReport good = run_suite(*rt, opt);
+  CHECK(verdict_of(good, "reciprocity", "ggx/smith_ggx/schlick") == Verdict::Pass);
+
+  test::PlantedKernelDir dir;
+  REQUIRE(dir.replace("brdf.cl", "eval_F(f, VoH, f0, f1)", "eval_F(f, NoL, f0, f1)"));
+  Runtime planted("", dir.path());
+  SuiteReport bad = run_suite(planted, opt);
+  CHECK(verdict_of(bad, "reciprocity", "ggx/smith_ggx/schlick") == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
+}
+
+TEST_CASE("The catalog's known failures show as xfail with their reason", "[device][suite]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  SuiteReport rep = run_suite(*rt, only({"d_norm", "masking"}, {"beckmann_ct82", "ggx/smith_beckmann", "cook_torrance"}));
+  const GroupResult* ct82 = group(rep, "d_norm", "beckmann_ct82");
+  REQUIRE(ct82);
+  CHECK(ct82->verdict == Verdict::XFail);
+  CHECK(ct82->reason.find("pi/4") != std::string::npos);
+  // and the estimate is pi/4 (seed 001's 4 m^2 in place of pi m^2)
+  const PointResult& w = rep.points[ct82->worst];
+  CHECK(std::fabs(w.estimate - M_PI / 4) < 6 * w.stderr_ + 1e-3);
+  CHECK(verdict_of(rep, "masking", "ggx/smith_beckmann") == Verdict::XFail);
+  // V-cavity masking is exact for its own microsurface: it conserves
+  // projected area under every proper D (Heitz 2014 §5.3)
+  CHECK(verdict_of(rep, "masking", "ggx/cook_torrance") == Verdict::Pass);
+  CHECK(verdict_of(rep, "masking", "beckmann_ct82/cook_torrance") == Verdict::XFail);
+  CHECK(rep.gate_ok());
+}
+
+TEST_CASE("The default suite gives no unexpected verdict under 20 seeds (at a quarter of its samples)",
+          "[device][suite][seeds]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  // A quarter of the default samples keeps CI short and is the harder case
+  // for the expected failures (they must still show); the false-alarm rate
+  // does not depend on the sample count. scripts/seed-sweep.sh runs the full
+  // default under 20 seeds.
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    SuiteOptions opt;
+    opt.seed = seed;
+    opt.scale = 0.25;
+    opt.reference_every = 997;
+    SuiteReport rep = run_suite(*rt, opt);
+    CAPTURE(seed, rep.reference_worst, rep.reference_worst_at);
+    CHECK(rep.reference_ok());
+    for (auto& g : rep.groups) {
+      if (g.verdict != Verdict::Fail && g.verdict != Verdict::XPass) continue;
+      CAPTURE(g.check, g.model, verdict_name(g.verdict), g.reason);
+      CHECK(false);
+    }
+  }
+}
+
+TEST_CASE("mfv run exits 1 on a planted failure, 0 on the correct model, and writes its reports whole",
+          "[device][suite][cli]") {
+  if (!test::device_runtime()) return;
+  namespace fs = std::filesystem;
+  fs::path out = fs::temp_directory_path() / ("mfv_run_out_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  Run good = run_mfv("run --check d_norm reciprocity --model ggx/smith_ggx/schlick ggx --out " + out.string());
+  CAPTURE(good.out);
+  CHECK(good.code == 0);
+  CHECK(good.out.find("gate: ok") != std::string::npos);
+  auto j = nlohmann::json::parse(slurp(out / "results.json"));
+  CHECK(j["schema_version"] == 1);
+  for (const char* k : {"device", "build", "timings", "run", "tool"}) CHECK(j.contains(k));
+  CHECK(j["run"].contains("seed"));
+  CHECK(j["tool"].contains("commit"));
+  CHECK(j["device"].contains("driver"));
+  REQUIRE(j["results"].size() > 0);
+  for (auto& r : j["results"])
+    for (const char* k : {"check", "D", "G", "F", "params", "estimate", "stderr", "bound", "samples", "verdict"})
+      CHECK(r.contains(k));
+  std::string junit = slurp(out / "junit.xml");
+  CHECK(junit.find("<testsuites>") != std::string::npos);
+  CHECK(junit.find("</testsuites>") != std::string::npos);
+  CHECK(slurp(out / "report.md").find("Gate: **ok**") != std::string::npos);
+
+  test::PlantedKernelDir dir;
+  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
+  Run bad = run_mfv("--kernel-dir " + dir.path() + " run --check d_norm --model ggx --out " + out.string());
+  CAPTURE(bad.out);
+  CHECK(bad.code == 1);
+  CHECK(bad.out.find("gate: FAILED") != std::string::npos);
+  CHECK(slurp(out / "junit.xml").find("<failure") != std::string::npos);
+  fs::remove_all(out);
+}
+
+TEST_CASE("mfv run rejects bad options with one clear line and exit code 2", "[suite][cli]") {
+  struct Case {
+    const char* args;
+    const char* says;
+  };
+  auto c = GENERATE(Case{"run --samples -5", "--samples must be a positive count"},
+                    Case{"run --samples 0", "--samples must be a positive count"},
+                    Case{"run --scale -1", "--scale must be a positive number"},
+                    Case{"run --scale nan", "--scale must be a positive number"},
+                    Case{"run --check bogus", "unknown check 'bogus'"},
+                    Case{"run --model nosuchmodel", "no model matches"});
+  CAPTURE(c.args);
+  Run r = run_mfv(c.args);
+  CHECK(r.code == 2);
+  CHECK(r.out.find(c.says) != std::string::npos);
+  CHECK(r.out.find("mfv: error:") == 0);
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+}
+
+TEST_CASE("mfv run --out onto a regular file fails cleanly and leaves the file as it was", "[suite][cli]") {
+  namespace fs = std::filesystem;
+  fs::path f = fs::temp_directory_path() / ("mfv_not_a_dir_" + std::to_string(::getpid()));
+  std::ofstream(f) << "earlier results\n";
+  Run r = run_mfv("run --check d_norm --model ggx --out " + f.string());
+  CAPTURE(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("mfv: error:") != std::string::npos);
+  CHECK(slurp(f) == "earlier results\n");
+  fs::remove(f);
+}
