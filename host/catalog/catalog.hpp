@@ -56,6 +56,11 @@ struct Term {
   std::string known_bad;    // non-empty: why this term is kept as a known-bad model
   std::string smith_of;     // Smith G: the D whose exact (or approximated) G1 this is
   double approx_tol = 0.0;  // documented approximation tolerance (relative)
+
+  // Numerical stability (mfv stability): true for terms that must never give
+  // NaN or Inf on in-domain inputs (parameters in range, any direction,
+  // dot products that rounded above 1); the stability gate fails when one does.
+  bool stable = true;
 };
 
 const std::vector<Term>& catalog();
