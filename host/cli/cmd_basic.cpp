@@ -38,6 +38,7 @@ void add_list(CLI::App& app, Globals&, int& rc) {
         if (!t.known_bad.empty()) j["known_bad"] = t.known_bad;
         if (!t.smith_of.empty()) j["smith_of"] = t.smith_of;
         if (t.approx_tol > 0) j["approx_tol"] = t.approx_tol;
+        j["stable"] = t.stable;
         out.push_back(j);
       }
       std::cout << out.dump(2) << "\n";

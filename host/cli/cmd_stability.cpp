@@ -3,8 +3,11 @@
 // catalog marks stable gives NaN or Inf on in-domain inputs.
 #include "checks/stability.hpp"
 #include "cli/commands.hpp"
+#include "runtime/error.hpp"
 
 #include <fmt/format.h>
+
+#include <filesystem>
 
 namespace mfv::cli {
 
@@ -21,6 +24,11 @@ void add_stability(CLI::App& app, Globals& g, int& rc) {
                   "only cases whose name contains one of these (e.g. 'D ggx', 'BRDF ggx/', 'variant')");
   cmd->callback([&g, &rc] {
     opt.combinations = !terms_only;
+    if (!out.empty()) {  // checked before the sweep, not after it
+      std::error_code ec;
+      std::filesystem::create_directories(out, ec);
+      if (!std::filesystem::is_directory(out)) throw Error(fmt::format("--out {}: cannot create that folder", out));
+    }
     Runtime rt(g.device, g.kernel_dir);
     StabilityReport rep = run_stability(rt, opt);
     fmt::print("{}", stability_console(rep));
