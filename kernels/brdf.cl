@@ -19,5 +19,7 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
   real VoH = min(R(0.5) * len, R(1.0));
   real sin2H = h.x * h.x + h.y * h.y;  // |n×h|², exact where 1 - NoH is not
   real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
-  return kd * MFV_INV_PI + spec / (R(4.0) * NoL * NoV);
+  // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
+  // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
+  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
 }

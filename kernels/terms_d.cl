@@ -19,7 +19,11 @@ static inline real D_beckmann(real NoH, real sin2H, real alpha) {
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real a2 = alpha * alpha;
-  return exp(-sin2H / (c2 * a2)) / (MFV_PI * a2 * c2 * c2);
+  real e = exp(-sin2H / (c2 * a2));
+  // θ -> π/2: the exponential vanishes faster than cos⁴θ, so D -> 0; returning
+  // here avoids 0/0 once cos⁴θ underflows (n·h below ~1e-10 in float).
+  if (e == R(0.0)) return R(0.0);
+  return e / (MFV_PI * a2 * c2 * c2);
 }
 
 static inline real D_ggx(real NoH, real sin2H, real alpha) {
@@ -47,5 +51,7 @@ static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real m2 = m * m;
-  return exp(-sin2H / (c2 * m2)) / (R(4.0) * m2 * c2 * c2);
+  real e = exp(-sin2H / (c2 * m2));
+  if (e == R(0.0)) return R(0.0);               // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
+  return e / (R(4.0) * m2 * c2 * c2);
 }

@@ -20,8 +20,10 @@ static inline real F_dielectric(real VoH, real eta, real unused) {
   // Seed 001 prints c(g-c) - 1 and g² = η² + c² + 1: typos; this is the physics.
   real c = min(fabs(VoH), R(1.0));
   real g2 = eta * eta - R(1.0) + c * c;
-  if (g2 <= R(0.0)) return R(1.0);              // sinθt >= 1: total internal reflection
-  real g = sqrt(g2);
+  if (g2 <= R(0.0) && eta < R(1.0)) return R(1.0);  // sinθt >= 1: total internal reflection
+  // η >= 1 has g² >= c² >= 0; it reads 0 only where c² underflowed at η = 1.
+  real g = sqrt(max(g2, R(0.0)));
+  if (g + c <= R(0.0)) return R(1.0);           // c = 0 on η = 1: the grazing limit, as the reference
   // g - c = (η² - 1)/(g + c): as printed it cancels for η near 1, where F -> 0.
   real g_minus_c = (eta - R(1.0)) * (eta + R(1.0)) / (g + c);
   real a = g_minus_c / (g + c);
@@ -59,10 +61,12 @@ static inline real F_conductor(real VoH, real n, real k) {
   }
   real a = sqrt(a2);
   real den_s = sqr(a + c) + b2;
-  if (den_s <= R(0.0)) return R(1.0);           // a = b = c = 0: grazing on n = 1, k = 0, as TIR
+  // a = b = 0 only for n = 1, k = 0 (no interface): F = 0, and at c = 0 the
+  // grazing limit 1, as the reference (c² may have underflowed to make den_s 0).
+  if (den_s <= R(0.0)) return c > R(0.0) ? R(0.0) : R(1.0);
   // a - c = (a² - c²)/(a + c); a² - c² = e + b² where b² is small (t0 >= 0),
   // else a² and c² are both accurate and their difference is safer.
-  real a_minus_c = (t0 >= R(0.0) ? e + b2 : a2 - c2) / (a + c);
+  real a_minus_c = a + c > R(0.0) ? (t0 >= R(0.0) ? e + b2 : a2 - c2) / (a + c) : R(0.0);  // a = c = 0: n < 1, k = 0 at c = 0
   real rs = (sqr(a_minus_c) + b2) / den_s;
   real rp = rs * (sqr(a * c - s2) + b2 * c2) / (sqr(a * c + s2) + b2 * c2);
   return R(0.5) * (rp + rs);

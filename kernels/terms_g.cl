@@ -11,6 +11,10 @@ static inline real Lambda_ggx(real NoV, real alpha) {
   if (NoV >= R(1.0)) return R(0.0);             // seed 000: (v·n) rounding above 1 -> G1 = 1
   if (NoV <= R(0.0)) return INFINITY;           // θ -> π/2: Λ -> ∞, so G1 -> 0
   real x = alpha * alpha * tan2_from_cos(NoV);
+  // Near grazing tan²θ overflows (cos²θ underflows below n·v ~ 1e-19 in float)
+  // while Λ itself need not: there sqrt(1 + x) = sqrt(x) to the last bit, so
+  // Λ = α tanθ / 2, formed without squaring (inf only where Λ overflows).
+  if (isinf(x)) return R(0.5) * alpha * sqrt(sin2_from_cos(NoV)) / NoV;
   return x / (R(2.0) * (R(1.0) + sqrt(R(1.0) + x)));
 }
 
@@ -71,7 +75,9 @@ static inline real G_implicit(real NoL, real NoV, real NoH, real VoH, real unuse
 static inline real G_kelemen(real NoL, real NoV, real NoH, real VoH, real unused) {
   // seed 000: G / ((L·N)(V·N)) ≈ 1 / (L·H)²  (Kelemen and Szirmay-Kalos 2001)
   if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
-  return NoL * NoV / (VoH * VoH);
+  // (n·l / l·h)(n·v / v·h): the same product, without the underflow of
+  // (n·l)(n·v) and (l·h)² at grazing, where each quotient stays near 1.
+  return (NoL / VoH) * (NoV / VoH);
 }
 
 static inline real G_cook_torrance(real NoL, real NoV, real NoH, real VoH, real unused) {

@@ -68,6 +68,11 @@ struct Term {
   std::vector<std::string> under_masks;  // Smith G: Ds whose heavier tails its G1 under-masks (albedo > 1)
   std::string masking_exact;             // non-Smith G normalised against every D anyway: why
   const SmithFit* fit_for(const std::string& d) const;
+
+  // Numerical stability (mfv stability): true for terms that must never give
+  // NaN or Inf on in-domain inputs (parameters in range, any direction,
+  // dot products that rounded above 1); the stability gate fails when one does.
+  bool stable = true;
 };
 
 const std::vector<Term>& catalog();

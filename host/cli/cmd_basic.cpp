@@ -43,6 +43,7 @@ void add_list(CLI::App& app, Globals&, int& rc) {
         }
         if (!t.under_masks.empty()) j["under_masks"] = t.under_masks;
         if (!t.masking_exact.empty()) j["masking_exact"] = t.masking_exact;
+        j["stable"] = t.stable;
         out.push_back(j);
       }
       std::cout << out.dump(2) << "\n";

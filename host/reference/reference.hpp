@@ -20,6 +20,9 @@ double D_beckmann(double NoH, double alpha);        // seed 000 "Beckman"
 double D_ggx(double NoH, double alpha);             // seed 000 "GGX"
 double D_blinn_rho(double NoH, double rho);         // seed 004 Cook-Torrance "blinn version"
 double D_beckmann_ct82(double NoH, double m);       // seed 001, as written (known bad)
+// GGX from cos²θ and sin²θ given apart (e.g. from a half vector's components),
+// for θ below ~1e-8 where a double cosine no longer resolves 1 − cosθ.
+double D_ggx_cs(double cos2, double sin2, double alpha);
 
 // ---- Smith Lambda and G1 (one direction), argument NoV = cos(theta_v) -----
 double Lambda_beckmann(double NoV, double alpha);   // exact, with erf

@@ -61,6 +61,16 @@ double D_ggx(double NoH, double alpha) {
     return 1.0 / ((kPi * (alpha * alpha)) * (k * k));
 }
 
+double D_ggx_cs(double cos2, double sin2, double alpha) {
+    // Walter et al. 2007, eq. 33, in the last form of D_ggx above:
+    //   D_g = 1 / (π alpha² (cos²θ + sin²θ/alpha²)²)
+    // with cos²θ and sin²θ taken as given (each to full relative precision)
+    // instead of sin²θ = (1 − c)(1 + c) from a cosine that rounded.
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    const double k = cos2 + sin2 / (alpha * alpha);
+    return 1.0 / ((kPi * (alpha * alpha)) * (k * k));
+}
+
 double D_blinn_rho(double NoH, double rho) {
     // seed 004, Cook-Torrance "blinn version":
     //   D = (h·n)^(2/rho² − 2) / (π rho²)

@@ -1,0 +1,86 @@
+// Numerical stability on stiff and extreme inputs (issue 6, `mfv stability`):
+// a deterministic sweep (grids, not random draws) of every term, every Smith
+// G1, every D x G x F BRDF and a set of alternative formulations over the
+// regions where renderers break (roughness near 0, grazing angles, dot
+// products that round above 1, opposite light and view, index of refraction
+// 1...). Each point is evaluated by the kernel (float32, or float64) and by
+// the double reference on identical inputs.
+#pragma once
+
+#include "runtime/opencl.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+struct StabilityOptions {
+  bool fp64 = false;              // kernels in double (needs cl_khr_fp64)
+  bool combinations = true;       // the D x G x F BRDFs besides terms and variants
+  std::vector<std::string> only;  // keep cases whose name contains one of these
+};
+
+// One case in one region of the sweep.
+struct RegionResult {
+  std::string region;
+  std::string what;        // one line: which inputs the region holds
+  bool in_domain = true;   // counted by the gate (out of domain: reported only)
+  std::string expect;      // "0" or "1" where the seeds prescribe the value, else ""
+  uint64_t points = 0;
+  uint64_t nan = 0;        // kernel NaN
+  uint64_t inf = 0;        // kernel ±Inf where the reference is finite
+  uint64_t negative = 0;   // kernel < 0 where the reference is >= 0
+  uint64_t breaks = 0;     // any of the above, or beyond kBreakUlps (and above the underflow floor)
+  uint64_t violations = 0, ref_violations = 0;  // kernel / reference != expect
+  double max_rel = 0, max_ulps = 0;             // over points where both are finite
+  std::string first_break;  // the first breaking input in sweep order, hex-float; "" if none
+  std::string worst;        // the input of max_ulps, hex-float
+};
+
+struct StabilityCase {
+  std::string name;   // "D ggx", "G1 smith_ggx", "BRDF ggx/smith_ggx/schlick", "variant D_ggx via tan2"
+  std::string group;  // "term", "brdf", "variant"
+  std::string family; // variants: the quantity ("D_ggx", "Lambda_ggx", ...); terms: kind
+  std::string formula;
+  bool stable = false;     // terms, BRDFs: the catalog's flag; variants: false
+  bool is_default = false; // variants: the form the kernels use
+  std::vector<RegionResult> regions;
+  uint64_t count(uint64_t RegionResult::*field, bool in_domain_only) const;
+  double max_ulps() const;
+};
+
+// Error curves for the plots: ULPs of one case over θ at one alpha.
+struct ScanPoint {
+  double theta, alpha, ulps;  // ulps: NaN/Inf/negative results are stored as +inf
+};
+struct ScanSeries {
+  std::string name;  // case name
+  std::vector<ScanPoint> points;
+};
+
+struct StabilityReport {
+  std::string device, platform, driver, precision, build_options;
+  std::vector<StabilityCase> cases;
+  std::vector<ScanSeries> scans;
+  uint64_t points = 0;
+  double build_seconds = 0, kernel_seconds = 0, reference_seconds = 0, total_seconds = 0;
+  std::vector<std::string> gate_failures;  // stable cases with NaN/Inf in an in-domain region
+  bool gate_pass() const { return gate_failures.empty(); }
+};
+
+// ULPs beyond which a finite result counts as broken.
+inline constexpr double kBreakUlps = 4096;
+
+StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt);
+
+// Outputs (host/checks/stability_report.cpp).
+std::string stability_console(const StabilityReport& rep);
+std::string stability_json(const StabilityReport& rep);
+std::string stability_markdown(const StabilityReport& rep);
+// Writes stability.json, stability.md and the plot data under dir (whole or
+// not at all), then the plots when gnuplot is found; returns one line per
+// note to print (e.g. that gnuplot is missing).
+std::vector<std::string> write_stability_outputs(const StabilityReport& rep, const std::string& dir);
+
+}  // namespace mfv
