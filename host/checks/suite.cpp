@@ -62,9 +62,9 @@ const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 
 // Shared widths and view cosines for the combination checks.
 const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
 std::vector<double> view_cosines(int n) {
-  // dense towards grazing: cos from 1e-3 to 1
+  // dense towards grazing: cos from 1e-4 (0.006 degrees above the horizon) to 1
   std::vector<double> c;
-  for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -3.0 * double(n - 1 - i) / double(n - 1)));
+  for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -4.0 * double(n - 1 - i) / double(n - 1)));
   return c;
 }
 
