@@ -1,6 +1,8 @@
 // The command line: listings, and one-line errors with exit code 2 on bad input.
 #include "catalog/catalog.hpp"
 
+#include "run_mfv.hpp"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -12,21 +14,8 @@
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out;  // stdout and stderr together
-};
-
-Run run_mfv(const std::string& args) {
-  std::string cmd = std::string(MFV_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using mfv::test::Run;
+using mfv::test::run_mfv;
 
 size_t lines(const std::string& s) {
   size_t n = 0;

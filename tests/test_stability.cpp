@@ -6,6 +6,8 @@
 #include "kernel_dir.hpp"
 #include "reference/reference.hpp"
 
+#include "run_mfv.hpp"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -25,21 +27,8 @@ using namespace mfv;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out;  // stdout and stderr together
-};
-
-Run run_mfv(const std::string& args, const std::string& env = "") {
-  std::string cmd = env + (env.empty() ? "" : " ") + std::string(MFV_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using mfv::test::Run;
+using mfv::test::run_mfv;
 
 bool no_platform(const Run& r) { return r.code == 2 && r.out.find("no OpenCL platform") != std::string::npos; }
 

@@ -5,6 +5,8 @@
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 
+#include "run_mfv.hpp"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +23,9 @@
 using namespace mfv;
 
 namespace {
+
+using mfv::test::Run;
+using mfv::test::run_mfv;
 
 const GroupResult* group(const SuiteReport& rep, const std::string& check, const std::string& model) {
   for (auto& g : rep.groups)
@@ -40,22 +45,6 @@ SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> mode
   o.models = std::move(models);
   o.seed = 7;
   return o;
-}
-
-struct Run {
-  int code;
-  std::string out;
-};
-
-Run run_mfv(const std::string& args) {
-  std::string cmd = std::string(MFV_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 std::string slurp(const std::filesystem::path& p) {
