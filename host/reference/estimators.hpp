@@ -16,6 +16,7 @@ struct IntegralRef {
   double width = 0.1;    // proposal width (equivalent alpha)
   double cos_o = 1.0;    // view for masking and albedo, in the xz-plane
   uint32_t stream = 0;   // Philox stream = integral id
+  uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid)
 };
 
 // The index-th sample of the estimator: its mean over samples is the integral.
