@@ -18,5 +18,6 @@ void add_list(CLI::App& app, Globals& g, int& rc);
 void add_agree(CLI::App& app, Globals& g, int& rc);
 void add_eval(CLI::App& app, Globals& g, int& rc);
 void add_run(CLI::App& app, Globals& g, int& rc);
+void add_energy(CLI::App& app, Globals& g, int& rc);
 
 }  // namespace mfv::cli
