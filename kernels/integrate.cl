@@ -19,6 +19,13 @@ typedef float acc_t;
 #define CHECK_D_NORM 0
 #define CHECK_MASKING 1
 #define CHECK_ALBEDO 2
+// mfv energy (host/checks/energy.cpp): the albedo estimator's proposal with
+// its three components taken deterministically (multi-sample MIS, balance
+// heuristic) on randomized quasi-Monte Carlo points; each integral is one
+// randomization (its stream picks the random shift), so the spread over
+// several integrals gives the standard error. Twin: albedo_rqmc in estimators.cpp.
+#define CHECK_ALBEDO_RQMC 3  // E(o) at cos_o, as CHECK_ALBEDO
+#define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ drawn with density 2μ per point
 
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
@@ -63,8 +70,56 @@ static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c,
   return (real3)(st * cos(phi), st * sin(phi), *c);
 }
 
+// f(i,o) (n·i) / pdf(i) for the albedo proposal: the union of a cosine lobe
+// and o reflected about an m from the mixture.
+static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 o, real w) {
+  if (i.z <= R(0.0)) return R(0.0);
+  real3 sum = i + o;
+  real len = length(sum);
+  real3 h = sum / len;
+  real oh = R(0.5) * len;  // o·h = |i + o| / 2, as in brdf_eval
+  real hs2 = h.x * h.x + h.y * h.y;
+  real pdf = MIX_I_COS * i.z * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pdf_m(h.z, hs2, w) / (R(4.0) * oh);
+  real f = brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+  return f * i.z / pdf;
+}
+
+// Kronecker (additive recurrence) sequence of Roberts 2018: point k is
+// frac(shift + k·g), g_j = 1/φ^j with φ the real root of x⁴ = x + 1 (the
+// 3-dimensional generalized golden ratio), in 32-bit fixed point so that
+// k·g mod 1 is exact. Cranley-Patterson shift from Philox draw 2 of the
+// integral's stream. Host twin: kRqmcG in estimators.cpp.
+#define RQMC_G1 3518319155u
+#define RQMC_G2 2882110345u
+#define RQMC_G3 2360945575u
+
+// One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the same proposal as the
+// albedo check, but each of its three components (cosine-lobe light, o
+// reflected about a cosine-lobe m, o reflected about a Cauchy m) gets one
+// direction from the point's (u_phi, u_r), weighted by its mixture share:
+// Σ_c p_c E_c[f cos / pdf] is the integral when pdf = Σ_c p_c pdf_c.
+static inline real albedo_rqmc_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  uint4 shift = mfv_philox(seed, s->stream, 2, 0);
+  uint k = (uint)index;
+  real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
+  real co = s->cos_o;
+  if (s->check == CHECK_EAVG_RQMC) co = sqrt(u01_open(shift.z + k * RQMC_G3));  // density 2μ
+  real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
+  real w = s->width;
+  real st = sqrt(u_r), phi = R(2.0) * MFV_PI * u_phi;
+  real3 i = (real3)(st * cos(phi), st * sin(phi), sqrt(R(1.0) - u_r));
+  real v = MIX_I_COS * albedo_weight(s, i, o, w);
+  real c, s2;
+  real3 m = sample_m(R(0.0), u_phi, u_r, w, &c, &s2);  // u_pick = 0: the cosine lobe
+  v += (R(1.0) - MIX_I_COS) * MIX_COS * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
+  m = sample_m(R(1.0), u_phi, u_r, w, &c, &s2);        // u_pick = 1: Cauchy slopes
+  v += (R(1.0) - MIX_I_COS) * (R(1.0) - MIX_COS) * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
+  return v;
+}
+
 // One sample of the estimator of integral `s`.
 static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  if (s->check >= CHECK_ALBEDO_RQMC) return albedo_rqmc_value(s, seed, index);
   uint4 r = mfv_philox(seed, s->stream, 0, index);
   real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
   real w = s->width;
@@ -111,15 +166,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     i = R(2.0) * dot(o, m) * m - o;
   }
-  if (i.z <= R(0.0)) return R(0.0);
-  real3 sum = i + o;
-  real len = length(sum);
-  real3 h = sum / len;
-  real oh = R(0.5) * len;  // o·h = |i + o| / 2, as in brdf_eval
-  real hs2 = h.x * h.x + h.y * h.y;
-  real pdf = MIX_I_COS * i.z * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pdf_m(h.z, hs2, w) / (R(4.0) * oh);
-  real f = brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
-  return f * i.z / pdf;
+  return albedo_weight(s, i, o, w);
 }
 
 // Work-group g integrates slice (g % slices) of integral (g / slices): each

@@ -9,7 +9,9 @@
 
 namespace mfv {
 
-enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2 };
+// AlbedoRqmc/EavgRqmc: the Albedo estimator on randomized-QMC uniforms, one
+// randomization per integral (mfv energy; kernels/integrate.cl).
+enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4 };
 
 // Twin of IntegralSpec in kernels/integrate.cl: sixteen 4-byte fields.
 struct IntegralSpec {

@@ -19,5 +19,6 @@ void add_agree(CLI::App& app, Globals& g, int& rc);
 void add_eval(CLI::App& app, Globals& g, int& rc);
 void add_run(CLI::App& app, Globals& g, int& rc);
 void add_stability(CLI::App& app, Globals& g, int& rc);
+void add_energy(CLI::App& app, Globals& g, int& rc);
 
 }  // namespace mfv::cli

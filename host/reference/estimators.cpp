@@ -39,9 +39,46 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), c};
 }
 
+// f(i,o) cos / pdf(i), pdf = kMixICos cosine lobe + (1 - kMixICos) o reflected about m ~ pdf_m.
+double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o, double w) {
+  if (i.z <= 0.0) return 0.0;
+  const glm::dvec3 h = glm::normalize(i + o);
+  const double oh = glm::dot(o, h);
+  if (oh <= 0.0) return 0.0;
+  const double hs2 = h.x * h.x + h.y * h.y;
+  const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pdf_m(h.z, hs2, w) / (4.0 * oh);
+  return brdf(b, i, o) * i.z / pdf;
+}
+
+// Roberts 2018 Kronecker sequence, g_j = frac(1/φ^j) for φ⁴ = φ + 1, in
+// 32-bit fixed point (twin of RQMC_G* in kernels/integrate.cl).
+constexpr uint32_t kRqmcG[3] = {3518319155u, 2882110345u, 2360945575u};
+
+// Multi-sample MIS: each component of the albedo proposal once per point,
+// weighted by its share (cosine light 0.2; reflection 0.8 x (cosine m 0.2, Cauchy m 0.8)).
+double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  const auto shift = philox(seed, s.stream, 2, 0);
+  const uint32_t k = static_cast<uint32_t>(index);
+  const double u_phi = u01_open(shift[0] + k * kRqmcG[0]), u_r = u01_open(shift[1] + k * kRqmcG[1]);
+  double cos_o = s.cos_o;
+  if (s.kind == Integral::EavgRqmc) cos_o = std::sqrt(u01_open(shift[2] + k * kRqmcG[2]));  // density 2μ
+  const glm::dvec3 o(std::sqrt(1.0 - cos_o * cos_o), 0.0, cos_o);
+  const double w = s.width;
+  const double phi = 2.0 * M_PI * u_phi;
+  const glm::dvec3 light(std::sqrt(u_r) * std::cos(phi), std::sqrt(u_r) * std::sin(phi), std::sqrt(1.0 - u_r));
+  double v = kMixICos * albedo_weight(s.brdf, light, o, w);
+  double c, s2;
+  glm::dvec3 m = sample_m(0.0, u_phi, u_r, w, c, s2);
+  v += (1.0 - kMixICos) * kMixCos * albedo_weight(s.brdf, 2.0 * glm::dot(o, m) * m - o, o, w);
+  m = sample_m(1.0, u_phi, u_r, w, c, s2);
+  v += (1.0 - kMixICos) * (1.0 - kMixCos) * albedo_weight(s.brdf, 2.0 * glm::dot(o, m) * m - o, o, w);
+  return v;
+}
+
 }  // namespace
 
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  if (s.kind == Integral::AlbedoRqmc || s.kind == Integral::EavgRqmc) return albedo_rqmc(s, seed, index);
   auto r = philox(seed, s.stream, 0, index);
   const double u_branch = u01_open(r[0]), u_phi = u01_open(r[2]);
   double u_pick = u01_open(r[1]), u_r = u01_open(r[3]);
@@ -80,13 +117,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     const glm::dvec3 m = sample_m(u_pick, u_phi, u_r, w, c, s2);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
-  if (i.z <= 0.0) return 0.0;
-  const glm::dvec3 h = glm::normalize(i + o);
-  const double oh = glm::dot(o, h);
-  if (oh <= 0.0) return 0.0;
-  const double hs2 = h.x * h.x + h.y * h.y;
-  const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pdf_m(h.z, hs2, w) / (4.0 * oh);
-  return brdf(b, i, o) * i.z / pdf;
+  return albedo_weight(b, i, o, w);
 }
 
 }  // namespace mfv::ref

@@ -8,7 +8,9 @@
 
 namespace mfv::ref {
 
-enum class Integral { DNorm = 0, Masking = 1, Albedo = 2 };
+// AlbedoRqmc and EavgRqmc (mfv energy) are Albedo on randomized-QMC uniforms;
+// EavgRqmc also draws the view cosine per sample with density 2μ.
+enum class Integral { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4 };
 
 struct IntegralRef {
   Integral kind = Integral::DNorm;

@@ -1,0 +1,418 @@
+#include "checks/energy.hpp"
+
+#include "catalog/roughness.hpp"
+#include "checks/integrate.hpp"
+#include "reference/estimators.hpp"
+#include "runtime/dispatch.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace mfv {
+
+std::vector<double> energy_mu_grid(int n) {
+  std::vector<double> mu;
+  for (int m = 0; m < n; ++m) mu.push_back((m + 0.5) / n);  // cell midpoints of (0, 1]
+  return mu;
+}
+
+std::vector<double> energy_alpha_grid(int n) {
+  std::vector<double> a;
+  for (int j = 0; j < n; ++j) a.push_back(n == 1 ? 1.0 : std::pow(10.0, -3.0 + 3.0 * j / (n - 1)));
+  return a;
+}
+
+void validate_energy_options(const EnergyOptions& o) {
+  if (o.n_mu < 2 || o.n_mu > 256 || o.n_alpha < 2 || o.n_alpha > 256)
+    throw Error(fmt::format("--grid {}x{}: each side must be 2..256", o.n_mu, o.n_alpha));
+  if (!(o.target > 0) || !std::isfinite(o.target) || o.target >= 1)
+    throw Error(fmt::format("--target {}: must be a standard error in (0, 1)", o.target));
+  if (o.replicates < 2 || o.replicates > 256) throw Error(fmt::format("--replicates {}: must be 2..256", o.replicates));
+  if (o.min_points < 64 || o.max_points < o.min_points || o.max_points > (uint64_t(1) << 24))
+    throw Error(fmt::format("points per replicate {}..{}: need 64 <= min <= max <= 2^24", o.min_points, o.max_points));
+  // Every D and G filter must match something, or the user made a typo.
+  for (auto& f : o.models) {
+    bool hit = false;
+    for (auto* d : terms_of(Kind::D))
+      for (auto* g : terms_of(Kind::G)) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
+    if (!hit) throw Error(fmt::format("--models '{}' matches no D/G combination (see 'mfv list')", f));
+  }
+}
+
+namespace {
+
+bool wanted(const std::vector<std::string>& filter, const std::string& name) {
+  if (filter.empty()) return true;
+  for (auto& f : filter)
+    if (name.find(f) != std::string::npos) return true;
+  return false;
+}
+
+Cell replicate_stats(const std::vector<double>& v) {
+  const double n = double(v.size());
+  double s = 0;
+  for (double x : v) s += x;
+  const double mean = s / n;
+  double ss = 0;
+  for (double x : v) ss += (x - mean) * (x - mean);
+  return {mean, std::sqrt(ss / (n - 1) / n)};
+}
+
+// One quantity the adaptive loop refines: an E/A/B cell (2 specs per
+// replicate: F = none and Schlick with F0 = 0, the latter being B) or an
+// E_avg (1 spec per replicate).
+struct Unit {
+  size_t table, index;  // cell index or alpha index
+  bool eavg;
+  IntegralSpec base;
+  uint32_t first_stream;
+};
+
+ref::IntegralRef to_reference(const IntegralSpec& s) {
+  ref::IntegralRef r;
+  r.kind = static_cast<ref::Integral>(s.check);
+  r.brdf.d = &catalog()[size_t(s.d)];
+  r.brdf.g = &catalog()[size_t(s.g)];
+  r.brdf.f = &catalog()[size_t(s.f)];
+  r.brdf.pd = s.pd;
+  r.brdf.pg = s.pg;
+  r.brdf.f0 = s.f0;
+  r.brdf.f1 = s.f1;
+  r.brdf.kd = s.kd;
+  r.width = s.width;
+  r.cos_o = s.cos_o;
+  r.stream = s.stream;
+  return r;
+}
+
+}  // namespace
+
+EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
+  validate_energy_options(opt);
+  const auto t0 = std::chrono::steady_clock::now();
+  EnergyReport rep;
+  rep.opt = opt;
+  rep.device = rt.device().name;
+  rep.mu = energy_mu_grid(opt.n_mu);
+  rep.alpha = energy_alpha_grid(opt.n_alpha);
+  const size_t nm = size_t(opt.n_mu), na = size_t(opt.n_alpha), R = size_t(opt.replicates);
+  const Term& none = find_term("none");
+  const Term& schlick = find_term("schlick");
+
+  TermSelection sel;
+  for (auto* d : terms_of(Kind::D))
+    for (auto* g : terms_of(Kind::G)) {
+      if (!wanted(opt.models, d->id + "/" + g->id)) continue;
+      EnergyTable t;
+      t.d = d;
+      t.g = g;
+      for (double a : rep.alpha) {
+        double pd = native_from_alpha(d->roughness, a);
+        validate_param(*d, 0, pd);
+        t.pd.push_back(pd);
+        t.pg.push_back(g->params.empty() ? 0.0 : std::min(native_from_alpha(g->roughness, a), g->params[0].hi));
+      }
+      t.E.resize(nm * na);
+      t.A = t.B = t.E;
+      t.points.assign(nm * na, 0);
+      t.eavg.resize(na);
+      t.eavg_quad.resize(na);
+      rep.tables.push_back(t);
+      if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
+      if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
+    }
+  if (rep.tables.empty()) throw Error("no D/G combination selected");
+  sel.f = {&none, &schlick};
+
+  const double b0 = rt.build_stats().seconds;
+  Integrator in(rt, sel);
+  rep.build_seconds = rt.build_stats().seconds - b0;
+
+  // Units and their Philox streams (fixed across passes, so a pass with more
+  // points extends the same shifted point sets).
+  std::vector<Unit> units;
+  uint32_t stream = 0;
+  for (size_t ti = 0; ti < rep.tables.size(); ++ti) {
+    const EnergyTable& t = rep.tables[ti];
+    auto spec = [&](IntegralKind k, size_t a, double mu) {
+      IntegralSpec s;
+      s.check = static_cast<int32_t>(k);
+      s.d = term_index(*t.d);
+      s.g = term_index(*t.g);
+      s.f = term_index(none);
+      s.pd = float(t.pd[a]);
+      s.pg = float(t.pg[a]);
+      s.width = float(rep.alpha[a]);
+      s.cos_o = float(mu);
+      return s;
+    };
+    for (size_t a = 0; a < na; ++a) {
+      for (size_t m = 0; m < nm; ++m) {
+        units.push_back({ti, a * nm + m, false, spec(IntegralKind::AlbedoRqmc, a, rep.mu[m]), stream});
+        stream += uint32_t(2 * R);
+      }
+      units.push_back({ti, a, true, spec(IntegralKind::EavgRqmc, a, 1.0), stream});
+      stream += uint32_t(R);
+    }
+  }
+  auto specs_of = [&](const Unit& u) {
+    std::vector<IntegralSpec> v;
+    for (size_t r = 0; r < R; ++r) {
+      IntegralSpec s = u.base;
+      s.stream = u.first_stream + uint32_t(r);
+      v.push_back(s);
+      if (!u.eavg) {
+        s.f = term_index(schlick);  // F0 = 0: F = (1 - o·h)^5, the B term
+        s.f0 = 0;
+        s.stream = u.first_stream + uint32_t(R + r);
+        v.push_back(s);
+      }
+    }
+    return v;
+  };
+
+  // Adaptive passes: every unit at min_points, then 4x for those above target.
+  std::vector<size_t> pending(units.size());
+  for (size_t i = 0; i < units.size(); ++i) pending[i] = i;
+  for (uint64_t points = opt.min_points; !pending.empty(); points *= 4) {
+    std::vector<IntegralSpec> specs;
+    std::vector<size_t> offset;
+    for (size_t ui : pending) {
+      offset.push_back(specs.size());
+      auto v = specs_of(units[ui]);
+      specs.insert(specs.end(), v.begin(), v.end());
+    }
+    std::vector<Estimate> est = in.run(specs, points, opt.seed);
+    const uint64_t used = in.samples_used(points);
+    rep.samples += used * specs.size();
+    std::vector<size_t> next;
+    for (size_t k = 0; k < pending.size(); ++k) {
+      const Unit& u = units[pending[k]];
+      EnergyTable& t = rep.tables[u.table];
+      double worst;
+      if (u.eavg) {
+        std::vector<double> e;
+        for (size_t r = 0; r < R; ++r) e.push_back(est[offset[k] + r].mean);
+        t.eavg[u.index] = replicate_stats(e);
+        worst = t.eavg[u.index].se;
+      } else {
+        std::vector<double> e, a, b;
+        for (size_t r = 0; r < R; ++r) {
+          const double er = est[offset[k] + 2 * r].mean, br = est[offset[k] + 2 * r + 1].mean;
+          e.push_back(er);
+          b.push_back(br);
+          a.push_back(er - br);  // same shifted points: A and B share their noise
+        }
+        t.E[u.index] = replicate_stats(e);
+        t.A[u.index] = replicate_stats(a);
+        t.B[u.index] = replicate_stats(b);
+        t.points[u.index] = used;
+        worst = std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
+      }
+      if (!(worst <= opt.target) && points * 4 <= opt.max_points && std::isfinite(worst)) next.push_back(pending[k]);
+    }
+    pending.swap(next);
+  }
+
+  // E_avg by the midpoint rule over the mu grid, as a cross-check of the
+  // dedicated integral (its error is the quadrature's O(1/n^2) plus noise).
+  for (auto& t : rep.tables)
+    for (size_t a = 0; a < na; ++a) {
+      double s = 0, v = 0;
+      for (size_t m = 0; m < nm; ++m) {
+        const double w = 2.0 * rep.mu[m] / double(nm);
+        s += w * t.E[a * nm + m].mean;
+        v += w * w * t.E[a * nm + m].se * t.E[a * nm + m].se;
+      }
+      t.eavg_quad[a] = {s, std::sqrt(v)};
+    }
+
+  auto consider = [&](const Cell& c, const std::string& where) {
+    if (!(c.se <= opt.target)) rep.above_target++;
+    if (!(c.se <= rep.max_se)) {
+      if (!std::isfinite(c.se) || c.se > rep.max_se) rep.max_se_at = where;
+      rep.max_se = std::isfinite(c.se) ? c.se : std::numeric_limits<double>::infinity();
+    }
+  };
+  for (auto& t : rep.tables)
+    for (size_t a = 0; a < na; ++a) {
+      for (size_t m = 0; m < nm; ++m) {
+        const size_t c = a * nm + m;
+        const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), rep.alpha[a], rep.mu[m]);
+        consider(t.E[c], "E " + w);
+        consider(t.A[c], "A " + w);
+        consider(t.B[c], "B " + w);
+      }
+      consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
+    }
+
+  // The double reference on the identical first samples of every k-th integral.
+  if (opt.reference_samples > 0) {
+    std::vector<IntegralSpec> subset;
+    size_t k = 0;
+    for (auto& u : units)
+      for (auto& s : specs_of(u))
+        if (k++ % size_t(std::max(1, opt.reference_every)) == 0) subset.push_back(s);
+    const uint32_t n = opt.reference_samples;
+    std::vector<float> kv = in.sample_values(subset, n, opt.seed);
+    for (size_t j = 0; j < subset.size(); ++j) {
+      const ref::IntegralRef r = to_reference(subset[j]);
+      double ks = 0, rs = 0, scale = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        const double rv = ref::sample_value(r, opt.seed, i);
+        ks += kv[j * n + i];
+        rs += rv;
+        scale += std::fabs(rv);
+      }
+      // relative to the integrand's size where it is O(1), absolute below (as mfv run)
+      double rel = std::fabs(ks - rs) / std::max(scale, double(n));
+      if (!std::isfinite(ks) || !std::isfinite(rs)) rel = std::numeric_limits<double>::infinity();
+      rep.reference_compared++;
+      if (!(rel <= rep.reference_worst)) {
+        rep.reference_worst = rel;
+        rep.reference_worst_at =
+            fmt::format("{}/{}/{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
+                        r.brdf.d->id, r.brdf.g->id, r.brdf.f->id, subset[j].check, r.width, r.cos_o, r.stream,
+                        ks / n, rs / n);
+      }
+    }
+  }
+
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double run_s = std::max(1e-9, rep.seconds - rep.build_seconds);
+  rep.samples_per_second = double(rep.samples) / run_s;
+  return rep;
+}
+
+// ---- baseline --------------------------------------------------------------
+
+namespace {
+
+// Regularized incomplete beta I_x(a, b) by Lentz's continued fraction
+// (Numerical Recipes 3rd ed. §6.4).
+double betacf(double a, double b, double x) {
+  const double tiny = 1e-300;
+  double c = 1, d = 1 - (a + b) * x / (a + 1);
+  if (std::fabs(d) < tiny) d = tiny;
+  d = 1 / d;
+  double h = d;
+  for (int m = 1; m < 10000; ++m) {
+    const double m2 = 2.0 * m;
+    double aa = m * (b - m) * x / ((a - 1 + m2) * (a + m2));
+    d = 1 + aa * d;
+    if (std::fabs(d) < tiny) d = tiny;
+    c = 1 + aa / c;
+    if (std::fabs(c) < tiny) c = tiny;
+    d = 1 / d;
+    h *= d * c;
+    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1 + m2));
+    d = 1 + aa * d;
+    if (std::fabs(d) < tiny) d = tiny;
+    c = 1 + aa / c;
+    if (std::fabs(c) < tiny) c = tiny;
+    d = 1 / d;
+    const double del = d * c;
+    h *= del;
+    if (std::fabs(del - 1) < 1e-15) break;
+  }
+  return h;
+}
+
+double incbeta(double a, double b, double x) {
+  if (x <= 0) return 0;
+  if (x >= 1) return 1;
+  const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+  if (x < (a + 1) / (a + b + 2)) return std::exp(lbt) * betacf(a, b, x) / a;
+  return 1 - std::exp(lbt) * betacf(b, a, 1 - x) / b;
+}
+
+}  // namespace
+
+double student_t_two_sided_p(double t, double df) {
+  if (std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
+  return incbeta(df / 2, 0.5, df / (df + t * t));
+}
+
+BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string& text, double alpha_fw) {
+  using nlohmann::json;
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(fmt::format("--baseline is not JSON: {}", e.what()));
+  }
+  auto num = [](const json& v) { return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN(); };
+  BaselineDiff out;
+  try {
+    if (j.at("schema").get<std::string>() != "mfv-energy/1")
+      throw Error("--baseline is not an mfv energy report (schema mfv-energy/1)");
+    const auto& grid = j.at("grid");
+    auto same = [](const json& a, const std::vector<double>& b) {
+      if (a.size() != b.size()) return false;
+      for (size_t i = 0; i < b.size(); ++i)
+        if (std::fabs(a[i].get<double>() - b[i]) > 1e-9 * std::max(1.0, std::fabs(b[i]))) return false;
+      return true;
+    };
+    if (!same(grid.at("mu"), now.mu) || !same(grid.at("alpha"), now.alpha))
+      throw Error(fmt::format("--baseline has a {}x{} grid; this run has {}x{}: rerun with the same --grid",
+                              grid.at("mu").size(), grid.at("alpha").size(), now.mu.size(), now.alpha.size()));
+    const double df_old = j.at("options").at("replicates").get<double>() - 1, df_new = now.opt.replicates - 1;
+    struct Test {
+      std::string where;
+      double b, bse, a, ase;
+    };
+    std::vector<Test> tests;
+    std::map<std::string, const json*> old;
+    for (auto& c : j.at("combinations")) old[c.at("d").get<std::string>() + "/" + c.at("g").get<std::string>()] = &c;
+    const size_t nm = now.mu.size();
+    for (auto& t : now.tables) {
+      auto it = old.find(t.name());
+      if (it == old.end()) {
+        out.notes.push_back(t.name() + " is not in the baseline");
+        continue;
+      }
+      const json& c = *it->second;
+      for (size_t a = 0; a < now.alpha.size(); ++a) {
+        for (size_t m = 0; m < nm; ++m) {
+          const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), now.alpha[a], now.mu[m]);
+          const size_t ci = a * nm + m;
+          tests.push_back({"E " + w, num(c.at("E")[a][m]), num(c.at("E_se")[a][m]), t.E[ci].mean, t.E[ci].se});
+          tests.push_back({"A " + w, num(c.at("A")[a][m]), num(c.at("A_se")[a][m]), t.A[ci].mean, t.A[ci].se});
+        }
+        tests.push_back({fmt::format("E_avg {} alpha={:.4g}", t.name(), now.alpha[a]), num(c.at("E_avg")[a]),
+                         num(c.at("E_avg_se")[a]), t.eavg[a].mean, t.eavg[a].se});
+      }
+    }
+    for (auto& [name, c] : old)
+      if (std::none_of(now.tables.begin(), now.tables.end(), [&](const EnergyTable& t) { return t.name() == name; }))
+        out.notes.push_back(name + " is in the baseline but not in this run");
+    out.compared = tests.size();
+    out.threshold_p = alpha_fw / double(std::max<size_t>(1, tests.size()));
+    for (auto& t : tests) {
+      // Welch: the two standard errors come from R-1 degrees of freedom each.
+      const double v1 = t.bse * t.bse, v2 = t.ase * t.ase, se = std::sqrt(v1 + v2);
+      double p;
+      if (std::isnan(t.a) != std::isnan(t.b)) p = 0;  // one side lost its value
+      else if (std::isnan(t.a)) continue;
+      else if (se == 0) p = t.a == t.b ? 1 : 0;
+      else {
+        const double df = (v1 + v2) * (v1 + v2) / (v1 * v1 / df_old + v2 * v2 / df_new);
+        p = student_t_two_sided_p((t.a - t.b) / se, std::isfinite(df) ? df : std::min(df_old, df_new));
+      }
+      if (p < out.threshold_p) out.moved.push_back({t.where, t.b, t.a, se, p});
+    }
+  } catch (const json::exception& e) {
+    throw Error(fmt::format("--baseline is malformed: {}", e.what()));
+  }
+  std::sort(out.moved.begin(), out.moved.end(), [](auto& x, auto& y) { return x.p < y.p; });
+  return out;
+}
+
+}  // namespace mfv

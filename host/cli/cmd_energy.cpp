@@ -1,0 +1,69 @@
+// mfv energy: energy-loss tables and Kulla-Conty compensation data.
+#include "checks/energy.hpp"
+#include "cli/commands.hpp"
+#include "report/energy_report.hpp"
+#include "report/files.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace mfv::cli {
+
+void add_energy(CLI::App& app, Globals& g, int& rc) {
+  auto* cmd = app.add_subcommand("energy", "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
+                                           "D x G (F = none): CSV, JSON, C header, report with plots");
+  static EnergyOptions opt;
+  static std::string out_dir, baseline, grid;
+  static double alpha_fw = 1e-3;
+  cmd->add_option("--models", opt.models, "only D/G combinations whose name d/g contains one of these "
+                                          "(default: every D x G of the catalog)");
+  cmd->add_option("--grid", grid, "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
+  cmd->add_option("--target", opt.target, "standard error per cell to reach (default 1e-4); cells above it get "
+                                          "more points, up to the cap");
+  cmd->add_option("--seed", opt.seed, "Philox key");
+  cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 8)");
+  cmd->add_option("--max-points", opt.max_points, "cap on points per replicate per value (default 16384)");
+  cmd->add_option("--out", out_dir, "write energy.json, report.md, kulla_conty.h, csv/ and plots/ here");
+  cmd->add_option("--baseline", baseline, "earlier energy.json: exit 1 if a value moved beyond its combined "
+                                          "standard errors (Bonferroni over all values)");
+  cmd->add_option("--alpha-fw", alpha_fw, "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
+      ->check(CLI::Range(1e-300, 0.5));
+  cmd->callback([&g, &rc] {
+    if (!grid.empty()) {
+      int m = 0, a = 0;
+      char x = 0, extra = 0;
+      if (std::sscanf(grid.c_str(), "%d%c%d%c", &m, &x, &a, &extra) != 3 || (x != 'x' && x != 'X'))
+        throw Error(fmt::format("--grid '{}': expected MUxALPHA, e.g. 32x32", grid));
+      opt.n_mu = m;
+      opt.n_alpha = a;
+    }
+    validate_energy_options(opt);
+    std::string base_text;
+    if (!baseline.empty()) {
+      std::ifstream in(baseline);
+      if (!in) throw Error(fmt::format("--baseline {}: cannot read the file", baseline));
+      std::stringstream ss;
+      ss << in.rdbuf();
+      base_text = ss.str();
+    }
+    if (!out_dir.empty()) prepare_output_dir(out_dir);
+    Runtime rt(g.device, g.kernel_dir);
+    EnergyReport rep = run_energy(rt, opt);
+    print_energy_console(rep);
+    BaselineDiff diff;
+    if (!baseline.empty()) {
+      diff = compare_energy_baseline(rep, base_text, alpha_fw);
+      print_baseline_console(diff);
+    }
+    if (!out_dir.empty()) {
+      write_files_atomically(energy_outputs(rep, rt, out_dir, baseline.empty() ? nullptr : &diff));
+      fmt::print("wrote {}/energy.json, report.md, kulla_conty.h, csv/, plots/\n", out_dir);
+    }
+    rc = (rep.reference_worst <= rep.reference_bound && diff.moved.empty()) ? 0 : 1;
+  });
+}
+
+}  // namespace mfv::cli

@@ -1,0 +1,410 @@
+#include "report/energy_report.hpp"
+
+#include "report/files.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace mfv {
+
+namespace {
+
+const char* kParam =
+    "alpha = microfacet width (GGX/Beckmann slope scale); perceptual roughness r = sqrt(alpha), i.e. alpha = r^2; "
+    "a D or G with another native parameter gets it from alpha (Phong: alpha_p = 2/alpha^2 - 2; blinn_rho: rho = "
+    "alpha; beckmann_ct82: m = alpha)";
+const char* kGrid = "mu = cos(theta_view) at cell midpoints (m + 1/2)/N_MU, m = 0..N_MU-1; alpha = 10^(-3 + 3a/(N_ALPHA-1)), "
+                    "a = 0..N_ALPHA-1 (log spacing, 1e-3..1)";
+const char* kMethod =
+    "E = directional albedo with F = 1; A, B: Schlick split sum E_F = F0*A + F90*B (B = albedo with F = (1-o.h)^5, "
+    "A = E - B on the same points); E_avg = 2*int E(mu) mu dmu as its own integral (mu drawn with density 2mu). "
+    "Estimator: MIS of a cosine lobe and Cauchy slopes of width alpha (independent of D and G) on randomized QMC "
+    "(Kronecker sequence, R random shifts); standard error = spread of the R replicate means / sqrt(R)";
+
+std::string ident(const std::string& s) {
+  std::string o;
+  for (char c : s) o += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return o;
+}
+
+std::string file_stem(const EnergyTable& t) { return t.d->id + "__" + t.g->id; }
+
+}  // namespace
+
+void print_energy_console(const EnergyReport& rep) {
+  const auto& o = rep.opt;
+  const size_t nm = rep.mu.size(), na = rep.alpha.size();
+  fmt::print("mfv energy: {} D x G combinations, {}x{} (mu x alpha) grid, F = none; {}\n", rep.tables.size(), nm, na,
+             "alpha log-spaced 1e-3..1, perceptual r = sqrt(alpha)");
+  const std::vector<double> show = {0.01, 0.1, 0.3, 1.0};
+  std::vector<size_t> cols;
+  for (double s : show) {
+    size_t best = 0;
+    for (size_t a = 0; a < na; ++a)
+      if (std::fabs(std::log(rep.alpha[a] / s)) < std::fabs(std::log(rep.alpha[best] / s))) best = a;
+    cols.push_back(best);
+  }
+  std::string head = fmt::format("{:<40}", "E_avg(alpha)");
+  for (size_t c : cols) head += fmt::format(" {:>18}", fmt::format("alpha={:.3g}", rep.alpha[c]));
+  fmt::print("{}\n", head);
+  for (auto& t : rep.tables) {
+    std::string line = fmt::format("{:<40}", t.name());
+    for (size_t c : cols) line += fmt::format(" {:>18}", fmt::format("{:.5f}±{:.1e}", t.eavg[c].mean, t.eavg[c].se));
+    fmt::print("{}\n", line);
+  }
+  fmt::print("accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
+             "{:.2e} at {}; {} values above target\n",
+             o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
+  fmt::print("reference (double, identical samples): {} integrals x {} samples, worst relative difference {:.2e} "
+             "(bound {:.0e}){}\n",
+             rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound,
+             rep.reference_worst <= rep.reference_bound ? "" : " FAILED at " + rep.reference_worst_at);
+  fmt::print("{:.3g} QMC points (3 BRDF samples each) in {:.2f} s ({:.2f} s kernel build): {:.3g} points/s = {:.3g} "
+             "BRDF samples/s on {}\n",
+             double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second,
+             3 * rep.samples_per_second, rep.device);
+}
+
+void print_baseline_console(const BaselineDiff& d) {
+  for (auto& n : d.notes) fmt::print("baseline: {}\n", n);
+  fmt::print("baseline: {} values compared (Welch t-test, Bonferroni p < {:.2e}): {} moved\n", d.compared,
+             d.threshold_p, d.moved.size());
+  for (size_t i = 0; i < d.moved.size() && i < 20; ++i) {
+    auto& m = d.moved[i];
+    fmt::print("  MOVED {}: {:.6f} -> {:.6f} (combined se {:.1e}, p = {:.1e})\n", m.where, m.before, m.after, m.se,
+               m.p);
+  }
+  if (d.moved.size() > 20) fmt::print("  ... and {} more\n", d.moved.size() - 20);
+}
+
+std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
+  using nlohmann::json;
+  const size_t nm = rep.mu.size(), na = rep.alpha.size();
+  json j;
+  j["schema"] = "mfv-energy/1";
+  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
+                 {"fp64", rt.device().fp64}};
+  j["build_options"] = rt.base_options();
+  j["date"] = utc_timestamp();
+  j["parameterization"] = kParam;
+  j["method"] = kMethod;
+  std::vector<double> r;
+  for (double a : rep.alpha) r.push_back(std::sqrt(a));
+  j["grid"] = {{"definition", kGrid}, {"mu", rep.mu}, {"alpha", rep.alpha}, {"perceptual_r", r},
+               {"layout", "arrays are [alpha index][mu index]"}};
+  const auto& o = rep.opt;
+  j["options"] = {{"seed", o.seed},           {"target_se", o.target},         {"replicates", o.replicates},
+                  {"min_points", o.min_points}, {"max_points", o.max_points}, {"models", o.models},
+                  {"reference_samples", o.reference_samples}, {"reference_every", o.reference_every}};
+  j["summary"] = {{"max_se", rep.max_se},
+                  {"max_se_at", rep.max_se_at},
+                  {"values_above_target", rep.above_target},
+                  {"seconds", rep.seconds},
+                  {"build_seconds", rep.build_seconds},
+                  {"samples", rep.samples},
+                  {"samples_per_second", rep.samples_per_second}};
+  j["reference"] = {{"compared", rep.reference_compared}, {"worst_relative", rep.reference_worst},
+                    {"bound", rep.reference_bound},       {"worst_at", rep.reference_worst_at},
+                    {"ok", rep.reference_worst <= rep.reference_bound}};
+  j["combinations"] = json::array();
+  for (auto& t : rep.tables) {
+    auto grid = [&](const std::vector<Cell>& v, bool se) {
+      json rows = json::array();
+      for (size_t a = 0; a < na; ++a) {
+        json row = json::array();
+        for (size_t m = 0; m < nm; ++m) row.push_back(se ? v[a * nm + m].se : v[a * nm + m].mean);
+        rows.push_back(row);
+      }
+      return rows;
+    };
+    auto line = [&](const std::vector<Cell>& v, bool se) {
+      json row = json::array();
+      for (auto& c : v) row.push_back(se ? c.se : c.mean);
+      return row;
+    };
+    json pts = json::array();
+    for (size_t a = 0; a < na; ++a)
+      pts.push_back(std::vector<uint64_t>(t.points.begin() + long(a * nm), t.points.begin() + long((a + 1) * nm)));
+    j["combinations"].push_back({{"d", t.d->id},
+                                 {"g", t.g->id},
+                                 {"f", "none"},
+                                 {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
+                                 {"g_param", t.g->params.empty() ? json(nullptr)
+                                                                 : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
+                                 {"E", grid(t.E, false)},
+                                 {"E_se", grid(t.E, true)},
+                                 {"A", grid(t.A, false)},
+                                 {"A_se", grid(t.A, true)},
+                                 {"B", grid(t.B, false)},
+                                 {"B_se", grid(t.B, true)},
+                                 {"points_per_replicate", pts},
+                                 {"E_avg", line(t.eavg, false)},
+                                 {"E_avg_se", line(t.eavg, true)},
+                                 {"E_avg_quadrature", line(t.eavg_quad, false)},
+                                 {"E_avg_quadrature_se", line(t.eavg_quad, true)}});
+  }
+  return j.dump(1);
+}
+
+namespace {
+
+std::string csv_of(const EnergyReport& rep, const EnergyTable& t) {
+  const size_t nm = rep.mu.size();
+  std::string s = fmt::format("# mfv energy {}: D = {}, G = {}, F = none; seed {}; commit {}\n", MFV_VERSION, t.d->id,
+                              t.g->id, rep.opt.seed, MFV_GIT_COMMIT);
+  s += fmt::format("# parameterization: {}\n# grid: {} ({} x {})\n# method: {}\n", kParam, kGrid, nm, rep.alpha.size(),
+                   kMethod);
+  s += fmt::format("# accuracy: target standard error {:.1e}; *_se columns are each value's standard error\n",
+                   rep.opt.target);
+  s += fmt::format("alpha_index,alpha,perceptual_r,{},{},mu_index,mu,theta_deg,E,E_se,A,A_se,B,B_se,points\n",
+                   "d_" + t.d->params[0].name, t.g->params.empty() ? "g_param" : "g_" + t.g->params[0].name);
+  for (size_t a = 0; a < rep.alpha.size(); ++a)
+    for (size_t m = 0; m < nm; ++m) {
+      const size_t c = a * nm + m;
+      s += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{:.3e},{:.9g},{:.3e},{}\n",
+                       a, rep.alpha[a], std::sqrt(rep.alpha[a]), t.pd[a], t.pg[a], m, rep.mu[m],
+                       std::acos(rep.mu[m]) * 180 / M_PI, t.E[c].mean, t.E[c].se, t.A[c].mean, t.A[c].se, t.B[c].mean,
+                       t.B[c].se, t.points[c]);
+    }
+  return s;
+}
+
+std::string eavg_csv(const EnergyReport& rep) {
+  std::string s = fmt::format("# mfv energy {}: average albedo E_avg(alpha) = 2 int E(mu) mu dmu, F = none\n# "
+                              "parameterization: {}\n# grid: {}\n# E_avg: own integral; E_avg_quadrature: midpoint "
+                              "rule over the mu grid (cross-check)\n",
+                              MFV_VERSION, kParam, kGrid);
+  s += "d,g,alpha_index,alpha,perceptual_r,E_avg,E_avg_se,E_avg_quadrature,E_avg_quadrature_se\n";
+  for (auto& t : rep.tables)
+    for (size_t a = 0; a < rep.alpha.size(); ++a)
+      s += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.3e},{:.9g},{:.3e}\n", t.d->id, t.g->id, a, rep.alpha[a],
+                       std::sqrt(rep.alpha[a]), t.eavg[a].mean, t.eavg[a].se, t.eavg_quad[a].mean, t.eavg_quad[a].se);
+  return s;
+}
+
+std::string header_of(const EnergyReport& rep) {
+  const size_t nm = rep.mu.size(), na = rep.alpha.size();
+  auto arr = [](const std::vector<double>& v) {
+    std::string s;
+    for (size_t i = 0; i < v.size(); ++i) s += fmt::format("{}{:.8g}f", i ? ", " : "", v[i]);
+    return s;
+  };
+  std::string s = fmt::format(
+      "/* Kulla-Conty energy compensation data, generated by mfv energy {} (commit {}, seed {}).\n"
+      " * Parameterization: {}.\n * Grid: {}.\n * MFV_E_<d>_<g>[a][m] = E(mu[m], alpha[a]), directional albedo with F = "
+      "1;\n * MFV_EAVG_<d>_<g>[a] = E_avg(alpha[a]) = 2 int E(mu) mu dmu.\n * Kulla & Conty 2017: f_ms(i,o) = (1 - "
+      "E(mu_i))(1 - E(mu_o)) / (pi (1 - E_avg)).\n * Standard error per value <= {:.2e} (max achieved), see "
+      "energy.json. C and C++. */\n#ifndef MFV_KULLA_CONTY_H\n#define MFV_KULLA_CONTY_H\n\n#define MFV_ENERGY_N_MU "
+      "{}\n#define MFV_ENERGY_N_ALPHA {}\nstatic const float MFV_ENERGY_MU[{}] = {{{}}};\nstatic const float "
+      "MFV_ENERGY_ALPHA[{}] = {{{}}};\n",
+      MFV_VERSION, MFV_GIT_COMMIT, rep.opt.seed, kParam, kGrid, rep.max_se, nm, na, nm, arr(rep.mu), na,
+      arr(rep.alpha));
+  for (auto& t : rep.tables) {
+    const std::string id = ident(t.d->id + "_" + t.g->id);
+    s += fmt::format("\n/* D = {}, G = {} */\nstatic const float MFV_E_{}[{}][{}] = {{\n", t.d->id, t.g->id, id, na, nm);
+    for (size_t a = 0; a < na; ++a) {
+      std::vector<double> row;
+      for (size_t m = 0; m < nm; ++m) row.push_back(t.E[a * nm + m].mean);
+      s += "  {" + arr(row) + "},\n";
+    }
+    std::vector<double> e;
+    for (auto& c : t.eavg) e.push_back(c.mean);
+    s += fmt::format("}};\nstatic const float MFV_EAVG_{}[{}] = {{{}}};\n", id, na, arr(e));
+  }
+  return s + "\n#endif /* MFV_KULLA_CONTY_H */\n";
+}
+
+// Runs gnuplot in a scratch folder; returns the PNGs it made, or nothing
+// (with one printed line) where gnuplot is missing or fails.
+std::vector<std::pair<std::string, std::string>> make_plots(const EnergyReport& rep, std::vector<std::string>& names) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> pngs;
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    fmt::print("gnuplot not found: plots skipped (install gnuplot-nox); tables and report still written\n");
+    return pngs;
+  }
+  const fs::path dir = fs::temp_directory_path() / fmt::format("mfv_energy_plots_{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const size_t nm = rep.mu.size(), na = rep.alpha.size();
+  std::vector<const Term*> ds;
+  for (auto& t : rep.tables)
+    if (std::find(ds.begin(), ds.end(), t.d) == ds.end()) ds.push_back(t.d);
+  for (auto& t : rep.tables) {
+    std::ofstream f(dir / (file_stem(t) + ".dat"));
+    for (size_t a = 0; a < na; ++a) {
+      for (size_t m = 0; m < nm; ++m)
+        f << fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[m]) * 180 / M_PI, rep.alpha[a],
+                         t.E[a * nm + m].mean, 1 - t.E[a * nm + m].mean);
+      f << "\n";
+    }
+    std::ofstream e(dir / (file_stem(t) + ".avg"));
+    for (size_t a = 0; a < na; ++a) e << fmt::format("{:.9g} {:.9g} {:.3e}\n", rep.alpha[a], t.eavg[a].mean, t.eavg[a].se);
+  }
+  // Which alpha blocks the E(theta) curves show.
+  std::vector<size_t> cols;
+  for (double s : {0.01, 0.1, 0.3, 1.0}) {
+    size_t best = 0;
+    for (size_t a = 0; a < na; ++a)
+      if (std::fabs(std::log(rep.alpha[a] / s)) < std::fabs(std::log(rep.alpha[best] / s))) best = a;
+    if (std::find(cols.begin(), cols.end(), best) == cols.end()) cols.push_back(best);
+  }
+  std::string gp = "set encoding utf8\nset datafile missing 'nan'\n";
+  for (auto* d : ds) {
+    std::vector<const EnergyTable*> ts;
+    for (auto& t : rep.tables)
+      if (t.d == d) ts.push_back(&t);
+    const int n = int(ts.size());
+    const int cols_n = int(std::ceil(std::sqrt(double(n)))), rows_n = (n + cols_n - 1) / cols_n;
+    // heat maps of 1 - E over (theta, alpha), one panel per G
+    std::string png = "heat_" + d->id + ".png";
+    names.push_back(png);
+    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 420 * cols_n, 340 * rows_n, png);
+    gp += fmt::format("set multiplot layout {},{} title '1 - E(theta, alpha), D = {}, F = none (alpha = r^2)'\n",
+                      rows_n, cols_n, d->id);
+    gp += "set view map\nset logscale y\nset xlabel 'theta_view (deg)'\nset ylabel 'alpha'\nset cbrange [0:*]\n"
+          "set palette rgb 33,13,10\nset xrange [0:90]\nset yrange [0.001:1]\n";
+    for (auto* t : ts)
+      gp += fmt::format("set title 'G = {}' noenhanced\nsplot '{}.dat' using 1:2:4 with pm3d notitle\n", t->g->id,
+                        file_stem(*t));
+    gp += "unset multiplot\nunset view\nunset logscale y\nunset cbrange\nunset yrange\nunset xrange\n";
+    // E(theta) curves for a few alpha, comparing the G terms
+    png = "curves_" + d->id + ".png";
+    names.push_back(png);
+    const int pc = int(cols.size()) > 1 ? 2 : 1, pr = (int(cols.size()) + pc - 1) / pc;
+    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 560 * pc, 400 * pr, png);
+    gp += fmt::format("set multiplot layout {},{} title 'E(theta) with F = 1, D = {}: G terms compared'\n", pr, pc,
+                      d->id);
+    gp += "set key left bottom noenhanced font ',7'\nset xlabel 'theta_view (deg)'\nset ylabel 'E'\nset xrange [0:90]\n";
+    for (size_t c : cols) {
+      gp += fmt::format("set title 'alpha = {:.3g} (r = {:.3g})'\nplot ", rep.alpha[c], std::sqrt(rep.alpha[c]));
+      for (size_t i = 0; i < ts.size(); ++i)
+        gp += fmt::format("{}'{}.dat' every :::{}::{} using 1:3 with linespoints pt 7 ps 0.4 title '{}'",
+                          i ? ", " : "", file_stem(*ts[i]), c, c, ts[i]->g->id);
+      gp += "\n";
+    }
+    gp += "unset multiplot\nunset xrange\n";
+  }
+  // E_avg(alpha) across combinations: one panel per D
+  {
+    names.push_back("eavg.png");
+    const int n = int(ds.size()), pc = n > 1 ? 2 : 1, pr = (n + pc - 1) / pc;
+    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output 'eavg.png'\n", 560 * pc, 400 * pr);
+    gp += fmt::format("set multiplot layout {},{} title 'E_{{avg}}(alpha) = 2 int E(mu) mu dmu, F = 1'\n", pr, pc);
+    gp += "set logscale x\nset key left bottom noenhanced font ',7'\nset xlabel 'alpha (= r^2)'\nset ylabel 'E_avg'\n";
+    for (auto* d : ds) {
+      gp += fmt::format("set title 'D = {}' noenhanced\nplot ", d->id);
+      bool first = true;
+      for (auto& t : rep.tables)
+        if (t.d == d) {
+          gp += fmt::format("{}'{}.avg' using 1:2 with linespoints pt 7 ps 0.4 title '{}'", first ? "" : ", ",
+                            file_stem(t), t.g->id);
+          first = false;
+        }
+      gp += "\n";
+    }
+    gp += "unset multiplot\n";
+  }
+  std::ofstream(dir / "plots.gp") << gp;
+  const std::string cmd = fmt::format("cd '{}' && gnuplot plots.gp > gnuplot.log 2>&1", dir.string());
+  if (std::system(cmd.c_str()) != 0) {
+    std::ifstream log(dir / "gnuplot.log");
+    std::string first;
+    std::getline(log, first);
+    fmt::print("gnuplot failed ({}): plots skipped; tables and report still written\n", first);
+    names.clear();
+  } else {
+    for (auto& n : names) {
+      std::ifstream in(dir / n, std::ios::binary);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      pngs.push_back({n, ss.str()});
+    }
+  }
+  fs::remove_all(dir);
+  return pngs;
+}
+
+std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vector<std::string>& plots,
+                      const BaselineDiff* base) {
+  const auto& o = rep.opt;
+  const size_t na = rep.alpha.size();
+  std::string s = "# mfv energy: energy loss of single-scattering microfacet BRDFs\n\n";
+  s += fmt::format("mfv {} (commit {}), seed {}, device {} ({}), {}.\n\n", MFV_VERSION, MFV_GIT_COMMIT, o.seed,
+                   rt.device().name, rt.device().platform, utc_timestamp());
+  s += fmt::format("- **Parameterization:** {}.\n- **Grid:** {} ({} x {}).\n- **Method:** {}.\n", kParam, kGrid,
+                   rep.mu.size(), na, kMethod);
+  s += fmt::format("- **Accuracy:** target standard error {:.1e} per value (R = {} replicates of {}..{} points, "
+                   "4x more points where above target); achieved max standard error **{:.2e}** ({}); {} values above "
+                   "target.\n",
+                   o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
+  s += fmt::format("- **Reference:** the double-precision twin of the estimator on identical samples, {} integrals x {} "
+                   "samples: worst relative difference {:.2e} (bound {:.0e}).\n",
+                   rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound);
+  s += fmt::format("- **Speed:** {:.3g} QMC points (3 BRDF samples each) in {:.1f} s ({:.1f} s kernel build), {:.3g} "
+                   "points/s = {:.3g} BRDF samples/s.\n\n",
+                   double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second,
+                   3 * rep.samples_per_second);
+  s += "Files: `energy.json` (everything, arrays [alpha][mu]), `csv/<d>__<g>.csv` (one per combination, grid in the "
+       "header), `csv/eavg.csv`, `kulla_conty.h` (E and E_avg arrays for a renderer).\n\n";
+  if (base) {
+    s += fmt::format("## Baseline comparison\n\n{} values compared (Welch t-test on the two standard errors, "
+                     "Bonferroni threshold p < {:.2e}): **{} moved**.\n\n",
+                     base->compared, base->threshold_p, base->moved.size());
+    for (size_t i = 0; i < base->moved.size() && i < 50; ++i)
+      s += fmt::format("- {}: {:.6f} -> {:.6f} (se {:.1e}, p = {:.1e})\n", base->moved[i].where, base->moved[i].before,
+                       base->moved[i].after, base->moved[i].se, base->moved[i].p);
+    for (auto& n : base->notes) s += "- note: " + n + "\n";
+    s += "\n";
+  }
+  s += "## E_avg(alpha)\n\n| D / G |";
+  std::vector<size_t> cols;
+  for (size_t a = 0; a < na; a += std::max<size_t>(1, na / 6)) cols.push_back(a);
+  if (cols.back() != na - 1) cols.push_back(na - 1);
+  for (size_t c : cols) s += fmt::format(" alpha={:.3g} |", rep.alpha[c]);
+  s += "\n|---|" + std::string() ;
+  for (size_t i = 0; i < cols.size(); ++i) s += "---|";
+  s += "\n";
+  for (auto& t : rep.tables) {
+    s += "| " + t.name() + " |";
+    for (size_t c : cols) s += fmt::format(" {:.5f} |", t.eavg[c].mean);
+    s += "\n";
+  }
+  if (!plots.empty()) {
+    s += "\n## Plots\n\n";
+    for (auto& p : plots) s += fmt::format("![{}](plots/{})\n\n", p, p);
+  } else {
+    s += "\n(No plots: gnuplot was not available.)\n";
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyReport& rep, const Runtime& rt,
+                                                                const std::string& dir, const BaselineDiff* baseline) {
+  std::vector<std::pair<std::string, std::string>> files;
+  files.push_back({dir + "/energy.json", energy_json(rep, rt)});
+  for (auto& t : rep.tables) files.push_back({dir + "/csv/" + file_stem(t) + ".csv", csv_of(rep, t)});
+  files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
+  files.push_back({dir + "/kulla_conty.h", header_of(rep)});
+  std::vector<std::string> names;
+  for (auto& [n, png] : make_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
+  files.push_back({dir + "/report.md", report_md(rep, rt, names, baseline)});
+  return files;
+}
+
+}  // namespace mfv
