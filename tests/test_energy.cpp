@@ -8,6 +8,8 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 
+#include "run_mfv.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -24,21 +26,8 @@ using Catch::Matchers::WithinAbs;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out;
-};
-
-Run run_mfv(const std::string& args) {
-  std::string cmd = std::string(MFV_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using mfv::test::Run;
+using mfv::test::run_mfv;
 
 // Mean and standard error over `reps` randomizations of an RQMC albedo integral.
 Cell device_albedo(Runtime& rt, const std::string& d, const std::string& g, double alpha, double mu, int reps,

@@ -75,22 +75,6 @@ struct Unit {
   uint32_t first_stream;
 };
 
-ref::IntegralRef to_reference(const IntegralSpec& s) {
-  ref::IntegralRef r;
-  r.kind = static_cast<ref::Integral>(s.check);
-  r.brdf.d = &catalog()[size_t(s.d)];
-  r.brdf.g = &catalog()[size_t(s.g)];
-  r.brdf.f = &catalog()[size_t(s.f)];
-  r.brdf.pd = s.pd;
-  r.brdf.pg = s.pg;
-  r.brdf.f0 = s.f0;
-  r.brdf.f1 = s.f1;
-  r.brdf.kd = s.kd;
-  r.width = s.width;
-  r.cos_o = s.cos_o;
-  r.stream = s.stream;
-  return r;
-}
 
 }  // namespace
 
@@ -260,28 +244,16 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     for (auto& u : units)
       for (auto& s : specs_of(u))
         if (k++ % size_t(std::max(1, opt.reference_every)) == 0) subset.push_back(s);
-    const uint32_t n = opt.reference_samples;
-    std::vector<float> kv = in.sample_values(subset, n, opt.seed);
-    for (size_t j = 0; j < subset.size(); ++j) {
-      const ref::IntegralRef r = to_reference(subset[j]);
-      double ks = 0, rs = 0, scale = 0;
-      for (uint32_t i = 0; i < n; ++i) {
-        const double rv = ref::sample_value(r, opt.seed, i);
-        ks += kv[j * n + i];
-        rs += rv;
-        scale += std::fabs(rv);
-      }
-      // relative to the integrand's size where it is O(1), absolute below (as mfv run)
-      double rel = std::fabs(ks - rs) / std::max(scale, double(n));
-      if (!std::isfinite(ks) || !std::isfinite(rs)) rel = std::numeric_limits<double>::infinity();
+    auto agree = in.compare_with_reference(subset, opt.reference_samples, opt.seed);
+    for (size_t j = 0; j < agree.size(); ++j) {
       rep.reference_compared++;
-      if (!(rel <= rep.reference_worst)) {
-        rep.reference_worst = rel;
-        rep.reference_worst_at =
-            fmt::format("{}/{}/{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
-                        r.brdf.d->id, r.brdf.g->id, r.brdf.f->id, subset[j].check, r.width, r.cos_o, r.stream,
-                        ks / n, rs / n);
-      }
+      if (agree[j].disagreement <= rep.reference_worst) continue;
+      rep.reference_worst = agree[j].disagreement;
+      const ref::IntegralRef r = reference_of(subset[j]);
+      rep.reference_worst_at =
+          fmt::format("{}/{}/{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
+                      r.brdf.d->id, r.brdf.g->id, r.brdf.f->id, subset[j].check, r.width, r.cos_o, r.stream,
+                      agree[j].kernel_mean, agree[j].reference_mean);
     }
   }
 

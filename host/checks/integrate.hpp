@@ -1,6 +1,7 @@
 // Batched Monte Carlo integration on the device (kernels/integrate.cl).
 #pragma once
 
+#include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
 
@@ -29,6 +30,9 @@ struct Estimate {
   uint64_t samples = 0;
 };
 
+// The same integral for the double reference twin (host/reference/estimators).
+ref::IntegralRef reference_of(const IntegralSpec& s);
+
 class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).
@@ -46,6 +50,14 @@ class Integrator {
 
   // The first n per-sample values of each integral, for the reference.
   std::vector<float> sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
+
+  // Kernel and double reference on the identical n samples of each integral
+  // (spread over the strata of a stratified one).
+  struct Agreement {
+    double disagreement;  // |k - r| / max(sum |r|, n): relative for O(1) integrands, absolute below
+    double kernel_mean, reference_mean;
+  };
+  std::vector<Agreement> compare_with_reference(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }
 

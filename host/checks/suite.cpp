@@ -334,23 +334,6 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
   }
 }
 
-ref::IntegralRef to_reference(const IntegralSpec& s) {
-  ref::IntegralRef r;
-  r.kind = static_cast<ref::Integral>(s.check);
-  r.brdf.d = &catalog()[size_t(s.d)];
-  r.brdf.g = &catalog()[size_t(s.g)];
-  r.brdf.f = &catalog()[size_t(s.f)];
-  r.brdf.pd = s.pd;
-  r.brdf.pg = s.pg;
-  r.brdf.f0 = s.f0;
-  r.brdf.f1 = s.f1;
-  r.brdf.kd = s.kd;
-  r.width = s.width;
-  r.cos_o = s.cos_o;
-  r.stream = s.stream;
-  r.strata = s.strata;
-  return r;
-}
 
 // The reference runs the same estimator on the identical first N samples of
 // every k-th integral; the two means must agree to rounding.
@@ -362,34 +345,16 @@ void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions
     subset.push_back(plan.specs[i]);
     which.push_back(i);
   }
-  const uint32_t n = opt.reference_samples;
-  std::vector<float> kv = in.sample_values(subset, n, opt.seed);
-  for (size_t j = 0; j < subset.size(); ++j) {
-    ref::IntegralRef r = to_reference(subset[j]);
-    double ks = 0, rs = 0, scale = 0;
-    const uint64_t stride = r.strata >= n ? r.strata / n : 1;  // as kernels/integrate.cl sample_values
-    for (uint32_t k = 0; k < n; ++k) {
-      double rv = ref::sample_value(r, opt.seed, k * stride);
-      ks += kv[j * n + k];
-      rs += rv;
-      scale += std::fabs(rv);
-    }
-    // Relative where the integrand is O(1) or larger, absolute below: the
-    // integrals are tested against 1, so a disagreement in a mean of 1e-20
-    // (F0 = 0 at normal view) is rounding noise, not a verdict changer.
-    double rel = std::fabs(ks - rs) / std::max(scale, double(n));
-    if (!std::isfinite(ks) || !std::isfinite(rs)) rel = std::isnan(ks) == std::isnan(rs) && ks == rs ? 0 : INFINITY;
+  auto agree = in.compare_with_reference(subset, opt.reference_samples, opt.seed);
+  for (size_t j = 0; j < agree.size(); ++j) {
     rep.reference_compared++;
-    if (rel > rep.reference_worst || rep.reference_worst_at.empty()) {
-      rep.reference_worst = std::max(rel, rep.reference_worst);
-      if (rel >= rep.reference_worst) {
-        const PointResult& p = plan.points[which[j]];
-        std::string ps;
-        for (auto& [k, v] : p.params) ps += fmt::format(" {}={:g}", k, v);
-        rep.reference_worst_at = fmt::format("{} {}{} (kernel mean {:.9g}, reference {:.9g})", p.check, model_name(p), ps,
-                                             ks / n, rs / n);
-      }
-    }
+    if (!rep.reference_worst_at.empty() && !(agree[j].disagreement > rep.reference_worst)) continue;
+    rep.reference_worst = std::max(agree[j].disagreement, rep.reference_worst);
+    const PointResult& p = plan.points[which[j]];
+    std::string ps;
+    for (auto& [k, v] : p.params) ps += fmt::format(" {}={:g}", k, v);
+    rep.reference_worst_at = fmt::format("{} {}{} (kernel mean {:.9g}, reference {:.9g})", p.check, model_name(p), ps,
+                                         agree[j].kernel_mean, agree[j].reference_mean);
   }
 }
 

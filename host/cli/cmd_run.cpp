@@ -31,7 +31,6 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
   cmd->callback([&g, &rc, samples_opt] {
-    if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
     if (samples_opt->count() > 0) {
       if (samples <= 0) throw Error(fmt::format("--samples must be a positive count, not {}", samples));
       opt.scale = double(samples) / double(kSuiteBaseSamples);
