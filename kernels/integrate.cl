@@ -34,9 +34,16 @@ typedef float acc_t;
 typedef struct {
   int check, d, g, f;
   float pd, pg, f0, f1;
-  float kd, width, cos_o, unused0;
-  uint stream, strata, unused2, unused3;  // strata: samples of a stratified integral, 0 = iid
+  float kd, width, cos_o, p5;
+  uint stream, strata, model, unused3;  // strata: samples of a stratified integral, 0 = iid
 } IntegralSpec;
+
+// The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
+// brdf.cl (with kd/π); whole models and user code plug in here, reading their
+// parameters p[0..5] from pd, pg, f0, f1, kd, p5.
+static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
+  return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+}
 
 // Cauchy slopes in solid angle: p_slope(s) / cos³θ with
 // p_slope = 1/(2πw²) (1 + tan²θ/w²)^(-3/2), which simplifies to
@@ -80,7 +87,7 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
   real oh = R(0.5) * len;  // o·h = |i + o| / 2, as in brdf_eval
   real hs2 = h.x * h.x + h.y * h.y;
   real pdf = MIX_I_COS * i.z * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pdf_m(h.z, hs2, w) / (R(4.0) * oh);
-  real f = brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+  real f = spec_brdf(s, i, o);
   return f * i.z / pdf;
 }
 
@@ -248,8 +255,8 @@ __kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulo
       real sb = sqrt(sin2_from_cos(cb));
       b = (real3)(sb * cos(pb), sb * sin(pb), cb);
     }
-    real f1 = brdf_eval(s->d, s->g, s->f, a, b, s->pd, s->pg, s->f0, s->f1, s->kd);
-    real f2 = brdf_eval(s->d, s->g, s->f, b, a, s->pd, s->pg, s->f0, s->f1, s->kd);
+    real f1 = spec_brdf(s, a, b);
+    real f2 = spec_brdf(s, b, a);
     real m = max(fabs(f1), fabs(f2));
     float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / m) : 0.0f;
     if (!(asym <= w)) {  // NaN counts as the worst

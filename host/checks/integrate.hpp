@@ -18,10 +18,11 @@ enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRq
 struct IntegralSpec {
   int32_t check = 0, d = 0, g = 0, f = 0;
   float pd = 0, pg = 0, f0 = 0, f1 = 0;
-  float kd = 0, width = 0.1f, cos_o = 1, unused0 = 0;
+  float kd = 0, width = 0.1f, cos_o = 1, p5 = 0;  // p5: sixth parameter of a whole model
   uint32_t stream = 0;
   uint32_t strata = 0;  // stratified integrals (d_norm): the sample count, set by run(); 0 = iid
-  uint32_t unused2 = 0, unused3 = 0;
+  uint32_t model = 0;  // 0: the microfacet D×G×F BRDF (kernels/integrate.cl spec_brdf)
+  uint32_t unused3 = 0;
 };
 static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's layout");
 
