@@ -19,13 +19,13 @@ typedef float acc_t;
 #define CHECK_D_NORM 0
 #define CHECK_MASKING 1
 #define CHECK_ALBEDO 2
-// mfv energy (host/checks/energy.cpp): the albedo estimator's proposal with
-// its three components taken deterministically (multi-sample MIS, balance
-// heuristic) on randomized quasi-Monte Carlo points; each integral is one
-// randomization (its stream picks the random shift), so the spread over
-// several integrals gives the standard error. Twin: albedo_rqmc in estimators.cpp.
+// mfv energy (host/checks/energy.cpp): the albedo with a visible-normal
+// proposal (see energy_weight) on randomized quasi-Monte Carlo points; each
+// integral is one randomization (its stream picks the random shift), so the
+// spread over several integrals gives the standard error.
 #define CHECK_ALBEDO_RQMC 3  // E(o) at cos_o, as CHECK_ALBEDO
-#define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ drawn with density 2μ per point
+#define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ with density 2μ, stratified
+#define CHECK_ALBEDO_RQMC_B 5  // sample_values only: the B of CHECK_ALBEDO_RQMC, for the reference
 
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
@@ -91,42 +91,95 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
   return f * i.z / pdf;
 }
 
-// Kronecker (additive recurrence) sequence of Roberts 2018: point k is
-// frac(shift + k·g), g_j = 1/φ^j with φ the real root of x⁴ = x + 1 (the
-// 3-dimensional generalized golden ratio), in 32-bit fixed point so that
-// k·g mod 1 is exact. Cranley-Patterson shift from Philox draw 2 of the
+// Kronecker (additive recurrence) sequence of Roberts 2018 in 2D: point k is
+// frac(shift + k·g), g_j = 1/φ^j with φ the plastic number (x³ = x + 1), in
+// 32-bit fixed point so that k·g mod 1 is exact. (The 3D generators' first
+// two coordinates are a much worse 2D set: measured N^-1/2 instead of N^-1
+// at grazing view.) Cranley-Patterson shift from Philox draw 2 of the
 // integral's stream. Host twin: kRqmcG in estimators.cpp.
-#define RQMC_G1 3518319155u
-#define RQMC_G2 2882110345u
-#define RQMC_G3 2360945575u
+#define RQMC_G1 3242174889u
+#define RQMC_G2 2447445414u
 
-// One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the same proposal as the
-// albedo check, but each of its three components (cosine-lobe light, o
-// reflected about a cosine-lobe m, o reflected about a Cauchy m) gets one
-// direction from the point's (u_phi, u_r), weighted by its mixture share:
-// Σ_c p_c E_c[f cos / pdf] is the integral when pdf = Σ_c p_c pdf_c.
-static inline real albedo_rqmc_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+// mfv energy's proposal (CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC): o reflected
+// about a visible normal of the GGX *shape* of width w. The proposal is its
+// own code (not the catalog's D_ggx, whose value only appears in the
+// numerator), so a wrong D under test still shows. It covers every light
+// direction (every h with o·h > 0 has D_w(h) > 0) and takes the 1/cos_o
+// growth of the integrand at grazing view; the weight D G / (D_w G1_w(o)) is
+// bounded for every D of the catalog (Beckmann, Phong and ρ tails are no
+// heavier than GGX's once masked). Measured against the conformance
+// proposal's cosine + Cauchy mixture: the same error per point with one
+// BRDF evaluation instead of three. Twin: albedo_rqmc in estimators.cpp.
+
+// pdf over light directions of i = reflect(o, h) when h is a visible normal of
+// D_w(h) = w² / (π (h_c² w² + h_s²)²) (Walter et al. 2007 eq. 33, with
+// h_s² = |n×h|² so it has no cancellation): G1(o) (o·h) D_w(h) / cos_o
+// (Heitz 2018 eq. 3) times the reflection Jacobian 1 / (4 o·h), with Smith
+// G1(o) = 2 cos_o / (cos_o + sqrt(cos_o² + w² sin_o²)) (Heitz 2014 eq. 72):
+// D_w(h) / (2 (cos_o + sqrt(cos_o² + w² sin_o²))), finite at cos_o = 0.
+static inline real vis_pdf_i(real hc, real hs2, real co, real so2, real w) {
+  real w2 = w * w;
+  real k = hc * hc * w2 + hs2;
+  return w2 / (MFV_PI * k * k) / (R(2.0) * (co + sqrt(co * co + w2 * so2)));
+}
+
+// A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
+// Listing 3, isotropic). Returns 0 where the sample degenerates (h = 0).
+static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
+  real3 os = normalize((real3)(w * o.x, w * o.y, o.z));  // o in the stretched (w = 1) configuration
+  real phi = R(2.0) * MFV_PI * u_phi;
+  real z = (R(1.0) - u_r) * (R(1.0) + os.z) - os.z;
+  real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
+  real3 hs = (real3)(st * cos(phi), st * sin(phi), z) + os;
+  real3 h = (real3)(w * hs.x, w * hs.y, hs.z);
+  real len2 = dot(h, h);
+  return len2 > R(0.0) ? h * rsqrt(len2) : (real3)(R(0.0), R(0.0), R(0.0));
+}
+
+// f(i,o) (n·i) / pdf(i) for i = reflect(o, m), m a visible normal of D_w;
+// *schlick0 = (1 - o·h)^5, Schlick's F at F0 = 0 (the split sum's B weight).
+static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 o, real so2, real w,
+                                 real* schlick0) {
+  *schlick0 = R(0.0);
+  real3 i = R(2.0) * dot(o, m) * m - o;
+  if (i.z <= R(0.0)) return R(0.0);
+  real3 sum = i + o;
+  real len = length(sum);
+  real3 h = sum / len;  // = m up to rounding; formed as brdf_eval forms it
+  real c = R(1.0) - min(R(0.5) * len, R(1.0));  // 1 - o·h as brdf_eval's VoH
+  *schlick0 = c * c * c * c * c;
+  return spec_brdf(s, i, o) * i.z / vis_pdf_i(h.z, h.x * h.x + h.y * h.y, o.z, so2, w);
+}
+
+// One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the albedo integrand and,
+// on the same direction, that of the split sum's B (the same BRDF with F
+// multiplied by (1 - o·h)^5: B is defined with F = none, kd = 0).
+static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, ulong seed, ulong index) {
   uint4 shift = mfv_philox(seed, s->stream, 2, 0);
   uint k = (uint)index;
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real co = s->cos_o;
-  if (s->check == CHECK_EAVG_RQMC) co = sqrt(u01_open(shift.z + k * RQMC_G3));  // density 2μ
-  real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
-  real w = s->width;
-  real st = sqrt(u_r), phi = R(2.0) * MFV_PI * u_phi;
-  real3 i = (real3)(st * cos(phi), st * sin(phi), sqrt(R(1.0) - u_r));
-  real v = MIX_I_COS * albedo_weight(s, i, o, w);
-  real c, s2;
-  real3 m = sample_m(R(0.0), u_phi, u_r, w, &c, &s2);  // u_pick = 0: the cosine lobe
-  v += (R(1.0) - MIX_I_COS) * MIX_COS * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
-  m = sample_m(R(1.0), u_phi, u_r, w, &c, &s2);        // u_pick = 1: Cauchy slopes
-  v += (R(1.0) - MIX_I_COS) * (R(1.0) - MIX_COS) * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
-  return v;
+  if (s->check == CHECK_EAVG_RQMC) {
+    // density 2μ: μ² stratified over the integral's `strata` points with one
+    // random shift (a rank-1 lattice with the 2D sequence), N^-1 like the rest
+    real u = u01_open(shift.z) + (real)k / (real)s->strata;
+    co = sqrt(u - floor(u));
+  }
+  real so2 = sin2_from_cos(co);
+  real3 o = (real3)(sqrt(so2), R(0.0), co);
+  real3 m = sample_vis(o, u_phi, u_r, s->width);
+  if (!(m.z > R(0.0))) return (real2)(R(0.0), R(0.0));
+  real b;
+  real e = energy_weight(s, m, o, so2, s->width, &b);
+  return (real2)(e, e * b);
 }
 
 // One sample of the estimator of integral `s`.
 static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  if (s->check >= CHECK_ALBEDO_RQMC) return albedo_rqmc_value(s, seed, index);
+  if (s->check >= CHECK_ALBEDO_RQMC) {
+    real2 v = albedo_rqmc_value(s, seed, index);
+    return s->check == CHECK_ALBEDO_RQMC_B ? v.y : v.x;
+  }
   uint4 r = mfv_philox(seed, s->stream, 0, index);
   real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
   real w = s->width;
@@ -177,12 +230,13 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
 }
 
 // Work-group g integrates slice (g % slices) of integral (g / slices): each
-// work-item takes per_item consecutive sample indices.
+// work-item takes per_item consecutive sample indices, counted from `first`
+// (a later pass extends an iid or Kronecker point set; 0 for stratified ones).
 __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint per_item, ulong seed,
-                        __global acc_t* sums, __local acc_t* scratch) {
+                        __global acc_t* sums, __local acc_t* scratch, ulong first) {
   size_t group = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);
   __global const IntegralSpec* s = specs + group / slices;
-  ulong base = ((ulong)(group % slices) * lsize + lid) * per_item;
+  ulong base = first + ((ulong)(group % slices) * lsize + lid) * per_item;
   acc_t sum = 0, sumsq = 0;
   if (s->strata > 0u) {
     // stratified: sumsq collects squared differences of neighbouring strata
@@ -191,6 +245,14 @@ __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint pe
       acc_t v0 = (acc_t)sample_value(s, seed, base + k), v1 = (acc_t)sample_value(s, seed, base + k + 1);
       sum += v0 + v1;
       sumsq += (v0 - v1) * (v0 - v1);
+    }
+  } else if (s->check == CHECK_ALBEDO_RQMC) {
+    // RQMC errors come from the spread of replicates, not from a sum of
+    // squares: the second accumulator takes the split sum's B on the same points
+    for (uint k = 0; k < per_item; ++k) {
+      real2 v = albedo_rqmc_value(s, seed, base + k);
+      sum += (acc_t)v.x;
+      sumsq += (acc_t)v.y;
     }
   } else {
     for (uint k = 0; k < per_item; ++k) {

@@ -26,6 +26,13 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.cos_o = s.cos_o;
   r.stream = s.stream;
   r.strata = s.strata;
+  if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmcB)) {
+    // B by its definition: the albedo with Schlick's F at F0 = 0 (the
+    // reference's own Schlick), where the kernel multiplies by (1 - o·h)^5
+    r.kind = ref::Integral::AlbedoRqmc;
+    r.brdf.f = &find_term("schlick");
+    r.brdf.f0 = 0.0;
+  }
   return r;
 }
 
@@ -57,15 +64,25 @@ uint64_t Integrator::samples_used(uint64_t requested) const {
 void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
   const uint64_t n = samples_used(samples);
   if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
-  for (auto& s : specs) s.strata = s.check == static_cast<int32_t>(IntegralKind::DNorm) ? uint32_t(n) : 0u;
+  // d_norm: stratified radius; E_avg (RQMC): stratified view cosine² (the
+  // point count fixes the spacing, see kernels/integrate.cl)
+  for (auto& s : specs)
+    s.strata = s.check == static_cast<int32_t>(IntegralKind::DNorm) ||
+                       s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
+                   ? uint32_t(n)
+                   : 0u;
 }
 
-std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed) {
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
+                                     uint64_t first_index) {
   uint32_t per_item, slices;
   layout(samples, per_item, slices);
   const uint64_t n = uint64_t(slices) * local_size_ * per_item;
   std::vector<IntegralSpec> specs = specs_in;
   stratify(specs, samples);
+  if (first_index > 0)
+    for (auto& s : specs)
+      if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
   std::vector<Estimate> out(specs.size());
   if (specs.empty()) return out;
   cl::Kernel k(program_, "integrate");
@@ -84,6 +101,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     k.setArg(3, static_cast<cl_ulong>(seed));
     k.setArg(4, sums);
     k.setArg(5, cl::Local(2 * local_size_ * acc));
+    k.setArg(6, static_cast<cl_ulong>(first_index));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
     std::vector<double> host(groups * 2);
     if (acc_double_) {
@@ -102,14 +120,17 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
       Estimate& e = out[first + i];
       e.samples = n;
       e.mean = s / double(n);
-      if (specs[first + i].strata > 0) {
+      if (specs[first + i].check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+        e.b_mean = ss / double(n);  // the kernel's second accumulator holds B here
+        e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+      } else if (specs[first + i].strata > 0) {
         // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
         e.stderr_ = std::sqrt(ss) / double(n);
       } else {
         double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
         e.stderr_ = std::sqrt(var / double(n));
       }
-      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
     }
   }
   return out;

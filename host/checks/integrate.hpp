@@ -10,9 +10,11 @@
 
 namespace mfv {
 
-// AlbedoRqmc/EavgRqmc: the Albedo estimator on randomized-QMC uniforms, one
-// randomization per integral (mfv energy; kernels/integrate.cl).
-enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4 };
+// AlbedoRqmc/EavgRqmc: the albedo on randomized-QMC uniforms with a
+// visible-normal proposal, one randomization per integral (mfv energy;
+// kernels/integrate.cl); AlbedoRqmc also yields the split sum's B on the same
+// points, which AlbedoRqmcB names for sample_values and the reference.
+enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoRqmcB = 5 };
 
 // Twin of IntegralSpec in kernels/integrate.cl: sixteen 4-byte fields.
 struct IntegralSpec {
@@ -29,6 +31,7 @@ static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's 
 struct Estimate {
   double mean = 0, stderr_ = 0;
   uint64_t samples = 0;
+  double b_mean = 0;  // AlbedoRqmc: the split sum's B on the same points (no stderr: RQMC errors come from replicates)
 };
 
 // The same integral for the double reference twin (host/reference/estimators).
@@ -43,7 +46,10 @@ class Integrator {
   // slices; samples_used() tells the count actually taken. d_norm integrals
   // are stratified: run() sets their `strata` and estimates their standard
   // error from neighbouring strata (conservative), the others are iid.
-  std::vector<Estimate> run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed);
+  // first_index > 0 takes samples first_index, first_index + 1, ... (a later
+  // pass extending an iid or QMC point set; not for stratified integrals).
+  std::vector<Estimate> run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed,
+                            uint64_t first_index = 0);
   uint64_t samples_used(uint64_t requested) const;
   // Sets `strata` as run() does, for callers that need the same samples
   // elsewhere (sample_values, the reference).
