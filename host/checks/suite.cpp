@@ -398,32 +398,16 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           pts.push_back(p);
         }
       }
-  if (specs.empty()) return;
-  uint64_t pairs = 0;
-  auto worst = reciprocity_batches(rt, prog, specs, reciprocity_per_item(opt.scale), opt.seed, pairs);
-  for (size_t i = 0; i < specs.size(); ++i) {
-    pts[i].estimate = worst[i].asym;
-    pts[i].samples = pairs;
-    pts[i].bounded = true;
-    pts[i].bound = kReciprocityBound;
-    pts[i].measure = "max asymmetry";
-    pts[i].params["worst_pair"] = worst[i].pair;
-    rep.points.push_back(pts[i]);
-  }
-  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * pairs * 2, secs});
+  record_reciprocity(rt, prog, specs, pts, kReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
 }  // namespace
 
-uint32_t reciprocity_per_item(double scale) { return std::max<uint32_t>(1, uint32_t(64 * scale)); }
-
-std::vector<WorstAsymmetry> reciprocity_batches(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
-                                                uint32_t per_item, uint64_t seed, uint64_t& pairs_each) {
-  const uint32_t local = 64;
-  pairs_each = uint64_t(local) * per_item;
-  std::vector<WorstAsymmetry> out(specs.size());
-  if (specs.empty()) return out;
+void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
+                        std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
+  if (specs.empty()) return;
+  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * scale));
   for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
   cl::Kernel k(prog, "reciprocity");
   cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
@@ -439,10 +423,22 @@ std::vector<WorstAsymmetry> reciprocity_batches(Runtime& rt, const cl::Program& 
   std::vector<cl_uint> wi(specs.size() * local);
   rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
   rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
-  for (size_t i = 0; i < specs.size(); ++i)
+  const uint64_t pairs = uint64_t(local) * per_item;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    float worst = 0;
+    uint32_t at = 0;
     for (uint32_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= out[i].asym)) out[i] = {w[i * local + l], wi[i * local + l]};
-  return out;
+      if (!(w[i * local + l] <= worst)) worst = w[i * local + l], at = wi[i * local + l];
+    pts[i].estimate = worst;
+    pts[i].samples = pairs;
+    pts[i].bounded = true;
+    pts[i].bound = bound;
+    pts[i].measure = "max asymmetry";
+    pts[i].params["worst_pair"] = at;
+    rep.points.push_back(pts[i]);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * pairs * 2, secs});
 }
 
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {

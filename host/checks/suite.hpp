@@ -8,6 +8,7 @@
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -130,16 +131,14 @@ std::vector<double> view_cosines(int n);
 // reference comparison into `rep`.
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
 
-// The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`: per
-// spec the worst asymmetry over 64 x per_item pairs and the pair index.
-struct WorstAsymmetry {
-  float asym = 0;
-  uint32_t pair = 0;
-};
-std::vector<WorstAsymmetry> reciprocity_batches(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
-                                                uint32_t per_item, uint64_t seed, uint64_t& pairs_each);
+// The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`, 64 x
+// per_item pairs each (per_item from the scale): one bounded point per spec
+// (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
+// and the check's timing since t0 go into `rep`.
+void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
+                        std::chrono::steady_clock::time_point t0, SuiteReport& rep);
 constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
-uint32_t reciprocity_per_item(double scale);
 
 // z-test verdicts for every point, then one verdict per model x check.
 void judge(SuiteReport& rep, const SuiteOptions& opt);

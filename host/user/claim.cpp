@@ -81,7 +81,8 @@ Claim parse_claim(const std::string& as, const std::vector<std::string>& map, co
     }
   auto slots = slots_of(c);
   std::string names;
-  for (auto& [k, sl] : slots) names += (names.empty() ? "" : ", ") + sl.name();
+  for (auto& [k, sl] : slots)
+    if (names.find(sl.name()) == std::string::npos) names += (names.empty() ? "" : ", ") + sl.name();
   for (auto& [name, expr] : given) {
     bool known = false;
     for (auto& [k, sl] : slots) known = known || sl.name() == name;

@@ -52,9 +52,12 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
     std::string log = e.what(), first;
     size_t errors = 0;
     std::istringstream lines(log);
+    // clang writes "FILE:L:C: error: what"; PoCL's log, "error: FILE:L:C: what"
     for (std::string line; std::getline(lines, line);) {
-      if (line.find(": error: ") == std::string::npos) continue;
+      bool pocl = line.rfind("error: ", 0) == 0;
+      if (!pocl && line.find(": error: ") == std::string::npos) continue;
       ++errors;
+      if (pocl) line = line.substr(7);
       if (first.empty() && line.rfind(u.path + ":", 0) == 0) first = line;
     }
     if (first.empty()) first = fmt::format("{} does not compile", u.path);
@@ -320,18 +323,7 @@ void run_user_reciprocity(Runtime& rt, const cl::Program& prog, const UserBrdf& 
         p.params["channel"] = ch;
         pts.push_back(p);
       }
-  uint64_t pairs = 0;
-  auto worst = reciprocity_batches(rt, prog, specs, reciprocity_per_item(opt.scale), opt.seed, pairs);
-  for (size_t i = 0; i < specs.size(); ++i) {
-    pts[i].estimate = worst[i].asym;
-    pts[i].samples = pairs;
-    pts[i].bounded = true;
-    pts[i].bound = kUserReciprocityBound;
-    pts[i].measure = "max asymmetry |f(i,o) - f(o,i)| / max f";
-    pts[i].params["worst_pair"] = worst[i].pair;
-    rep.points.push_back(pts[i]);
-  }
-  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * pairs * 2, since(t0)});
+  record_reciprocity(rt, prog, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
 // ---- pointwise agreement with a claimed model --------------------------------
@@ -459,6 +451,8 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
       claim ? fmt::format("reference: no double twin of user code; check 'agree' compares it with {} ({}) pointwise",
                           claim->spec, claim->mapping(u))
             : "reference: no double twin of user code (claim a catalog model with --as D/G/F to compare pointwise)";
+  if (u.roughness < 0)
+    rep.reference_note += "; no roughness declared: the estimators use a mixture of widths 1, 1/4, ..., 1/256";
   double b0 = rt.build_stats().seconds;
   cl::Program prog = build_user_program(rt, u);
   rep.build_seconds = rt.build_stats().seconds - b0;
