@@ -35,14 +35,41 @@ typedef struct {
   int check, d, g, f;
   float pd, pg, f0, f1;
   float kd, width, cos_o, p5;
-  uint stream, strata, model, unused3;  // strata: samples of a stratified integral, 0 = iid
-} IntegralSpec;
+  uint stream, strata, model, channel;  // strata: samples of a stratified integral, 0 = iid
+} IntegralSpec;                          // channel: the RGB channel of a user BRDF (mfv check)
+
+#ifdef MFV_USER_BRDF
+// mfv check --brdf: the user's functions, through adapters defined in
+// kernels/user_brdf.cl, which is built after the user's file (host/user/).
+static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, real3 o);
+static inline real user_D_adapter(__global const IntegralSpec* s, real3 m);
+static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m);
+#endif
 
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
 // parameters p[0..5] from pd, pg, f0, f1, kd, p5.
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
+#ifdef MFV_USER_BRDF
+  return user_brdf_adapter(s, i, o);
+#endif
   return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+}
+
+// The D of d_norm and masking at microfacet normal m (cos θ = c, sin²θ = s2).
+static inline real spec_D(__global const IntegralSpec* s, real3 m, real c, real s2) {
+#ifdef MFV_USER_BRDF
+  return user_D_adapter(s, m);
+#endif
+  return eval_D(s->d, c, s2, s->pd);
+}
+
+// The Smith G1(o, m) of masking: the G2 with the light at the normal.
+static inline real spec_G1(__global const IntegralSpec* s, real3 o, real3 m, real co, real c, real om) {
+#ifdef MFV_USER_BRDF
+  return user_G1_adapter(s, o, m);
+#endif
+  return eval_G(s->g, R(1.0), co, c, om, s->pg);
 }
 
 // Cauchy slopes in solid angle: p_slope(s) / cos³θ with
@@ -54,8 +81,22 @@ static inline real pdf_slope(real c, real s2, real w) {
   return R(1.0) / (R(2.0) * MFV_PI * w2 * k * sqrt(k));
 }
 
+// Width w <= 0 (mfv check on code that declares no roughness): a defensive
+// mixture of Cauchy slopes of widths 4^-k, k = 0..MIX_WIDTHS-1 (1 down to
+// 1/256), in equal shares, so any width from ~1e-3 to a few has a component
+// within a factor of 4 of it. Twin: kMixWidths in estimators.cpp.
+#define MIX_WIDTHS 5
+static inline real mix_width(int k) { return ldexp(R(1.0), -2 * k); }
+
+static inline real pdf_cauchy(real c, real s2, real w) {
+  if (w > R(0.0)) return pdf_slope(c, s2, w);
+  real p = R(0.0);
+  for (int k = 0; k < MIX_WIDTHS; ++k) p += pdf_slope(c, s2, mix_width(k));
+  return p / (real)MIX_WIDTHS;
+}
+
 static inline real pdf_m(real c, real s2, real w) {
-  return MIX_COS * c * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_slope(c, s2, w);
+  return MIX_COS * c * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_cauchy(c, s2, w);
 }
 
 // Draws m from the mixture; returns it with cos θ and sin²θ formed without
@@ -68,6 +109,8 @@ static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c,
     *c = sqrt(R(1.0) - u_r);
     st = sqrt(u_r);
   } else {
+    // mixture of widths: u_pick, rescaled to [0, 1), picks the component
+    if (w <= R(0.0)) w = mix_width(min((int)((u_pick - MIX_COS) / (R(1.0) - MIX_COS) * MIX_WIDTHS), MIX_WIDTHS - 1));
     real t = w * sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // inverse CDF of |slope|: tanθ
     real t2 = t * t;
     *c = R(1.0) / sqrt(R(1.0) + t2);
@@ -200,8 +243,8 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
       u_pick = cosine ? R(0.0) : R(1.0);
       u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
     }
-    sample_m(u_pick, u_phi, u_r, w, &c, &s2);
-    return eval_D(s->d, c, s2, s->pd) * c / pdf_m(c, s2, w);
+    real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
+    return spec_D(s, m, c, s2) * c / pdf_m(c, s2, w);
   }
   real co = s->cos_o;
   real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
@@ -212,8 +255,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     real om = dot(o, m);
     if (om <= R(0.0)) return R(0.0);
-    real g1 = eval_G(s->g, R(1.0), co, c, om, s->pg);
-    return g1 * eval_D(s->d, c, s2, s->pd) * om / (pdf_m(c, s2, w) * co);
+    return spec_G1(s, o, m, co, c, om) * spec_D(s, m, c, s2) * om / (pdf_m(c, s2, w) * co);
   }
   // directional albedo E(o) = ∫ f(i,o) (n·i) di; i from a cosine lobe or by
   // reflecting o about an m from the mixture; the pdf is that of the union.
@@ -289,7 +331,7 @@ __kernel void sample_values(__global const IntegralSpec* specs, uint n, ulong se
   out[i] = (float)sample_value(s, seed, (ulong)(i % n) * stride);
 }
 
-// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|) over pairs drawn
+// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs drawn
 // by kind (index % 4): uniform hemisphere, grazing, near-retro, near-mirror.
 // Each work-item writes its worst asymmetry and the sample index where it was.
 __kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulong seed, __global float* worst,
@@ -320,7 +362,11 @@ __kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulo
     real f1 = spec_brdf(s, a, b);
     real f2 = spec_brdf(s, b, a);
     real m = max(fabs(f1), fabs(f2));
-    float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / m) : 0.0f;
+    // Relative, except below f = 1e-4 /sr (a thousandth of a white Lambertian
+    // surface's 1/π), where float code loses its relative precision without
+    // consequence: F = (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and
+    // intermediates go subnormal.
+    float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / max(m, R(1e-4))) : 0.0f;
     if (!(asym <= w)) {  // NaN counts as the worst
       w = isnan(asym) ? INFINITY : asym;
       wi = index;

@@ -36,11 +36,20 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   return r;
 }
 
-Integrator::Integrator(Runtime& rt, const TermSelection& terms) : rt_(rt), acc_double_(rt.device().fp64) {
+namespace {
+cl::Program build_integrate(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
-  if (acc_double_) defines.push_back("MFV_ACC_DOUBLE");
-  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
-                      defines, generate_dispatch(terms), "brdf.cl");
+  if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+                  defines, generate_dispatch(terms), "brdf.cl");
+}
+}  // namespace
+
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate(rt, terms)) {}
+
+// The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
+Integrator::Integrator(Runtime& rt, cl::Program program)
+    : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
   size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
   while (local_size_ > max_wg) local_size_ /= 2;
 }
@@ -65,9 +74,11 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
   const uint64_t n = samples_used(samples);
   if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
   // d_norm: stratified radius; E_avg (RQMC): stratified view cosine² (the
-  // point count fixes the spacing, see kernels/integrate.cl)
+  // point count fixes the spacing, see kernels/integrate.cl). A mixture of
+  // widths (width <= 0) draws its component from u_pick, which
+  // stratification fixes: those d_norm integrals stay iid.
   for (auto& s : specs)
-    s.strata = s.check == static_cast<int32_t>(IntegralKind::DNorm) ||
+    s.strata = (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
                        s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
                    ? uint32_t(n)
                    : 0u;

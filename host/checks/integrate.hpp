@@ -24,7 +24,7 @@ struct IntegralSpec {
   uint32_t stream = 0;
   uint32_t strata = 0;  // stratified integrals (d_norm): the sample count, set by run(); 0 = iid
   uint32_t model = 0;  // 0: the microfacet D×G×F BRDF (kernels/integrate.cl spec_brdf)
-  uint32_t unused3 = 0;
+  uint32_t channel = 0;  // mfv check: the RGB channel (0..2) of the user's BRDF the integral checks
 };
 static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's layout");
 
@@ -41,6 +41,8 @@ class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).
   Integrator(Runtime& rt, const TermSelection& terms);
+  // From a program built elsewhere with integrate.cl in it (mfv check: the user's code).
+  Integrator(Runtime& rt, cl::Program program);
 
   // Samples per integral are rounded up to a whole number of work-group
   // slices; samples_used() tells the count actually taken. d_norm integrals

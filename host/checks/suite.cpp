@@ -61,12 +61,19 @@ const std::vector<double> kNormAlphas = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1
 const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 1e5, 1e6};
 // Shared widths and view cosines for the combination checks.
 const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
+}  // namespace
+
+const std::vector<double>& suite_norm_alphas() { return kNormAlphas; }
+const std::vector<double>& suite_alphas() { return kAlphas; }
+
 std::vector<double> view_cosines(int n) {
   // dense towards grazing: cos from 1e-4 (0.006 degrees above the horizon) to 1
   std::vector<double> c;
   for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -4.0 * double(n - 1 - i) / double(n - 1)));
   return c;
 }
+
+namespace {
 
 struct FParams {
   double f0, f1;
@@ -136,14 +143,6 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
 
 // ---- running ---------------------------------------------------------------
 
-struct Plan {
-  std::string check;
-  std::vector<IntegralSpec> specs;
-  std::vector<PointResult> points;
-  uint64_t samples = 0;
-  TermSelection terms;
-};
-
 bool check_wanted(const SuiteOptions& opt, const std::string& check) {
   return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
 }
@@ -153,13 +152,6 @@ bool wanted(const std::vector<std::string>& filter, const std::string& name) {
   for (auto& f : filter)
     if (name.find(f) != std::string::npos) return true;
   return false;
-}
-
-std::string model_name(const PointResult& p) {
-  std::string m = p.d ? p.d->id : "";
-  if (p.g) m += "/" + p.g->id;
-  if (p.f) m += "/" + p.f->id;
-  return m;
 }
 
 void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
@@ -257,11 +249,20 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   return plans;
 }
 
-// z-test verdicts for every point, then one verdict per model x check.
+}  // namespace
+
+std::string model_name(const PointResult& p) {
+  if (!p.model.empty()) return p.model;
+  std::string m = p.d ? p.d->id : "";
+  if (p.g) m += "/" + p.g->id;
+  if (p.f) m += "/" + p.f->id;
+  return m;
+}
+
 void judge(SuiteReport& rep, const SuiteOptions& opt) {
   rep.tests = 0;
   for (auto& p : rep.points)
-    if (p.check != "reciprocity") ++rep.tests;
+    if (!p.bounded) ++rep.tests;
   rep.z_threshold = normal_two_sided_quantile(opt.family_alpha / double(std::max<size_t>(rep.tests, 1)));
   std::map<std::pair<std::string, std::string>, size_t> index;
   // Float32 kernels bias a mean by a few 1e-7 relative (rounding in the
@@ -284,8 +285,7 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
       rep.groups.push_back(g);
     }
     GroupResult& g = rep.groups[it->second];
-    if (p.check == "reciprocity") {
-      p.bound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
+    if (p.bounded) {
       p.deviation = p.estimate;
       p.failed = !(p.estimate <= p.bound);
     } else {
@@ -298,7 +298,7 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     g.tolerance = std::max(g.tolerance, p.tolerance);
     auto score = [&](const PointResult& q) {
       if (!std::isfinite(q.estimate)) return std::numeric_limits<double>::infinity();
-      if (q.check == "reciprocity") return q.estimate / q.bound;
+      if (q.bounded) return q.bound > 0 ? q.estimate / q.bound : q.estimate > 0 ? std::numeric_limits<double>::infinity() : 0.0;
       return (q.upper_only ? q.deviation : std::fabs(q.deviation)) / (noise(q) + 1e-300);
     };
     if (g.points.size() == 1 || score(p) > score(rep.points[g.worst])) g.worst = i;
@@ -333,6 +333,8 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     else g.verdict = Verdict::Pass;
   }
 }
+
+namespace {
 
 
 // The reference runs the same estimator on the identical first N samples of
@@ -385,7 +387,6 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           s.f0 = float(fp.f0);
           s.f1 = float(fp.f1);
           s.kd = 0.2f;
-          s.stream = uint32_t(specs.size());
           specs.push_back(s);
           PointResult p;
           p.check = "reciprocity";
@@ -397,15 +398,24 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           pts.push_back(p);
         }
       }
+  record_reciprocity(rt, prog, specs, pts, kReciprocityBound, opt.scale, opt.seed, t0, rep);
+}
+
+}  // namespace
+
+void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
+                        std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
   if (specs.empty()) return;
-  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * opt.scale));
+  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * scale));
+  for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
   cl::Kernel k(prog, "reciprocity");
   cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
   cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
   cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
   k.setArg(0, sb);
   k.setArg(1, per_item);
-  k.setArg(2, static_cast<cl_ulong>(opt.seed));
+  k.setArg(2, static_cast<cl_ulong>(seed));
   k.setArg(3, wb);
   k.setArg(4, ib);
   rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
@@ -413,21 +423,40 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
   std::vector<cl_uint> wi(specs.size() * local);
   rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
   rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
+  const uint64_t pairs = uint64_t(local) * per_item;
   for (size_t i = 0; i < specs.size(); ++i) {
     float worst = 0;
     uint32_t at = 0;
     for (uint32_t l = 0; l < local; ++l)
       if (!(w[i * local + l] <= worst)) worst = w[i * local + l], at = wi[i * local + l];
     pts[i].estimate = worst;
-    pts[i].samples = uint64_t(local) * per_item;
+    pts[i].samples = pairs;
+    pts[i].bounded = true;
+    pts[i].bound = bound;
+    pts[i].measure = "max asymmetry";
     pts[i].params["worst_pair"] = at;
     rep.points.push_back(pts[i]);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(local) * per_item * 2, secs});
+  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * pairs * 2, secs});
 }
 
-}  // namespace
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
+  if (plan.specs.empty()) return;
+  for (auto& s : plan.specs) s.stream = stream++;
+  in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (size_t i = 0; i < est.size(); ++i) {
+    plan.points[i].estimate = est[i].mean;
+    plan.points[i].stderr_ = est[i].stderr_;
+    plan.points[i].samples = est[i].samples;
+  }
+  rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
+  compare_with_reference(in, plan, opt, rep);
+  rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
+}
 
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
@@ -453,22 +482,10 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   std::vector<Plan> plans = make_plans(opt);
   for (auto& plan : plans) {
     if (plan.specs.empty()) continue;
-    for (auto& s : plan.specs) s.stream = stream++;
     double b0 = rt.build_stats().seconds;
     Integrator in(rt, plan.terms);
     rep.build_seconds += rt.build_stats().seconds - b0;
-    in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
-    auto t0 = std::chrono::steady_clock::now();
-    std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
-    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    for (size_t i = 0; i < est.size(); ++i) {
-      plan.points[i].estimate = est[i].mean;
-      plan.points[i].stderr_ = est[i].stderr_;
-      plan.points[i].samples = est[i].samples;
-    }
-    rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
-    compare_with_reference(in, plan, opt, rep);
-    rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
+    run_plan(in, plan, opt, stream, rep);
   }
   if (check_wanted(opt, "reciprocity")) run_reciprocity(rt, opt, rep, rep.build_seconds);
   if (rep.points.empty()) throw Error("no model matches the --model filter");

@@ -4,8 +4,11 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "checks/integrate.hpp"
+#include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -36,6 +39,12 @@ struct PointResult {
   Expect expect = Expect::Hold;
   double tolerance = 0;     // documented approximation tolerance (relative)
   std::string reason;       // why the point is expected to (or may) fail
+  std::string model;        // a model not made of catalog terms (mfv check); empty: the D/G/F ids
+  // A measured maximum tested against the fixed `bound` (reciprocity, the
+  // finiteness census, pointwise agreement) rather than a z-test; `measure`
+  // names it and `detail` gives the input where it was worst.
+  bool bounded = false;
+  std::string measure, detail;
 };
 
 // All points of one model under one check, with its expectation.
@@ -86,6 +95,9 @@ struct SuiteReport {
   // view, where v.m ~ 1e-3) reached 1.5e-3 over 40 seeds; a term off by 1 %
   // shows as 1e-2.
   double reference_bound = 5e-3;
+  std::string reference_note;  // replaces the reference line where no double twin runs (mfv check)
+  std::string title = "mfv run";  // report heading and JUnit suite name
+  bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
   bool reference_ok() const;
   bool gate_ok() const;  // every verdict as expected and the reference agrees
 };
@@ -96,5 +108,40 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
 // z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
 double normal_two_sided_quantile(double p);
+
+// ---- Pieces mfv check (host/user/) shares with mfv run --------------------
+
+// One check's integrals, run through one program.
+struct Plan {
+  std::string check;
+  std::vector<IntegralSpec> specs;
+  std::vector<PointResult> points;
+  uint64_t samples = 0;
+  TermSelection terms;
+};
+
+// Widths and views of the grids (d_norm widths; combination widths; view
+// cosines from 1e-4 to 1, dense towards grazing).
+const std::vector<double>& suite_norm_alphas();
+const std::vector<double>& suite_alphas();
+std::vector<double> view_cosines(int n);
+
+// Runs the plan's integrals (streams numbered on from `stream`), records
+// estimates, timing and, when opt.reference_samples > 0, the same-sample
+// reference comparison into `rep`.
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+
+// The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`, 64 x
+// per_item pairs each (per_item from the scale): one bounded point per spec
+// (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
+// and the check's timing since t0 go into `rep`.
+void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
+                        std::chrono::steady_clock::time_point t0, SuiteReport& rep);
+constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
+
+// z-test verdicts for every point, then one verdict per model x check.
+void judge(SuiteReport& rep, const SuiteOptions& opt);
+std::string model_name(const PointResult& p);
 
 }  // namespace mfv

@@ -5,6 +5,7 @@
 #include "checks/agree.hpp"
 #include "cli/commands.hpp"
 #include "runtime/error.hpp"
+#include "util/parse.hpp"
 
 #include <fmt/format.h>
 
@@ -14,25 +15,6 @@
 
 namespace mfv::cli {
 namespace {
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string part;
-  while (std::getline(ss, part, sep)) out.push_back(part);
-  return out;
-}
-
-double parse_number(const std::string& what, const std::string& text) {
-  try {
-    size_t used = 0;
-    double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    throw Error(fmt::format("{}: '{}' is not a number", what, text));
-  }
-}
 
 std::array<float, 3> parse_direction(const std::string& what, const std::string& text) {
   auto parts = split(text, ',');

@@ -20,8 +20,20 @@ double pdf_slope(double c, double s2, double w) {
   return std::pow(1.0 + tan2 / (w * w), -1.5) / (2.0 * M_PI * w * w) / (c * c * c);
 }
 
+// w <= 0: equal shares of Cauchy slopes of widths 1, 1/4, ..., 1/256 (a
+// defensive mixture for code that declares no roughness; mfv check).
+constexpr int kMixWidths = 5;
+double mix_width(int k) { return std::ldexp(1.0, -2 * k); }
+
+double pdf_cauchy(double c, double s2, double w) {
+  if (w > 0.0) return pdf_slope(c, s2, w);
+  double p = 0.0;
+  for (int k = 0; k < kMixWidths; ++k) p += pdf_slope(c, s2, mix_width(k));
+  return p / kMixWidths;
+}
+
 double pdf_m(double c, double s2, double w) {
-  return kMixCos * c / M_PI + (1.0 - kMixCos) * pdf_slope(c, s2, w);
+  return kMixCos * c / M_PI + (1.0 - kMixCos) * pdf_cauchy(c, s2, w);
 }
 
 // The microfacet normal for uniforms (pick, phi, r): a Malley cosine lobe,
@@ -32,6 +44,7 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
   if (u_pick < kMixCos) {
     theta = std::asin(std::sqrt(u_r));
   } else {
+    if (w <= 0.0) w = mix_width(std::min(int((u_pick - kMixCos) / (1.0 - kMixCos) * kMixWidths), kMixWidths - 1));
     const double t = w * std::sqrt(1.0 / ((1.0 - u_r) * (1.0 - u_r)) - 1.0);
     theta = std::atan(t);
   }
