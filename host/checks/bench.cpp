@@ -16,6 +16,8 @@
 #include <fstream>
 #include <thread>
 
+#include <time.h>
+
 namespace mfv {
 namespace {
 
@@ -23,6 +25,27 @@ const std::vector<std::string> kIntegrands = {"d_norm", "albedo", "reciprocity"}
 constexpr double kAlpha = 0.3;  // one representative width; the cost of these terms does not depend on it
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// CPU time of every thread of this process: on a CPU device PoCL's workers
+// are threads of it, so samples per CPU-second compare engines fairly on a
+// machine other processes share (wall-clock ratios then depend on the load).
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Wall and CPU seconds of each call of f.
+struct Timings {
+  std::vector<double> wall, cpu;
+  template <class F>
+  void time(F&& f) {
+    const double c0 = cpu_now(), t0 = now();
+    f();
+    wall.push_back(now() - t0);
+    cpu.push_back(cpu_now() - c0);
+  }
+};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -53,15 +76,17 @@ std::vector<IntegralSpec> bench_specs(const std::string& integrand, uint32_t n) 
 }
 
 BenchRow make_row(const std::string& integrand, const std::string& engine, uint64_t integrals, uint64_t samples,
-                  std::vector<double> seconds, double checksum) {
+                  const Timings& tm, double checksum) {
   BenchRow r;
   r.integrand = integrand;
   r.engine = engine;
   r.integrals = integrals;
   r.samples_per_integral = samples;
-  r.median_seconds = median(seconds);
-  r.seconds = std::move(seconds);
+  r.median_seconds = median(tm.wall);
+  r.seconds = tm.wall;
+  r.cpu_seconds = tm.cpu;
   r.samples_per_second = double(integrals) * double(samples) / r.median_seconds;
+  r.samples_per_cpu_second = double(integrals) * double(samples) / median(tm.cpu);
   r.integrals_per_second = double(integrals) / r.median_seconds;
   r.checksum = checksum;
   return r;
@@ -83,20 +108,23 @@ void bench_device(const DeviceInfo& dev, const std::string& kernel_dir, const Be
     const uint32_t per_item = uint32_t(std::max<uint64_t>(1, opt.samples / 64));
     const uint64_t samples = recip ? uint64_t(per_item) * 64 : in.samples_used(opt.samples);
     double checksum = 0;
-    std::vector<double> secs;
+    Timings tm;
     for (int rep_i = -1; rep_i < opt.repeats; ++rep_i) {  // repeat -1 warms up (first launch, allocations)
-      const double t0 = now();
-      double sum = 0;
-      if (recip) {
-        for (float w : in.reciprocity_worst(specs, per_item, opt.seed + rep_i + 1)) sum += w;
-      } else {
-        for (const auto& e : in.run(specs, opt.samples, opt.seed + rep_i + 1)) sum += e.mean;
-      }
-      const double t = now() - t0;
-      if (rep_i >= 0) secs.push_back(t);
-      checksum = sum / specs.size();
+      auto pass = [&] {
+        double sum = 0;
+        if (recip) {
+          for (float w : in.reciprocity_worst(specs, per_item, opt.seed + rep_i + 1)) sum += w;
+        } else {
+          for (const auto& e : in.run(specs, opt.samples, opt.seed + rep_i + 1)) sum += e.mean;
+        }
+        checksum = sum / specs.size();
+      };
+      if (rep_i < 0)
+        pass();
+      else
+        tm.time(pass);
     }
-    BenchRow r = make_row(name, dev.name, specs.size(), samples, std::move(secs), checksum);
+    BenchRow r = make_row(name, dev.name, specs.size(), samples, tm, checksum);
     r.platform = dev.platform;
     r.driver = dev.driver;
     r.build_seconds = build;
@@ -128,22 +156,22 @@ void bench_reference(const BenchOptions& opt, unsigned threads, const std::vecto
                      BenchReport& rep) {
   for (const auto& name : integrands) {
     const auto specs = bench_specs(name, opt.integrals);
-    std::vector<double> secs, results(specs.size());
-    for (int rep_i = 0; rep_i < opt.repeats; ++rep_i) {
-      const double t0 = now();
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-          for (size_t j = t; j < specs.size(); j += threads)
-            results[j] = reference_integral(name, specs[j], opt.ref_samples, opt.seed + rep_i);
-        });
-      for (auto& th : pool) th.join();
-      secs.push_back(now() - t0);
-    }
+    std::vector<double> results(specs.size());
+    Timings tm;
+    for (int rep_i = 0; rep_i < opt.repeats; ++rep_i)
+      tm.time([&] {
+        std::vector<std::thread> pool;
+        for (unsigned t = 0; t < threads; ++t)
+          pool.emplace_back([&, t] {
+            for (size_t j = t; j < specs.size(); j += threads)
+              results[j] = reference_integral(name, specs[j], opt.ref_samples, opt.seed + rep_i);
+          });
+        for (auto& th : pool) th.join();
+      });
     double checksum = 0;
     for (double v : results) checksum += v / results.size();
     rep.rows.push_back(make_row(name, fmt::format("reference x{}", threads), specs.size(), opt.ref_samples,
-                                std::move(secs), checksum));
+                                tm, checksum));
   }
 }
 
@@ -153,6 +181,13 @@ std::string cpu_model() {
   while (std::getline(in, line))
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown";
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return in ? a + " " + b + " " + c : "unknown";
 }
 
 const BenchRow* find_row(const BenchReport& r, const std::string& integrand, const std::string& engine) {
@@ -200,6 +235,7 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
   rep.opt = opt;
   rep.date = utc_timestamp();
   rep.cpu = cpu_model();
+  rep.load_average = load_average();
   rep.hardware_threads = std::max(1u, std::thread::hardware_concurrency());
   const auto integrands = opt.integrands.empty() ? kIntegrands : opt.integrands;
   std::vector<DeviceInfo> devices;
@@ -216,14 +252,17 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
 
 std::string bench_table(const BenchReport& r) {
   std::string s = fmt::format("| integrand | engine | integrals x samples | median s | samples/s | integrals/s | "
-                              "est. GFLOP/s | vs reference x1 |\n|---|---|---|---|---|---|---|---|\n");
+                              "est. GFLOP/s | vs reference x1 | samples/CPU-s | per CPU-s vs reference x1 |\n"
+                              "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& row : r.rows) {
     const BenchRow* ref1 = find_row(r, row.integrand, "reference x1");
     const FlopCount fc = flops_per_sample(row.integrand);
-    s += fmt::format("| {} | {} | {} x {} | {:.4f} | {:.3e} | {:.3g} | {:.2f} | {} |\n", row.integrand, row.engine,
-                     row.integrals, row.samples_per_integral, row.median_seconds, row.samples_per_second,
+    s += fmt::format("| {} | {} | {} x {} | {:.4f} | {:.3e} | {:.3g} | {:.2f} | {} | {:.3e} | {} |\n", row.integrand,
+                     row.engine, row.integrals, row.samples_per_integral, row.median_seconds, row.samples_per_second,
                      row.integrals_per_second, row.samples_per_second * (fc.flops + fc.transcend) * 1e-9,
-                     ref1 ? fmt::format("{:.1f}x", row.samples_per_second / ref1->samples_per_second) : "-");
+                     ref1 ? fmt::format("{:.1f}x", row.samples_per_second / ref1->samples_per_second) : "-",
+                     row.samples_per_cpu_second,
+                     ref1 ? fmt::format("{:.1f}x", row.samples_per_cpu_second / ref1->samples_per_cpu_second) : "-");
   }
   s += "\nFlops per sample (hand count of the float kernel path, +-20%; see host/checks/bench.cpp): ";
   for (const auto& i : kIntegrands) {
@@ -240,7 +279,7 @@ std::string bench_json(const BenchReport& r) {
   j["schema"] = "mfv-bench/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
   j["date"] = r.date;
-  j["host"] = {{"cpu", r.cpu}, {"hardware_threads", r.hardware_threads}};
+  j["host"] = {{"cpu", r.cpu}, {"hardware_threads", r.hardware_threads}, {"load_average", r.load_average}};
   j["options"] = {{"integrals", r.opt.integrals}, {"samples", r.opt.samples}, {"ref_samples", r.opt.ref_samples},
                   {"repeats", r.opt.repeats}, {"seed", r.opt.seed}, {"alpha", kAlpha},
                   {"brdf", "ggx / smith_ggx_correlated / schlick f0=0.04"}};
@@ -253,6 +292,8 @@ std::string bench_json(const BenchReport& r) {
            {"integrals", row.integrals},
            {"samples_per_integral", row.samples_per_integral},
            {"seconds", row.seconds},
+           {"cpu_seconds", row.cpu_seconds},
+           {"samples_per_cpu_second", row.samples_per_cpu_second},
            {"median_seconds", row.median_seconds},
            {"samples_per_second", row.samples_per_second},
            {"integrals_per_second", row.integrals_per_second},
@@ -260,7 +301,10 @@ std::string bench_json(const BenchReport& r) {
            {"transcendentals_per_sample", fc.transcend},
            {"est_gflops", row.samples_per_second * (fc.flops + fc.transcend) * 1e-9},
            {"checksum", row.checksum}};
-    if (ref1) x["vs_reference_x1"] = row.samples_per_second / ref1->samples_per_second;
+    if (ref1) {
+      x["vs_reference_x1"] = row.samples_per_second / ref1->samples_per_second;
+      x["per_cpu_second_vs_reference_x1"] = row.samples_per_cpu_second / ref1->samples_per_cpu_second;
+    }
     if (!row.platform.empty()) {
       x["platform"] = row.platform;
       x["driver"] = row.driver;

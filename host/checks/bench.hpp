@@ -10,7 +10,7 @@
 namespace mfv {
 
 struct BenchOptions {
-  uint32_t integrals = 256;          // integrals per device launch (and per reference pass)
+  uint32_t integrals = 64;           // integrals per device launch (and per reference pass)
   uint64_t samples = 1u << 16;       // samples per integral on a device
   uint64_t ref_samples = 1u << 12;   // samples per integral in the reference (it is ~10-100x slower)
   int repeats = 5;                   // timed repetitions; medians are reported
@@ -32,8 +32,10 @@ struct BenchRow {
   std::string platform, driver;   // devices only
   double build_seconds = 0;       // devices: program build, kept out of the timings
   uint64_t integrals = 0, samples_per_integral = 0;
-  std::vector<double> seconds;    // each repeat
+  std::vector<double> seconds;    // each repeat, wall clock
+  std::vector<double> cpu_seconds;  // each repeat, CPU time of the whole process (PoCL's worker threads included)
   double median_seconds = 0, samples_per_second = 0, integrals_per_second = 0;
+  double samples_per_cpu_second = 0;  // robust where other processes share the cores
   double checksum = 0;            // mean of the integrals (keeps the work observable)
 };
 
@@ -41,6 +43,7 @@ struct BenchReport {
   BenchOptions opt;
   std::vector<BenchRow> rows;
   std::string date, cpu;
+  std::string load_average;  // /proc/loadavg at the start: other processes on the cores skew wall-clock ratios
   unsigned hardware_threads = 0;
 };
 

@@ -13,7 +13,7 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
                                           "with 1 and all threads; medians, ratios, flops/sample");
   static BenchOptions opt;
   static std::string out_dir;
-  cmd->add_option("--integrals", opt.integrals, "integrals per launch and per reference pass (default 256)");
+  cmd->add_option("--integrals", opt.integrals, "integrals per launch and per reference pass (default 64)");
   cmd->add_option("--samples", opt.samples, "samples per integral on a device (default 65536)");
   cmd->add_option("--ref-samples", opt.ref_samples, "samples per integral in the reference (default 4096)");
   cmd->add_option("--repeats", opt.repeats, "timed repetitions, medians reported (default 5)");
@@ -26,11 +26,12 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
     if (!out_dir.empty()) prepare_output_dir(out_dir);
     BenchReport rep = run_bench(g.device, g.kernel_dir, opt);
     const std::string table = bench_table(rep);
-    fmt::print("{}cpu: {} ({} hardware threads), {}\n", table, rep.cpu, rep.hardware_threads, rep.date);
+    const std::string host = fmt::format("cpu: {} ({} hardware threads), load average {} at the start, {}\n", rep.cpu,
+                                         rep.hardware_threads, rep.load_average, rep.date);
+    fmt::print("{}{}", table, host);
     if (!out_dir.empty()) {
       write_files_atomically({{out_dir + "/bench.json", bench_json(rep)},
-                              {out_dir + "/bench.md", fmt::format("# mfv bench, {}\n\nCPU: {} ({} hardware threads)\n\n{}",
-                                                                  rep.date, rep.cpu, rep.hardware_threads, table)}});
+                              {out_dir + "/bench.md", fmt::format("# mfv bench\n\n{}\n{}", host, table)}});
       fmt::print("wrote {}/bench.json, bench.md\n", out_dir);
     }
     rc = 0;
