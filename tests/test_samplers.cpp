@@ -57,7 +57,7 @@ TEST_CASE("every sampler's pdf integrates to 1, stiff and grazing included", "[s
   }
 }
 
-TEST_CASE("reference samplers pass the chi-square test; a 10% wrong width fails it", "[samplers]") {
+TEST_CASE("reference samplers pass the chi-square test and a 10 percent wrong width fails it", "[samplers]") {
   SamplersOptions opt;
   opt.samples = 1u << 18;
   const double level = sidak_level(0.01, 8);
@@ -80,19 +80,23 @@ std::string line_starting(const std::string& out, const std::string& prefix) {
   if (p == std::string::npos) return "";
   return out.substr(p + 1, out.find('\n', p + 1) - p - 1);
 }
+
+// mfv samplers on device draws only, with `from` replaced by `to` in integrate.cl.
+mfv::test::Run planted_samplers(const std::string& from, const std::string& to) {
+  mfv::test::PlantedKernelDir dir;
+  REQUIRE(dir.replace("integrate.cl", from, to));
+  return mfv::test::run_mfv("--kernel-dir " + dir.path() + " samplers --samples 262144 --device-only");
+}
 }  // namespace
 
-TEST_CASE("mfv samplers passes on the device; planted sampler defects fail it", "[samplers][cli]") {
-  using mfv::test::run_mfv;
-  auto ok = run_mfv("samplers --samples 262144");
+TEST_CASE("mfv samplers passes on the device and planted sampler defects fail it", "[samplers][cli]") {
+  auto ok = mfv::test::run_mfv("samplers --samples 262144");
   INFO(ok.out);
   REQUIRE(ok.code == 0);
   CHECK(ok.out.find("14 of 14 sampler tests pass") != std::string::npos);
 
   // the Cauchy slopes' inverse CDF turned into GGX's (sqrt(u/(1-u))): pdf_m no longer matches
-  mfv::test::PlantedKernelDir slopes;
-  REQUIRE(slopes.replace("integrate.cl", "sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))"));
-  auto bad = run_mfv("--kernel-dir " + slopes.path() + " samplers --samples 262144 --device-only");
+  auto bad = planted_samplers("sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))");
   INFO(bad.out);
   CHECK(bad.code == 1);
   // both mixtures and the slopes alone fail; the cosine lobe and visible normals still pass
@@ -101,9 +105,7 @@ TEST_CASE("mfv samplers passes on the device; planted sampler defects fail it", 
   CHECK(line_starting(bad.out, "cauchy_slopes").find("FAIL") != std::string::npos);
 
   // visible normals drawn for the unstretched view (a classic slip): vis_pdf_i no longer matches
-  mfv::test::PlantedKernelDir vis;
-  REQUIRE(vis.replace("integrate.cl", "normalize((real3)(w * o.x, w * o.y, o.z))", "normalize(o)"));
-  auto bad2 = run_mfv("--kernel-dir " + vis.path() + " samplers --samples 262144 --device-only");
+  auto bad2 = planted_samplers("normalize((real3)(w * o.x, w * o.y, o.z))", "normalize(o)");
   INFO(bad2.out);
   CHECK(bad2.code == 1);
   // at w = 1 stretching is the identity, so only the two w = 0.3 cases can see it
