@@ -163,6 +163,30 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
   return out;
 }
 
+std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                uint64_t seed) {
+  std::vector<float> out(specs.size(), 0.0f);
+  if (specs.empty()) return out;
+  const size_t local = 64;  // the kernel indexes pairs by local id
+  cl::Kernel k(program_, "reciprocity");
+  cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer wb(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
+  cl::Buffer ib(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
+  k.setArg(0, sb);
+  k.setArg(1, static_cast<cl_uint>(per_item));
+  k.setArg(2, static_cast<cl_ulong>(seed));
+  k.setArg(3, wb);
+  k.setArg(4, ib);
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
+  std::vector<float> w(specs.size() * local);
+  rt_.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  for (size_t i = 0; i < specs.size(); ++i)
+    for (size_t l = 0; l < local; ++l)
+      if (!(w[i * local + l] <= out[i])) out[i] = w[i * local + l];
+  return out;
+}
+
 std::vector<Integrator::Agreement> Integrator::compare_with_reference(const std::vector<IntegralSpec>& specs,
                                                                      uint32_t n, uint64_t seed) {
   std::vector<Agreement> out;

@@ -68,6 +68,10 @@ class Integrator {
   };
   std::vector<Agreement> compare_with_reference(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
+  // The `reciprocity` kernel: 64 work-items per integral, each over per_item
+  // pairs; the worst asymmetry of each integral (mfv bench times it).
+  std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
+
   bool double_accumulation() const { return acc_double_; }
 
  private:

@@ -13,6 +13,8 @@ namespace {
 constexpr double kMixCos = 0.25;  // cosine lobe share of the microfacet proposal
 constexpr double kMixICos = 0.2;  // cosine-weighted share of light directions
 
+}  // namespace
+
 // 2D Cauchy (Student-t, one degree of freedom) slopes of width w, as a
 // density over solid angle: p(slope) / cos³θ, p = (1/(2πw²)) (1 + tan²/w²)^(-3/2).
 double pdf_slope(double c, double s2, double w) {
@@ -53,6 +55,8 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), c};
 }
 
+namespace {
+
 // f(i,o) cos / pdf(i), pdf = kMixICos cosine lobe + (1 - kMixICos) o reflected about m ~ pdf_m.
 double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o, double w) {
   if (i.z <= 0.0) return 0.0;
@@ -67,6 +71,8 @@ double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o
 // Roberts 2018 Kronecker sequence in 2D, g_j = frac(1/φ^j) for the plastic
 // number φ³ = φ + 1, in 32-bit fixed point (twin of RQMC_G* in kernels/integrate.cl).
 constexpr uint32_t kRqmcG[2] = {3242174889u, 2447445414u};
+
+}  // namespace
 
 // mfv energy's proposal (twin of energy_weight in kernels/integrate.cl): o
 // reflected about a visible normal of the GGX shape of width w.
@@ -95,6 +101,8 @@ glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) {
   return len > 0.0 ? h / len : glm::dvec3(0.0);
 }
 
+namespace {
+
 double energy_weight(const BrdfSpec& b, const glm::dvec3& m, const glm::dvec3& o, double w) {
   const glm::dvec3 i = 2.0 * glm::dot(o, m) * m - o;
   if (i.z <= 0.0) return 0.0;
@@ -117,6 +125,28 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 }
 
 }  // namespace
+
+// Twin of the pair draw in kernels/integrate.cl `reciprocity`.
+void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b) {
+  const auto r = philox(seed, stream, 1, index);
+  double ca = u01_open(r[0]), cb = u01_open(r[2]);
+  const double pa = 2.0 * M_PI * u01_open(r[1]), pb = 2.0 * M_PI * u01_open(r[3]);
+  const uint32_t kind = index % 4;
+  if (kind == 1) {  // both grazing
+    ca *= 1e-3;
+    cb *= 1e-3;
+  }
+  const double sa = std::sqrt((1.0 - ca) * (1.0 + ca));
+  a = {sa * std::cos(pa), sa * std::sin(pa), ca};
+  if (kind == 2 || kind == 3) {  // near-retro or near-mirror
+    const glm::dvec3 base = kind == 2 ? a : glm::dvec3(-a.x, -a.y, a.z);
+    b = glm::normalize(base + 1e-3 * glm::dvec3(cb - 0.5, u01_open(r[3]) - 0.5, 0.0));
+    if (b.z <= 0.0) b.z = -b.z;
+  } else {
+    const double sb = std::sqrt((1.0 - cb) * (1.0 + cb));
+    b = {sb * std::cos(pb), sb * std::sin(pb), cb};
+  }
+}
 
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   if (s.kind == Integral::AlbedoRqmc || s.kind == Integral::EavgRqmc) return albedo_rqmc(s, seed, index);
