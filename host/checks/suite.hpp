@@ -4,6 +4,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -16,15 +17,16 @@ namespace mfv {
 enum class Verdict { Pass, Fail, XFail, XPass };
 const char* verdict_name(Verdict v);
 
-// What the catalog predicts for one point: it must hold, it must fail (a
-// known deficiency large enough to show at any seed), or it may fail (a
-// deficiency whose size depends on F, so either outcome is accepted).
-enum class Expect { Hold, Fail, May };
+// What the catalog predicts for one point: Expect (catalog/models.hpp) says
+// it must hold, it must fail (a known deficiency large enough to show at any
+// seed), or it may fail (a deficiency whose size depends on F, so either
+// outcome is accepted).
 
 // One integral (or one reciprocity batch) at one parameter point.
 struct PointResult {
   std::string check;
   const Term *d = nullptr, *g = nullptr, *f = nullptr;
+  std::string model;  // a whole model's point, "phong_004[n=1]"; empty for D/G/F
   std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
   double estimate = 0, stderr_ = 0;
   double expected = 0;  // the value a correct model gives (d_norm, masking)
