@@ -95,7 +95,7 @@ glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) {
 double energy_weight(const BrdfSpec& b, const glm::dvec3& m, const glm::dvec3& o, double w) {
   const glm::dvec3 i = 2.0 * glm::dot(o, m) * m - o;
   if (i.z <= 0.0) return 0.0;
-  return brdf(b, i, o) * i.z / vis_pdf_i(glm::normalize(i + o), o, w);
+  return spec_brdf(b, i, o) * i.z / vis_pdf_i(glm::normalize(i + o), o, w);
 }
 
 // One point of AlbedoRqmc / EavgRqmc.
