@@ -193,7 +193,7 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   CHECK_FALSE(run_suite(planted, opt).reference_ok());
 }
 
-TEST_CASE("mfv list, eval and run cover whole models; bad input is one error line", "[cli][models]") {
+TEST_CASE("mfv list, eval and run cover whole models, and bad input is one error line", "[cli][models]") {
   using mfv::test::run_mfv;
   auto r = run_mfv("list --json");
   REQUIRE(r.code == 0);
