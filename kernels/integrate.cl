@@ -49,10 +49,19 @@ static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
 // parameters p[0..5] from pd, pg, f0, f1, kd, p5.
+#define MFV_MODEL_CATALOG_END 1000u  // models 1..999: the catalog's whole models (kernels/models.cl)
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
 #ifdef MFV_USER_BRDF
   return user_brdf_adapter(s, i, o);
 #endif
+  if (s->model > 0u && s->model < MFV_MODEL_CATALOG_END) {
+    // Whole models need not be reciprocal, so the albedo is taken per light:
+    // the estimator's fixed direction o is the light, the sampled i the
+    // view, and the integral is E(l) = ∫ f(l, v) (n·v) dv, the energy a beam
+    // from l reflects (twin: spec_brdf in host/reference/estimators.cpp).
+    real p[6] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5};
+    return eval_model((int)s->model, o, i, p);
+  }
   return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
 }
 

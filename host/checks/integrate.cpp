@@ -1,6 +1,7 @@
 #include "checks/integrate.hpp"
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
@@ -22,6 +23,8 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.brdf.f0 = s.f0;
   r.brdf.f1 = s.f1;
   r.brdf.kd = s.kd;
+  r.brdf.p5 = s.p5;
+  r.brdf.model = model_by_number(s.model);  // whole models 1..999; nullptr for 0
   r.width = s.width;
   r.cos_o = s.cos_o;
   r.stream = s.stream;
@@ -40,7 +43,7 @@ namespace {
 cl::Program build_integrate(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "brdf.cl", "integrate.cl"},
                   defines, generate_dispatch(terms), "brdf.cl");
 }
 }  // namespace

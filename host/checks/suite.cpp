@@ -38,7 +38,7 @@ bool SuiteReport::gate_ok() const {
 
 const std::vector<std::string>& suite_checks() {
   static const std::vector<std::string> c = {"d_norm", "masking", "furnace", "energy", "energy_diffuse",
-                                             "reciprocity"};
+                                             "reciprocity", "closed_form"};
   return c;
 }
 
@@ -185,6 +185,70 @@ void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, cons
   plan.points.push_back(p);
 }
 
+// ---- whole models (catalog/models.hpp) ------------------------------------
+
+std::string case_name(const Model& m, const ModelCase& c) { return m.id + "[" + c.label + "]"; }
+
+std::map<std::string, double> case_params(const Model& m, const ModelCase& c) {
+  std::map<std::string, double> out;
+  for (size_t i = 0; i < m.params.size(); ++i) out[m.params[i].name] = c.p[i];
+  return out;
+}
+
+IntegralSpec model_spec(const Model& m, const ModelCase& c) {
+  IntegralSpec s;
+  s.model = m.number();
+  s.pd = float(c.p[0]);
+  s.pg = float(c.p[1]);
+  s.f0 = float(c.p[2]);
+  s.f1 = float(c.p[3]);
+  s.kd = float(c.p[4]);
+  s.p5 = float(c.p[5]);
+  s.width = float(m.proposal_width(c.p.data()));
+  return s;
+}
+
+// energy: E(l) = ∫ f(l, v)(n·v) dv <= 1 at every light direction, with the
+// catalog's expectation per case; closed_form: E(l) equals the model's exact
+// albedo wherever it has one (evidence that model and estimator are right).
+void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt, uint64_t samples) {
+  for (const char* check : {"energy", "closed_form"}) {
+    if (!check_wanted(opt, check)) continue;
+    const bool exact = std::string(check) == "closed_form";
+    // closed_form is a two-sided test of few integrals: 8x the samples make
+    // it sharp (standard error ~0.6 %); energy spreads 2x over 10 lights.
+    Plan p{check, {}, {}, samples * (exact ? 8 : 2), {}};
+    for (auto& m : models()) {
+      bool used = false;
+      for (auto& c : m.cases) {
+        const std::string name = case_name(m, c);
+        if (!wanted(opt.models, name)) continue;
+        for (double co : view_cosines(10)) {
+          const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
+          if (exact && std::isnan(closed)) continue;
+          IntegralSpec s = model_spec(m, c);
+          s.check = static_cast<int32_t>(IntegralKind::Albedo);
+          s.cos_o = float(co);
+          p.specs.push_back(s);
+          PointResult r;
+          r.check = check;
+          r.model = name;
+          r.params = case_params(m, c);
+          r.params["cos_l"] = co;
+          r.expected = exact ? closed : 1.0;
+          r.upper_only = !exact;
+          r.expect = exact ? Expect::Hold : c.energy;
+          r.reason = exact ? "" : c.energy_why;
+          p.points.push_back(r);
+          used = true;
+        }
+      }
+      if (used) p.terms.models.push_back(&m);
+    }
+    plans.push_back(p);
+  }
+}
+
 std::vector<Plan> make_plans(const SuiteOptions& opt) {
   std::vector<Plan> plans;
   auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
@@ -239,6 +303,7 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
     p.terms.f = kind == IntegralKind::Masking ? std::vector<const Term*>{} : fs;
     plans.push_back(p);
   };
+  add_model_plans(plans, opt, scaled(kSuiteBaseSamples));
   std::vector<const Term*> real_fs;
   for (auto* f : Fs)
     if (f->id != "none") real_fs.push_back(f);
@@ -365,7 +430,7 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
   TermSelection all = TermSelection::all();
   all.g1 = false;  // the reciprocity kernel shares integrate.cl's program
   double b0 = rt.build_stats().seconds;
-  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "brdf.cl", "integrate.cl"},
                               rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
                               generate_dispatch(all), "brdf.cl");
   build_seconds += rt.build_stats().seconds - b0;
@@ -398,6 +463,21 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           pts.push_back(p);
         }
       }
+  for (auto& m : models())
+    for (auto& c : m.cases) {
+      const std::string name = case_name(m, c);
+      if (!wanted(opt.models, name)) continue;
+      IntegralSpec s = model_spec(m, c);
+      s.stream = uint32_t(specs.size());
+      specs.push_back(s);
+      PointResult p;
+      p.check = "reciprocity";
+      p.model = name;
+      p.params = case_params(m, c);
+      p.expect = c.reciprocity;
+      p.reason = c.reciprocity_why;
+      pts.push_back(p);
+    }
   record_reciprocity(rt, prog, specs, pts, kReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
@@ -461,10 +541,12 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& str
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
     if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
-      throw Error(fmt::format("unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity)", c));
+      throw Error(fmt::format("unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)", c));
   if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();
+  for (auto& m : models())
+    for (auto& c : m.cases) any = any || wanted(opt.models, case_name(m, c));
   for (auto* d : terms_of(Kind::D)) {
     any = any || wanted(opt.models, d->id);
     for (auto* g : terms_of(Kind::G)) {
@@ -472,7 +554,7 @@ void validate_suite_options(const SuiteOptions& opt) {
       for (auto* f : terms_of(Kind::F)) any = any || wanted(opt.models, d->id + "/" + g->id + "/" + f->id);
     }
   }
-  if (!any) throw Error("no model matches the --model filter (names are D, D/G or D/G/F: see 'mfv list')");
+  if (!any) throw Error("no model matches the --model filter (names are D, D/G, D/G/F or model[case]: see 'mfv list')");
 }
 
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {

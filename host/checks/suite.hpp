@@ -6,6 +6,7 @@
 #include "catalog/catalog.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
+#include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 
 #include <chrono>
@@ -19,15 +20,16 @@ namespace mfv {
 enum class Verdict { Pass, Fail, XFail, XPass };
 const char* verdict_name(Verdict v);
 
-// What the catalog predicts for one point: it must hold, it must fail (a
-// known deficiency large enough to show at any seed), or it may fail (a
-// deficiency whose size depends on F, so either outcome is accepted).
-enum class Expect { Hold, Fail, May };
+// What the catalog predicts for one point: Expect (catalog/models.hpp) says
+// it must hold, it must fail (a known deficiency large enough to show at any
+// seed), or it may fail (a deficiency whose size depends on F, so either
+// outcome is accepted).
 
 // One integral (or one reciprocity batch) at one parameter point.
 struct PointResult {
   std::string check;
   const Term *d = nullptr, *g = nullptr, *f = nullptr;
+  std::string model;  // a whole model ("phong_004[n=1]") or user code (mfv check); empty: the D/G/F ids
   std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
   double estimate = 0, stderr_ = 0;
   double expected = 0;  // the value a correct model gives (d_norm, masking)
@@ -39,7 +41,6 @@ struct PointResult {
   Expect expect = Expect::Hold;
   double tolerance = 0;     // documented approximation tolerance (relative)
   std::string reason;       // why the point is expected to (or may) fail
-  std::string model;        // a model not made of catalog terms (mfv check); empty: the D/G/F ids
   // A measured maximum tested against the fixed `bound` (reciprocity, the
   // finiteness census, pointwise agreement) rather than a z-test; `measure`
   // names it and `detail` gives the input where it was worst.

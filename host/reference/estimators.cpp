@@ -56,6 +56,15 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
 }
 
 namespace {
+// Twin of spec_brdf in kernels/integrate.cl: a whole model is evaluated with
+// the fixed direction o as the light and the sampled i as the view.
+double spec_brdf(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o) {
+  if (b.model) {
+    const double p[kModelParams] = {b.pd, b.pg, b.f0, b.f1, b.kd, b.p5};
+    return b.model->ref(o, i, p);
+  }
+  return brdf(b, i, o);
+}
 
 // f(i,o) cos / pdf(i), pdf = kMixICos cosine lobe + (1 - kMixICos) o reflected about m ~ pdf_m.
 double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o, double w) {
@@ -65,7 +74,7 @@ double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o
   if (oh <= 0.0) return 0.0;
   const double hs2 = h.x * h.x + h.y * h.y;
   const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pdf_m(h.z, hs2, w) / (4.0 * oh);
-  return brdf(b, i, o) * i.z / pdf;
+  return spec_brdf(b, i, o) * i.z / pdf;
 }
 
 // Roberts 2018 Kronecker sequence in 2D, g_j = frac(1/φ^j) for the plastic
@@ -106,7 +115,7 @@ namespace {
 double energy_weight(const BrdfSpec& b, const glm::dvec3& m, const glm::dvec3& o, double w) {
   const glm::dvec3 i = 2.0 * glm::dot(o, m) * m - o;
   if (i.z <= 0.0) return 0.0;
-  return brdf(b, i, o) * i.z / vis_pdf_i(glm::normalize(i + o), o, w);
+  return spec_brdf(b, i, o) * i.z / vis_pdf_i(glm::normalize(i + o), o, w);
 }
 
 // One point of AlbedoRqmc / EavgRqmc.

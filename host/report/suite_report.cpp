@@ -100,6 +100,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
            {"D", p.d ? p.d->id : ""},
            {"G", p.g ? p.g->id : ""},
            {"F", p.f ? p.f->id : ""},
+           {"model", p.model},
            {"params", params},
            {"estimate", std::isfinite(p.estimate) ? json(sig(p.estimate, 9)) : json(nullptr)},
            {"stderr", sig(p.stderr_, 3)},

@@ -10,6 +10,7 @@ TermSelection TermSelection::all() {
   s.g = terms_of(Kind::G);
   s.f = terms_of(Kind::F);
   s.g1 = true;
+  for (auto& m : ::mfv::models()) s.models.push_back(&m);
   return s;
 }
 
@@ -43,6 +44,19 @@ std::string generate_dispatch(const TermSelection& s) {
   emit("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d);
   emit("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g);
   emit("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f);
+  // Whole models (kernels/models.cl), by Model::number(); none selected
+  // still gives the function, returning NaN.
+  std::string mp = "real3 wi, real3 wo, const real* p";
+  if (s.models.empty()) {
+    out += fmt::format("static inline real eval_model(int id, {}) {{ return NAN; }}\n", mp);
+  } else if (s.models.size() == 1) {
+    out += fmt::format("static inline real eval_model(int id, {}) {{\n  return {}(wi, wo, p);\n}}\n", mp,
+                       s.models[0]->kernel_fn);
+  } else {
+    out += fmt::format("static inline real eval_model(int id, {}) {{\n  switch (id) {{\n", mp);
+    for (auto* m : s.models) out += fmt::format("    case {}: return {}(wi, wo, p);\n", m->number(), m->kernel_fn);
+    out += "  }\n  return NAN;\n}\n";
+  }
   if (s.g1) {
     std::vector<const Term*> smith;
     for (auto* t : s.g)
