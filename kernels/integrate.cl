@@ -203,11 +203,14 @@ static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 
   return spec_brdf(s, i, o) * i.z / vis_pdf_i(h.z, h.x * h.x + h.y * h.y, o.z, so2, w);
 }
 
+static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, 2, 0); }
+
 // One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the albedo integrand and,
 // on the same direction, that of the split sum's B (the same BRDF with F
 // multiplied by (1 - o·h)^5: B is defined with F = none, kd = 0).
-static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  uint4 shift = mfv_philox(seed, s->stream, 2, 0);
+// `shift` is the integral's Cranley-Patterson shift, rqmc_shift(s, seed):
+// one Philox draw per integral, taken by the caller outside its sample loop.
+static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shift, ulong index) {
   uint k = (uint)index;
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real co = s->cos_o;
@@ -229,7 +232,7 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, ulong seed
 // One sample of the estimator of integral `s`.
 static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulong index) {
   if (s->check >= CHECK_ALBEDO_RQMC) {
-    real2 v = albedo_rqmc_value(s, seed, index);
+    real2 v = albedo_rqmc_value(s, rqmc_shift(s, seed), index);
     return s->check == CHECK_ALBEDO_RQMC_B ? v.y : v.x;
   }
   uint4 r = mfv_philox(seed, s->stream, 0, index);
@@ -300,8 +303,9 @@ __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint pe
   } else if (s->check == CHECK_ALBEDO_RQMC) {
     // RQMC errors come from the spread of replicates, not from a sum of
     // squares: the second accumulator takes the split sum's B on the same points
+    uint4 shift = rqmc_shift(s, seed);
     for (uint k = 0; k < per_item; ++k) {
-      real2 v = albedo_rqmc_value(s, seed, base + k);
+      real2 v = albedo_rqmc_value(s, shift, base + k);
       sum += (acc_t)v.x;
       sumsq += (acc_t)v.y;
     }
