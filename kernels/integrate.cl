@@ -30,13 +30,16 @@ typedef float acc_t;
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
 
-// 16 four-byte fields; host twin: IntegralSpec in host/checks/integrate.hpp.
+// 20 four-byte fields; host twin: IntegralSpec in host/checks/integrate.hpp.
 typedef struct {
   int check, d, g, f;
   float pd, pg, f0, f1;
   float kd, width, cos_o, p5;
   uint stream, strata, model, channel;  // strata: samples of a stratified integral, 0 = iid
-} IntegralSpec;                          // channel: the RGB channel of a user BRDF (mfv check)
+                                        // channel: the RGB channel of a user BRDF (mfv check)
+  float pd2, phi_o;                     // anisotropic D: second width (alpha_y); view azimuth
+  uint estimator, spare;                // mfv convergence: which estimator (0 = the check's own)
+} IntegralSpec;
 
 #ifdef MFV_USER_BRDF
 // mfv check --brdf: the user's functions, through adapters defined in

@@ -16,7 +16,7 @@ namespace mfv {
 // points, which AlbedoRqmcB names for sample_values and the reference.
 enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoRqmcB = 5 };
 
-// Twin of IntegralSpec in kernels/integrate.cl: sixteen 4-byte fields.
+// Twin of IntegralSpec in kernels/integrate.cl: twenty 4-byte fields.
 struct IntegralSpec {
   int32_t check = 0, d = 0, g = 0, f = 0;
   float pd = 0, pg = 0, f0 = 0, f1 = 0;
@@ -25,8 +25,12 @@ struct IntegralSpec {
   uint32_t strata = 0;  // stratified integrals (d_norm): the sample count, set by run(); 0 = iid
   uint32_t model = 0;  // 0: the microfacet D×G×F BRDF (kernels/integrate.cl spec_brdf)
   uint32_t channel = 0;  // mfv check: the RGB channel (0..2) of the user's BRDF the integral checks
+  float pd2 = 0;          // anisotropic D: the second width alpha_y (unused by isotropic terms)
+  float phi_o = 0;        // azimuth of the view about n (anisotropic masking and albedo)
+  uint32_t estimator = 0;  // mfv convergence: the estimator (0 = the check's own)
+  uint32_t spare = 0;
 };
-static_assert(sizeof(IntegralSpec) == 64, "IntegralSpec must match the kernel's layout");
+static_assert(sizeof(IntegralSpec) == 80, "IntegralSpec must match the kernel's layout");
 
 struct Estimate {
   double mean = 0, stderr_ = 0;
