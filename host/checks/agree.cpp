@@ -125,10 +125,19 @@ struct Evaluator {
       case kDAniso: return c.d->ref_d_aniso(glm::dvec3(in[4], in[5], in[2]), in[6], in[12]);
       case kG1Aniso: return c.g->ref_g1_aniso(glm::dvec3(in[4], in[5], in[1]), in[7], in[12]);
       case kBrdfAniso: {
+        // as kernels/agree.cl and the whole models: the record's directions as
+        // they are in float32 (made unit in float64 builds), the half vector
+        // formed from them (nearly opposite l and v leave it ill-conditioned)
         ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
         s.pd2 = s.pg2 = in[12];
         glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
-        return ref::brdf(s, wi, wo);
+        if (fp64) wi = glm::normalize(wi), wo = glm::normalize(wo);
+        if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
+        const glm::dvec3 sum = wi + wo;
+        const double len = glm::length(sum);
+        const ref::Shading sh{wi.z, wo.z, sum.z / len, std::min(0.5 * len, 1.0)};
+        return s.kd / M_PI + ref::eval_d(s, sum / len) * c.f->ref_f(sh.VoH, s.f0, s.f1) * ref::eval_g(s, wi, wo, sh) /
+                                 (4.0 * sh.NoL * sh.NoV);
       }
       case kD: return c.d->ref_d(in[2], in[6]);
       case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
