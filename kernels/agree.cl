@@ -41,8 +41,15 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
     real p[6] = {r[6], r[7], r[8], r[9], r[10], r[11]};
     return eval_model(d, wi, wo, p);
   }
-  if (mode == AGREE_D_ANISO) return eval_D_aniso(d, r[2], sin2_from_cos(r[2]), r[4], r[5], r[6], r[14]);
-  if (mode == AGREE_G1_ANISO) return eval_G1_aniso(g, r[1], r[4], r[5], r[7], r[14]);
+  if (mode == AGREE_D_ANISO || mode == AGREE_G1_ANISO) {
+    // the half vector or view (x, y, z = NoH or NoV), made unit in double builds as the directions are
+    real3 w = (real3)(r[4], r[5], mode == AGREE_D_ANISO ? r[2] : r[1]);
+#ifdef MFV_DOUBLE
+    w = normalize(w);
+#endif
+    if (mode == AGREE_D_ANISO) return eval_D_aniso(d, w.z, sin2_from_cos(w.z), w.x, w.y, r[6], r[14]);
+    return eval_G1_aniso(g, w.z, w.x, w.y, r[7], r[14]);
+  }
   if (mode == AGREE_BRDF_ANISO) {
     real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
 #ifdef MFV_DOUBLE

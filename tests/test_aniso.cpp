@@ -7,6 +7,7 @@
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
+#include "suite_verdicts.hpp"
 #include "numeric/quadrature.hpp"
 #include "reference/reference.hpp"
 #include "runtime/dispatch.hpp"
@@ -69,17 +70,8 @@ SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> mode
   return o;
 }
 
-const GroupResult* group(const SuiteReport& rep, const std::string& check, const std::string& model) {
-  for (auto& g : rep.groups)
-    if (g.check == check && g.model == model) return &g;
-  return nullptr;
-}
-
-Verdict verdict_of(const SuiteReport& rep, const std::string& check, const std::string& model) {
-  const GroupResult* g = group(rep, check, model);
-  REQUIRE(g != nullptr);
-  return g->verdict;
-}
+using mfv::test::group;
+using mfv::test::verdict_of;
 
 }  // namespace
 

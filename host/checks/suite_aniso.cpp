@@ -66,6 +66,24 @@ PointResult aniso_point(const std::string& check, const Term& d, const Term* g, 
   return p;
 }
 
+// Every pair and view of `kind` for D x G (x F): the spec and its point,
+// which `expect` may annotate with the view o it was given.
+template <class Expect_>
+void add_views(Plan& p, IntegralKind kind, const Term& d, const Term* g, const Term* f, Expect_ expect) {
+  for (auto& w : kPairs)
+    for (double co : kViewCos)
+      for (double phi : kViewPhi) {
+        p.specs.push_back(aniso_spec(kind, d, g, f, w, co, phi));
+        PointResult pt = aniso_point(p.check, d, g, f, w);
+        pt.params["cos_o"] = co;
+        pt.params["phi_o"] = phi;
+        // the view the kernel takes, from the float cosine and azimuth
+        const double c = double(float(co)), ph = double(float(phi)), so = std::sqrt((1 - c) * (1 + c));
+        expect(pt, glm::dvec3(so * std::cos(ph), so * std::sin(ph), c), w);
+        p.points.push_back(pt);
+      }
+}
+
 // Gs paired with the anisotropic Ds in masking: the anisotropic Smith terms
 // and the isotropic Smith G1s of both families, whose single width alpha_x
 // is right only for views along t.
@@ -110,26 +128,18 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
     for (auto* d : p.terms.d)
       for (auto* g : p.terms.g) {
         if (!suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
-        for (auto& w : kPairs)
-          for (double co : kViewCos)
-            for (double phi : kViewPhi) {
-              p.specs.push_back(aniso_spec(IntegralKind::Masking, *d, g, nullptr, w, co, phi));
-              PointResult pt = aniso_point("masking", *d, g, nullptr, w);
-              pt.params["cos_o"] = co;
-              pt.params["phi_o"] = phi;
-              // the expectation from the closed form at the float view the kernel takes
-              const double c = double(float(co)), ph = double(float(phi)), so = std::sqrt((1 - c) * (1 + c));
-              const double dev = std::fabs(masking_closed_form(*d, *g, {so * std::cos(ph), so * std::sin(ph), c}, w) - 1.0);
-              if (dev > 0.25) {  // ~10 standard errors of a default-size integral
-                pt.expect = Expect::Fail;
-                pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})",
-                                        g->id, d->id, dev);
-              } else if (dev > 1e-4) {
-                pt.expect = Expect::May;
-                pt.reason = fmt::format("{}'s G1 is off by {:.2g} at this view (closed form), near the noise", g->id, dev);
-              }
-              p.points.push_back(pt);
-            }
+        add_views(p, IntegralKind::Masking, *d, g, nullptr, [&](PointResult& pt, const glm::dvec3& o, const Widths& w) {
+          // the expectation from the closed form
+          const double dev = std::fabs(masking_closed_form(*d, *g, o, w) - 1.0);
+          if (dev > 0.25) {  // ~10 standard errors of a default-size integral
+            pt.expect = Expect::Fail;
+            pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})",
+                                    g->id, d->id, dev);
+          } else if (dev > 1e-4) {
+            pt.expect = Expect::May;
+            pt.reason = fmt::format("{}'s G1 is off by {:.2g} at this view (closed form), near the noise", g->id, dev);
+          }
+        });
       }
     plans.push_back(p);
   }
@@ -142,16 +152,8 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
     for (auto* d : p.terms.d)
       for (auto* g : p.terms.g) {
         if (!g->fit_for(d->id) || !suite_model_wanted(opt.models, d->id + "/" + g->id + "/none")) continue;
-        for (auto& w : kPairs)
-          for (double co : kViewCos)
-            for (double phi : kViewPhi) {
-              p.specs.push_back(aniso_spec(IntegralKind::Albedo, *d, g, none, w, co, phi));
-              PointResult pt = aniso_point("furnace", *d, g, none, w);
-              pt.params["cos_o"] = co;
-              pt.params["phi_o"] = phi;
-              pt.upper_only = true;
-              p.points.push_back(pt);
-            }
+        add_views(p, IntegralKind::Albedo, *d, g, none,
+                  [](PointResult& pt, const glm::dvec3&, const Widths&) { pt.upper_only = true; });
       }
     plans.push_back(p);
   }

@@ -109,17 +109,17 @@ namespace {
 
 // cos²θ, sin²θ and cos²φ of a direction, after making it unit.
 struct Angles {
-    double cos2, sin2, cos2phi;
+    double cos2, sin2, cos2phi, sin2phi;  // sin²φ apart: 1 − cos²φ cancels near φ = 0
 };
 Angles angles_of(const glm::dvec3& m_in) {
     const glm::dvec3 m = m_in / std::sqrt(m_in.x * m_in.x + m_in.y * m_in.y + m_in.z * m_in.z);
     const double s2 = m.x * m.x + m.y * m.y;
-    return {m.z * m.z, s2, s2 > 0.0 ? m.x * m.x / s2 : 1.0};
+    return {m.z * m.z, s2, s2 > 0.0 ? m.x * m.x / s2 : 1.0, s2 > 0.0 ? m.y * m.y / s2 : 0.0};
 }
 
 // The slope ellipse's factor cos²φ/ax² + sin²φ/ay².
 double ellipse(const Angles& a, double ax, double ay) {
-    return a.cos2phi / (ax * ax) + (1.0 - a.cos2phi) / (ay * ay);
+    return a.cos2phi / (ax * ax) + a.sin2phi / (ay * ay);
 }
 
 glm::dvec3 slice_normal(double NoH) {

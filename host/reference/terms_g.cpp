@@ -211,25 +211,42 @@ glm::dvec3 slice_dir(double NoV) {
 double alpha_projected(const glm::dvec3& v, double ax, double ay) {
     const double s2 = v.x * v.x + v.y * v.y;
     if (s2 == 0.0) return ax;  // at the normal the azimuth is undefined (and tanθ = 0)
-    const double cos2phi = v.x * v.x / s2;
-    return std::sqrt(cos2phi * ax * ax + (1.0 - cos2phi) * ay * ay);
+    const double cos2phi = v.x * v.x / s2, sin2phi = v.y * v.y / s2;  // apart: 1 − cos²φ cancels near φ = 0
+    return std::sqrt(cos2phi * ax * ax + sin2phi * ay * ay);
+}
+
+// a = 1 / (α_o tanθ) of a direction, tanθ from its own components (a cosine
+// near 1 would lose sin²θ); +inf at the normal, 0 at the horizon.
+double cot_over_width(const glm::dvec3& v, double ax, double ay) {
+    const glm::dvec3 u = unit(v);
+    const double s = std::sqrt(u.x * u.x + u.y * u.y);
+    if (s == 0.0) return kInf;
+    return std::max(u.z, 0.0) / (alpha_projected(v, ax, ay) * s);
 }
 
 double Lambda_ggx_aniso(const glm::dvec3& v, double ax, double ay) {
-    return Lambda_ggx(unit(v).z, alpha_projected(v, ax, ay));
+    // Heitz 2014: Λ = (−1 + sqrt(1 + 1/a²)) / 2, as x / (2 (1 + sqrt(1 + x))), x = 1/a²
+    const double a = cot_over_width(v, ax, ay);
+    if (a == 0.0) return kInf;  // at or below the horizon
+    const double x = 1.0 / (a * a);
+    return std::isinf(x) ? kInf : x / (2.0 * (1.0 + std::sqrt(1.0 + x)));
 }
 
 double Lambda_beckmann_aniso(const glm::dvec3& v, double ax, double ay) {
-    return Lambda_beckmann(unit(v).z, alpha_projected(v, ax, ay));
+    // Heitz 2014 / Walter et al. 2007: Λ = (erf(a) − 1)/2 + exp(−a²) / (2 a √π), erf − 1 = −erfc
+    const double a = cot_over_width(v, ax, ay);
+    if (a == 0.0) return kInf;
+    if (std::isinf(a)) return 0.0;
+    return -0.5 * std::erfc(a) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPi));
 }
 
 double G1_smith_ggx_aniso(const glm::dvec3& v, double ax, double ay) {
     // G1 = 1 / (1 + Λ(α_o)), Walter et al. 2007 eq. 34 at the projected width
-    return G1_smith_ggx(unit(v).z, alpha_projected(v, ax, ay));
+    return 1.0 / (1.0 + Lambda_ggx_aniso(v, ax, ay));
 }
 
 double G1_smith_beckmann_aniso(const glm::dvec3& v, double ax, double ay) {
-    return G1_smith_beckmann(unit(v).z, alpha_projected(v, ax, ay));
+    return 1.0 / (1.0 + Lambda_beckmann_aniso(v, ax, ay));
 }
 
 double G1_smith_ggx_aniso_slice(double NoV, double alpha) {
