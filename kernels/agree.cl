@@ -3,8 +3,10 @@
 // the reference evaluates the identical (float-rounded) inputs.
 //
 // Record layout (16 floats): [0..5] geometry, [6..11] parameters (a whole model's p[0..5]),
-// [12] value (float part), [13] value - float part (double builds), [14..15] unused.
-// Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; modes BRDF and MODEL store wi.xyz, wo.xyz.
+// [12] value (float part), [13] value - float part (double builds), [14] the second
+// width of the anisotropic modes (alpha_y of D and G), [15] unused.
+// Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; modes BRDF and MODEL store wi.xyz, wo.xyz;
+// D_ANISO adds h.x, h.y in [4], [5] and G1_ANISO wo.x, wo.y (tangent frame t = +x, b = +y).
 
 #define AGREE_D 0
 #define AGREE_G 1
@@ -12,6 +14,9 @@
 #define AGREE_G1 3
 #define AGREE_BRDF 4
 #define AGREE_MODEL 5  // `d` carries the model's number
+#define AGREE_D_ANISO 6   // anisotropic terms (Term::aniso) with both widths
+#define AGREE_G1_ANISO 7
+#define AGREE_BRDF_ANISO 8
 #define AGREE_RECORD 16
 
 // ranges: 6 slots (D param, G param, F p0, F p1, kd, p5) x (lo, hi, log flag)
@@ -35,6 +40,23 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
 #endif
     real p[6] = {r[6], r[7], r[8], r[9], r[10], r[11]};
     return eval_model(d, wi, wo, p);
+  }
+  if (mode == AGREE_D_ANISO || mode == AGREE_G1_ANISO) {
+    // the half vector or view (x, y, z = NoH or NoV), made unit in double builds as the directions are
+    real3 w = (real3)(r[4], r[5], mode == AGREE_D_ANISO ? r[2] : r[1]);
+#ifdef MFV_DOUBLE
+    w = normalize(w);
+#endif
+    if (mode == AGREE_D_ANISO) return eval_D_aniso(d, w.z, sin2_from_cos(w.z), w.x, w.y, r[6], r[14]);
+    return eval_G1_aniso(g, w.z, w.x, w.y, r[7], r[14]);
+  }
+  if (mode == AGREE_BRDF_ANISO) {
+    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
+#ifdef MFV_DOUBLE
+    wi = normalize(wi);
+    wo = normalize(wo);
+#endif
+    return brdf_eval_aniso(d, g, f, wi, wo, r[6], r[14], r[7], r[14], r[8], r[9], r[10]);
   }
   if (mode == AGREE_BRDF) {
     real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
@@ -91,14 +113,19 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
   p[5] = draw_param(ranges, 5, u01_open(rk.y));
 
   __global float* r = rec + i * AGREE_RECORD;
-  if (mode == AGREE_BRDF || mode == AGREE_MODEL) {
+  if (mode == AGREE_BRDF || mode == AGREE_MODEL || mode == AGREE_BRDF_ANISO) {
     r[0] = wi.x; r[1] = wi.y; r[2] = wi.z;
     r[3] = wo.x; r[4] = wo.y; r[5] = wo.z;
   } else {
     r[0] = wi.z; r[1] = wo.z; r[2] = h.z; r[3] = dot(wo, h); r[4] = 0.0f; r[5] = 0.0f;
+    if (mode == AGREE_D_ANISO) { r[4] = h.x; r[5] = h.y; }
+    if (mode == AGREE_G1_ANISO) { r[4] = wo.x; r[5] = wo.y; }
   }
   for (int k = 0; k < 6; ++k) r[6 + k] = p[k];
-  r[14] = 0.0f;
+  // the anisotropic modes' alpha_y, drawn from the range of alpha_x (the D's, or the G's)
+  r[14] = mode == AGREE_G1_ANISO ? draw_param(ranges, 1, u01_open(rk.z))
+          : mode == AGREE_D_ANISO || mode == AGREE_BRDF_ANISO ? draw_param(ranges, 0, u01_open(rk.z))
+                                                              : 0.0f;
   r[15] = 0.0f;
   store_value(r, eval_record(mode, d, g, f, r));
 }

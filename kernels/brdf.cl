@@ -23,3 +23,23 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
   // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
   return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
 }
+
+// The same BRDF with anisotropic terms (Term::aniso): D of widths (pd, pd2)
+// and G of widths (pg, pg2) in the tangent frame t = +x, b = +y; isotropic
+// terms in the mix see exactly what brdf_eval gives them.
+// Reference twin: brdf_aniso in host/reference/brdf.cpp.
+static inline real brdf_eval_aniso(int d, int g, int f, real3 wi, real3 wo, real pd, real pd2, real pg, real pg2,
+                                   real f0, real f1, real kd) {
+  real NoL = wi.z;
+  real NoV = wo.z;
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  real3 sum = wi + wo;  // half vector and v·h as brdf_eval forms them
+  real len = length(sum);
+  real3 h = sum / len;
+  real NoH = h.z;
+  real VoH = min(R(0.5) * len, R(1.0));
+  real sin2H = h.x * h.x + h.y * h.y;
+  real spec = eval_D_aniso(d, NoH, sin2H, h.x, h.y, pd, pd2) * eval_F(f, VoH, f0, f1) *
+              eval_G_aniso(g, wi, wo, NoL, NoV, NoH, VoH, pg, pg2);
+  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+}

@@ -38,6 +38,7 @@ typedef struct {
   uint stream, strata, model, channel;  // strata: samples of a stratified integral, 0 = iid
                                         // channel: the RGB channel of a user BRDF (mfv check)
   float pd2, phi_o;                     // anisotropic D: second width (alpha_y); view azimuth
+                                        // pd2 > 0: an anisotropic integral (see spec_aniso)
   uint estimator, spare;                // mfv convergence: which estimator (0 = the check's own)
 } IntegralSpec;
 
@@ -48,6 +49,12 @@ static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, re
 static inline real user_D_adapter(__global const IntegralSpec* s, real3 m);
 static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m);
 #endif
+
+// Anisotropic integrals (pd2 > 0; 0 is every isotropic spec, untouched):
+// D and an anisotropic G take the widths (pd, pd2) and (pg, pd2) along t = +x
+// and b = +y (IntegralSpec carries one second width, shared by D and G), the
+// view lies at azimuth phi_o, and the proposals are stretched to (width, pd2).
+static inline bool spec_aniso(__global const IntegralSpec* s) { return s->pd2 > 0.0f; }
 
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
@@ -65,6 +72,7 @@ static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
     real p[6] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5};
     return eval_model((int)s->model, o, i, p);
   }
+  if (spec_aniso(s)) return brdf_eval_aniso(s->d, s->g, s->f, i, o, s->pd, s->pd2, s->pg, s->pd2, s->f0, s->f1, s->kd);
   return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
 }
 
@@ -73,6 +81,7 @@ static inline real spec_D(__global const IntegralSpec* s, real3 m, real c, real 
 #ifdef MFV_USER_BRDF
   return user_D_adapter(s, m);
 #endif
+  if (spec_aniso(s)) return eval_D_aniso(s->d, c, s2, m.x, m.y, s->pd, s->pd2);
   return eval_D(s->d, c, s2, s->pd);
 }
 
@@ -81,6 +90,8 @@ static inline real spec_G1(__global const IntegralSpec* s, real3 o, real3 m, rea
 #ifdef MFV_USER_BRDF
   return user_G1_adapter(s, o, m);
 #endif
+  // anisotropic: the Smith G1 of the view's own azimuth, G1(o) (Heitz 2014)
+  if (spec_aniso(s)) return eval_G1_aniso(s->g, co, o.x, o.y, s->pg, s->pd2);
   return eval_G(s->g, R(1.0), co, c, om, s->pg);
 }
 
@@ -132,6 +143,51 @@ static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c,
   return (real3)(st * cos(phi), st * sin(phi), *c);
 }
 
+// Anisotropic proposal (spec_aniso): the Cauchy slopes stretched by (wx, wy)
+// along (t, b), slope density 1/(2π wx wy) (1 + sx²/wx² + sy²/wy²)^(-3/2), in
+// solid angle 1 / (2π wx wy (c² + (m.x/wx)² + (m.y/wy)²)^(3/2)) for unit m.
+// In the stretched slopes an anisotropic GGX or Beckmann of widths (wx, wy)
+// is radially symmetric, as the isotropic terms are in the plain ones; the
+// D's formula is never sampled.
+static inline real pdf_slope_aniso(real3 m, real wx, real wy) {
+  real tx = m.x / wx, ty = m.y / wy;
+  real k = m.z * m.z + tx * tx + ty * ty;
+  return R(1.0) / (R(2.0) * MFV_PI * wx * wy * k * sqrt(k));
+}
+
+static inline real pdf_m_aniso(real3 m, real wx, real wy) {
+  return MIX_COS * m.z * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_slope_aniso(m, wx, wy);
+}
+
+static inline real3 sample_m_aniso(real u_pick, real u_phi, real u_r, real wx, real wy, real* c, real* s2) {
+  if (u_pick < MIX_COS) return sample_m(u_pick, u_phi, u_r, wx, c, s2);  // the cosine lobe, as isotropic
+  real phi = R(2.0) * MFV_PI * u_phi;
+  real t = sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // |slope| of unit width, as sample_m
+  real sx = wx * t * cos(phi), sy = wy * t * sin(phi);
+  real t2 = sx * sx + sy * sy;
+  *c = R(1.0) / sqrt(R(1.0) + t2);
+  *s2 = t2 / (R(1.0) + t2);
+  return (real3)(sx * *c, sy * *c, *c);
+}
+
+// Stratum k of n equal cells of the unit square (anisotropic d_norm, whose
+// integrand depends on the azimuth too): n_phi columns, n_phi the largest
+// power of 2 with n_phi² <= n that divides n; neighbouring k share a row.
+static inline void stratum_2d(ulong k, ulong n, real* u_r, real* u_phi) {
+  ulong n_phi = 1;
+  while (4u * n_phi * n_phi <= n && n % (2u * n_phi) == 0) n_phi *= 2u;
+  *u_r = min(((real)(k / n_phi) + *u_r) / (real)(n / n_phi), R(0x1.fffffep-1));
+  *u_phi = ((real)(k % n_phi) + *u_phi) / (real)n_phi;
+}
+
+// The view of masking and albedo: cos θ = cos_o at azimuth phi_o (in the
+// xz-plane, phi_o = 0, for every isotropic spec).
+static inline real3 spec_view(__global const IntegralSpec* s) {
+  real co = s->cos_o, so = sqrt(sin2_from_cos(co));
+  if (s->phi_o == 0.0f) return (real3)(so, R(0.0), co);
+  return (real3)(so * cos((real)s->phi_o), so * sin((real)s->phi_o), co);
+}
+
 // f(i,o) (n·i) / pdf(i) for the albedo proposal: the union of a cosine lobe
 // and o reflected about an m from the mixture.
 static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 o, real w) {
@@ -141,7 +197,8 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
   real3 h = sum / len;
   real oh = R(0.5) * len;  // o·h = |i + o| / 2, as in brdf_eval
   real hs2 = h.x * h.x + h.y * h.y;
-  real pdf = MIX_I_COS * i.z * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pdf_m(h.z, hs2, w) / (R(4.0) * oh);
+  real pm = spec_aniso(s) ? pdf_m_aniso(h, w, s->pd2) : pdf_m(h.z, hs2, w);
+  real pdf = MIX_I_COS * i.z * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pm / (R(4.0) * oh);
   real f = spec_brdf(s, i, o);
   return f * i.z / pdf;
 }
@@ -250,23 +307,37 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     // error falls much faster than 1/sqrt(N); the host estimates it from
     // pairs of neighbouring strata.
     real c, s2;
+    const bool aniso = spec_aniso(s);
     if (s->strata > 0u) {
       ulong n_cos = (ulong)s->strata / 4u;
       bool cosine = index < n_cos;
       ulong k = cosine ? index : index - n_cos;
       ulong n = cosine ? n_cos : (ulong)s->strata - n_cos;
       u_pick = cosine ? R(0.0) : R(1.0);
-      u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
+      // anisotropic: the integrand depends on the azimuth as well (in the
+      // stretched slopes only through the cosine lobe's share)
+      if (aniso) stratum_2d(k, n, &u_r, &u_phi);
+      else u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
+    }
+    if (aniso) {
+      real3 m = sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2);
+      return spec_D(s, m, c, s2) * c / pdf_m_aniso(m, w, s->pd2);
     }
     real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     return spec_D(s, m, c, s2) * c / pdf_m(c, s2, w);
   }
   real co = s->cos_o;
-  real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
+  real3 o = spec_view(s);
   if (s->check == CHECK_MASKING) {
     // weak white furnace (Heitz 2014 eq. 19): ∫ G1(o,m) D(m) max(0, o·m) dm / (o·n) = 1,
     // with G1(o,m) = G2(light at the normal, o, m), the Smith G1 for Smith G2s
     real c, s2;
+    if (spec_aniso(s)) {
+      real3 m = sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2);
+      real om = dot(o, m);
+      if (om <= R(0.0)) return R(0.0);
+      return spec_G1(s, o, m, co, c, om) * spec_D(s, m, c, s2) * om / (pdf_m_aniso(m, w, s->pd2) * co);
+    }
     real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     real om = dot(o, m);
     if (om <= R(0.0)) return R(0.0);
@@ -280,7 +351,8 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     i = (real3)(st * cos(phi), st * sin(phi), sqrt(R(1.0) - u_r));
   } else {
     real c, s2;
-    real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
+    real3 m = spec_aniso(s) ? sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2)
+                            : sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     i = R(2.0) * dot(o, m) * m - o;
   }
   return albedo_weight(s, i, o, w);

@@ -55,3 +55,33 @@ static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
   if (e == R(0.0)) return R(0.0);               // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
   return e / (R(4.0) * m2 * c2 * c2);
 }
+
+// ---- Anisotropic D (tangent frame t = +x, b = +y, n = +z) ----------------
+// Arguments: NoH = h.z and the half vector's tangent components hx = h·t,
+// hy = h·b, widths ax along t and ay along b. Stretching the slopes by
+// (1/ax, 1/ay) maps each onto its isotropic shape of width 1, hence the
+// 1/(ax ay) normalisation (Heitz 2014, "Understanding the masking-shadowing
+// function", anisotropic distributions). ax = ay gives D_ggx / D_beckmann.
+
+static inline real D_ggx_aniso(real NoH, real hx, real hy, real ax, real ay) {
+  // Burley 2012 appendix B (GTR2 aniso); Heitz 2014 anisotropic GGX:
+  // 1 / (π ax ay cos⁴θ (1 + tan²θ (cos²φ/ax² + sin²φ/ay²))²)
+  //   = 1 / (π ax ay ((n·h)² + (h·t/ax)² + (h·b/ay)²)²)   (unit h)
+  if (NoH <= R(0.0)) return R(0.0);
+  real c = min(NoH, R(1.0));
+  real tx = hx / ax, ty = hy / ay;  // divided first, as D_ggx: no ax⁴ underflow
+  real k = c * c + tx * tx + ty * ty;
+  return R(1.0) / (MFV_PI * ax * ay * k * k);
+}
+
+static inline real D_beckmann_aniso(real NoH, real hx, real hy, real ax, real ay) {
+  // Heitz 2014 anisotropic Beckmann (Ward's exponent, seed 004):
+  // exp(-tan²θ (cos²φ/ax² + sin²φ/ay²)) / (π ax ay cos⁴θ)
+  //   = exp(-((h·t/ax)² + (h·b/ay)²) / (n·h)²) / (π ax ay (n·h)⁴)
+  if (NoH <= R(0.0)) return R(0.0);
+  real c2 = sqr(min(NoH, R(1.0)));
+  real tx = hx / ax, ty = hy / ay;
+  real e = exp(-(tx * tx + ty * ty) / c2);
+  if (e == R(0.0)) return R(0.0);  // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
+  return e / (MFV_PI * ax * ay * c2 * c2);
+}

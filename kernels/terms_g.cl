@@ -125,3 +125,48 @@ static inline real G_hammon_002(real NoL, real NoV, real NoH, real VoH, real alp
   real v = R(0.5) / max(R(0.01), mix(R(2.0) * NoL * NoV, NoL + NoV, alpha));
   return R(4.0) * NoL * NoV * v;
 }
+
+// ---- Anisotropic Smith (tangent frame t = +x, b = +y, n = +z) -----------
+// Heitz 2014 ("Understanding the masking-shadowing function", anisotropic
+// distributions): the Λ of an anisotropic GGX or Beckmann is the isotropic Λ
+// at the projected width α_o = sqrt(cos²φ_o ax² + sin²φ_o ay²) of the
+// direction's azimuth φ_o. With the direction's components (vx, vy, NoV):
+// α_o² tan²θ_o = ((ax vx)² + (ay vy)²) / NoV², no angle formed.
+
+static inline real Lambda_ggx_aniso(real NoV, real vx, real vy, real ax, real ay) {
+  if (NoV >= R(1.0)) return R(0.0);             // rounding above 1 -> G1 = 1 (seed 000)
+  if (NoV <= R(0.0)) return INFINITY;           // θ -> π/2: Λ -> ∞
+  real q = sqr(ax * vx) + sqr(ay * vy);         // α_o² sin²θ_o
+  real x = q / (NoV * NoV);
+  // cos² underflows (NoV below ~1e-19): Λ = α_o tanθ / 2, as Lambda_ggx
+  if (isinf(x)) return R(0.5) * sqrt(q) / NoV;
+  return x / (R(2.0) * (R(1.0) + sqrt(R(1.0) + x)));
+}
+
+static inline real Lambda_beckmann_aniso(real NoV, real vx, real vy, real ax, real ay) {
+  if (NoV >= R(1.0)) return R(0.0);
+  if (NoV <= R(0.0)) return INFINITY;
+  real q = sqr(ax * vx) + sqr(ay * vy);
+  if (q <= R(0.0)) return R(0.0);               // tanθ = 0: do not divide by it (seed 000)
+  real a = NoV / sqrt(q);                       // 1 / (α_o tanθ_o)
+  return R(0.5) * (exp(-a * a) / (a * MFV_SQRT_PI) - erfc(a));
+}
+
+static inline real G1_smith_ggx_aniso(real NoV, real vx, real vy, real ax, real ay) {
+  return R(1.0) / (R(1.0) + Lambda_ggx_aniso(NoV, vx, vy, ax, ay));
+}
+
+static inline real G1_smith_beckmann_aniso(real NoV, real vx, real vy, real ax, real ay) {
+  return R(1.0) / (R(1.0) + Lambda_beckmann_aniso(NoV, vx, vy, ax, ay));
+}
+
+// G2, separable as G_smith_ggx (Walter et al. 2007 eq. 23): G1(l) G1(v).
+static inline real G_smith_ggx_aniso(real3 l, real3 v, real VoH, real ax, real ay) {
+  if (l.z <= R(0.0) || v.z <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_ggx_aniso(l.z, l.x, l.y, ax, ay) * G1_smith_ggx_aniso(v.z, v.x, v.y, ax, ay);
+}
+
+static inline real G_smith_beckmann_aniso(real3 l, real3 v, real VoH, real ax, real ay) {
+  if (l.z <= R(0.0) || v.z <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return G1_smith_beckmann_aniso(l.z, l.x, l.y, ax, ay) * G1_smith_beckmann_aniso(v.z, v.x, v.y, ax, ay);
+}

@@ -16,7 +16,8 @@ TEST_CASE("Every kernel term and every D x G x F BRDF agrees with the double ref
   opt.samples = 20000;
   opt.seed = 12345;
   AgreeReport rep = run_agree(*rt, opt);
-  CHECK(rep.results.size() == 22 + 5 * 9 * 4 + models().size());  // 18 terms, 4 G1s, 180 BRDFs
+  // 18 terms, 4 G1s, 180 BRDFs; anisotropic: 2 D, 2 G1, 8 BRDFs (matched pairs x 4 F)
+  CHECK(rep.results.size() == 22 + 5 * 9 * 4 + 4 + 2 * 4 + models().size());
   for (auto& r : rep.results) {
     CAPTURE(r.name, r.max_ulps, r.worst);
     CHECK(r.pass());
@@ -97,5 +98,20 @@ TEST_CASE("A kernel that does not compile reports its build log with the real fi
     CHECK(msg.find("kernel build failed") != std::string::npos);
     CHECK(msg.find("build log") != std::string::npos);
     CHECK(msg.find("terms_d.cl") != std::string::npos);
+  }
+}
+
+TEST_CASE("mfv agree covers the anisotropic terms: kernel and reference on identical inputs", "[device][aniso][agree]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  AgreeOptions opt;
+  opt.samples = 20000;
+  opt.seed = 99;
+  opt.only = {"aniso_"};
+  AgreeReport rep = run_agree(*rt, opt);
+  CHECK(rep.results.size() == 4 + 2 * 4);  // 2 D, 2 G1, 2 matched pairs x 4 F
+  for (auto& r : rep.results) {
+    CAPTURE(r.name, r.max_ulps, r.worst);
+    CHECK(r.pass());
   }
 }

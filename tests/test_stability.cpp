@@ -91,7 +91,7 @@ TEST_CASE("Kernel and reference G1 give 1 at tan = 0 and at (v.n) rounded above 
         CHECK(r->ref_violations == 0);
       }
     }
-    CHECK(g1_cases == 4 + 2);  // four catalog Smith G1s, two GGX G1 forms
+    CHECK(g1_cases == 6 + 2);  // six catalog Smith G1s (two anisotropic, on their isotropic slice), two GGX G1 forms
   }
 }
 

@@ -4,6 +4,7 @@
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
+#include "suite_verdicts.hpp"
 
 #include "run_mfv.hpp"
 
@@ -27,17 +28,8 @@ namespace {
 using mfv::test::Run;
 using mfv::test::run_mfv;
 
-const GroupResult* group(const SuiteReport& rep, const std::string& check, const std::string& model) {
-  for (auto& g : rep.groups)
-    if (g.check == check && g.model == model) return &g;
-  return nullptr;
-}
-
-Verdict verdict_of(const SuiteReport& rep, const std::string& check, const std::string& model) {
-  const GroupResult* g = group(rep, check, model);
-  REQUIRE(g != nullptr);
-  return g->verdict;
-}
+using mfv::test::group;
+using mfv::test::verdict_of;
 
 SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> models) {
   SuiteOptions o;

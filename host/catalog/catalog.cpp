@@ -25,6 +25,9 @@ namespace {
 // Parameter ranges. alpha spans the stiff 1e-7 to very rough 10; the Phong
 // exponent reaches 1e7 (alpha ~ 4.5e-4).
 Param p_alpha() { return {"alpha", 1e-7, 10.0, 0.3, "microfacet width (slope RMS)"}; }
+Param p_alpha_xy(const char* name, const char* axis) {
+  return {name, 1e-7, 10.0, 0.3, std::string("microfacet width along ") + axis + " (slope RMS)"};
+}
 Param p_alpha_p() { return {"alpha_p", 0.0, 1e7, 100.0, "Phong exponent, 0 rough .. inf mirror"}; }
 
 // Beckmann's G1 used for the Phong D (and seed 004's rho form of it).
@@ -139,6 +142,45 @@ std::vector<Term> build_catalog() {
     Param{"alpha", 0.0, 1.0, 0.3, "mix weight = alpha (seed 002 squares roughness first)"}, Roughness::Alpha,
     ref_::G_hammon_002);
 
+  // Anisotropic GGX and Beckmann with their Smith G (tangent frame t = +x,
+  // b = +y, n = +z): two widths; see Term::aniso.
+  auto aniso = [&](Term* t, RefDAniso d, RefG1Aniso g1, RefGAniso g) {
+    t->aniso = true;
+    t->params = {p_alpha_xy("alpha_x", "t = +x"), p_alpha_xy("alpha_y", "b = +y")};
+    t->ref_d_aniso = d;
+    t->ref_g1_aniso = g1;
+    t->ref_g_aniso = g;
+    return t;
+  };
+  aniso(D("aniso_ggx", "D_ggx_aniso", "Heitz 2014 (anisotropic GGX); Burley 2012 app. B (GTR2 aniso)",
+          "1 / (pi ax ay ((n.h)^2 + (t.h/ax)^2 + (b.h/ay)^2)^2)", p_alpha(), Roughness::Alpha, ref_::D_ggx_aniso_slice),
+        ref_::D_ggx_aniso, nullptr, nullptr);
+  aniso(D("aniso_beckmann", "D_beckmann_aniso", "Heitz 2014 (anisotropic Beckmann; Ward's exponent, seed 004)",
+          "exp(-((t.h/ax)^2 + (b.h/ay)^2)/(n.h)^2) / (pi ax ay (n.h)^4)", p_alpha(), Roughness::Alpha,
+          ref_::D_beckmann_aniso_slice),
+        ref_::D_beckmann_aniso, nullptr, nullptr);
+  const char* projected = "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)";
+  {
+    auto* t = aniso(G("smith_aniso_ggx", "G_smith_ggx_aniso", projected,
+                      "G1(l)G1(v), G1 = 2/(1+sqrt(1+alpha_o^2 tan^2))", p_alpha(), Roughness::Alpha,
+                      ref_::G_smith_ggx_aniso_slice),
+                    nullptr, ref_::G1_smith_ggx_aniso, ref_::G_smith_ggx_aniso);
+    t->g1_kernel_fn = "G1_smith_ggx_aniso";
+    t->ref_g1 = ref_::G1_smith_ggx_aniso_slice;
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->smith_for = {{"aniso_ggx", 0.0, 1e300, "Heitz 2014, anisotropic GGX (exact)"}};
+  }
+  {
+    auto* t = aniso(G("smith_aniso_beckmann", "G_smith_beckmann_aniso", projected,
+                      "G1(l)G1(v), G1 = 1/(1+Lambda_beckmann(alpha_o))", p_alpha(), Roughness::Alpha,
+                      ref_::G_smith_beckmann_aniso_slice),
+                    nullptr, ref_::G1_smith_beckmann_aniso, ref_::G_smith_beckmann_aniso);
+    t->g1_kernel_fn = "G1_smith_beckmann_aniso";
+    t->ref_g1 = ref_::G1_smith_beckmann_aniso_slice;
+    t->ulp_budget = 16;
+    t->smith_for = {{"aniso_beckmann", 0.0, 1e300, "Heitz 2014, anisotropic Beckmann (exact)"}};
+  }
+
   auto F = [&](std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> p, RefF ref) {
     Term t;
     t.id = std::move(id);
@@ -180,6 +222,20 @@ const std::vector<Term>& catalog() {
 }
 
 std::vector<const Term*> terms_of(Kind k) {
+  std::vector<const Term*> out;
+  for (auto& t : catalog())
+    if (t.kind == k && !t.aniso) out.push_back(&t);
+  return out;
+}
+
+std::vector<const Term*> aniso_terms_of(Kind k) {
+  std::vector<const Term*> out;
+  for (auto& t : catalog())
+    if (t.kind == k && t.aniso) out.push_back(&t);
+  return out;
+}
+
+std::vector<const Term*> all_terms_of(Kind k) {
   std::vector<const Term*> out;
   for (auto& t : catalog())
     if (t.kind == k) out.push_back(&t);

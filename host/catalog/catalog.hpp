@@ -5,6 +5,8 @@
 // and reports all read these declarations.
 #pragma once
 
+#include <glm/vec3.hpp>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +40,11 @@ using RefD = double (*)(double NoH, double p);
 using RefG = double (*)(double NoL, double NoV, double NoH, double VoH, double p);
 using RefG1 = double (*)(double NoV, double p);
 using RefF = double (*)(double VoH, double p0, double p1);
+// Anisotropic terms (Term::aniso): directions in the tangent frame t = +x,
+// b = +y, n = +z, widths ax along t and ay along b.
+using RefDAniso = double (*)(const glm::dvec3& m, double ax, double ay);
+using RefG1Aniso = double (*)(const glm::dvec3& v, double ax, double ay);
+using RefGAniso = double (*)(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
 
 struct Term {
   std::string id;         // catalog name: ggx, smith_ggx_correlated, schlick...
@@ -45,7 +52,7 @@ struct Term {
   std::string kernel_fn;  // function in kernels/terms_*.cl
   std::string source;     // seed file and formula, or paper and equation
   std::string formula;    // one line, for the listing
-  std::vector<Param> params;  // D and G: at most one (roughness); F: up to two
+  std::vector<Param> params;  // D and G: one (roughness), two for anisotropic terms; F: up to two
   Roughness roughness = Roughness::None;
 
   RefD ref_d = nullptr;  // exactly one of these is set, by kind
@@ -55,6 +62,17 @@ struct Term {
   // the masking check; empty for G terms that are no Smith G1 of any D.
   std::string g1_kernel_fn;
   RefG1 ref_g1 = nullptr;
+
+  // Anisotropic D and Smith G: params are (alpha_x, alpha_y) in the tangent
+  // frame t = +x, b = +y, n = +z. Their kernel functions take the tangent
+  // components (kernels/terms_d.cl, terms_g.cl); ref_d/ref_g/ref_g1 above are
+  // their isotropic slice (direction in the xz-plane, alpha_y = alpha_x), the
+  // one-width view of the generic checks; the *_aniso twins take directions.
+  // terms_of() leaves them out: its callers pass one width.
+  bool aniso = false;
+  RefDAniso ref_d_aniso = nullptr;
+  RefG1Aniso ref_g1_aniso = nullptr;
+  RefGAniso ref_g_aniso = nullptr;
 
   // Agreement budget (kernel float vs double reference, identical inputs):
   // ULPs of the float result, and an absolute floor for results near zero.
@@ -78,7 +96,9 @@ struct Term {
 const std::vector<Term>& catalog();
 const Term& find_term(const std::string& id);           // throws mfv::Error naming the known ids
 const Term* try_find_term(const std::string& id, Kind k);
-std::vector<const Term*> terms_of(Kind k);
+std::vector<const Term*> terms_of(Kind k);        // the isotropic terms (one width) of kind k
+std::vector<const Term*> aniso_terms_of(Kind k);  // the anisotropic ones (alpha_x, alpha_y)
+std::vector<const Term*> all_terms_of(Kind k);    // both
 
 // Parameter values checked at the boundary: NaN and out-of-range values are
 // rejected with a message naming the term, the parameter and its range.

@@ -21,7 +21,9 @@
 namespace mfv {
 namespace {
 
-enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kModel = 5 };  // = EvalMode, = AGREE_* in agree.cl
+// = EvalMode, = AGREE_* in agree.cl; the *Aniso modes take both widths of an
+// anisotropic term (Term::aniso), alpha_y in record slot 14.
+enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kModel = 5, kDAniso = 6, kG1Aniso = 7, kBrdfAniso = 8 };
 constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
 constexpr int kSlots = 6;     // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
 
@@ -50,6 +52,14 @@ const Param* param(const Term* t, size_t i) { return t && i < t->params.size() ?
 std::vector<Case> make_cases(const AgreeOptions& opt) {
   std::vector<Case> cases;
   for (auto& t : catalog()) {
+    if (t.aniso) {
+      // both widths and the tangent components; the G2 is covered by the BRDFs below
+      if (t.kind == Kind::D)
+        cases.push_back({fmt::format("D {}", t.id), kDAniso, &t, nullptr, nullptr, t.ulp_budget, t.abs_floor});
+      else
+        cases.push_back({fmt::format("G1 {}", t.id), kG1Aniso, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
+      continue;
+    }
     Mode m = t.kind == Kind::D ? kD : t.kind == Kind::G ? kG : kF;
     Case c{fmt::format("{} {}", kind_name(t.kind), t.id), m, nullptr, nullptr, nullptr, t.ulp_budget, t.abs_floor};
     (t.kind == Kind::D ? c.d : t.kind == Kind::G ? c.g : c.f) = &t;
@@ -64,6 +74,14 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
           cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdf, d, g, f,
                            d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
                            std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
+  if (opt.combinations)  // anisotropic D with its own Smith G, every F
+    for (auto* d : aniso_terms_of(Kind::D))
+      for (auto* g : aniso_terms_of(Kind::G))
+        for (auto* f : terms_of(Kind::F))
+          if (g->fit_for(d->id))
+            cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdfAniso, d, g, f,
+                             d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
+                             std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
   for (auto& m : models()) {
     Case c{fmt::format("MODEL {}", m.id), kModel, nullptr, nullptr, nullptr, m.ulp_budget, m.abs_floor};
     c.model = &m;
@@ -90,9 +108,11 @@ struct Evaluator {
   const float* r;
   bool fp64 = false;
   double eval(int bump_index, double bump) const {
-    double in[6 + kSlots];
+    double in[6 + kSlots + 1];
     for (int k = 0; k < 6; ++k) in[k] = r[k];
     for (int k = 0; k < kSlots; ++k) in[6 + k] = r[6 + k];
+    in[6 + kSlots] = r[14];  // alpha_y of the anisotropic modes
+    if (aniso() && bump_index >= 0 && bump_index < 13) in[bump_index] *= 1.0 + bump;
     // inputs 0..3 are the cosines; for the BRDF they are derived from wi, wo
     // below and bumped there (index 11..14), so float rounding inside the
     // kernel's half-vector formation is covered too.
@@ -100,8 +120,25 @@ struct Evaluator {
     // rounding a unit vector moves each component by ~eps of its length, not
     // of the component (a small z is as uncertain as a large x).
     if (c.mode == kModel && bump_index >= 0 && bump_index < 6) in[bump_index] += bump;
-    else if (bump_index >= 0 && bump_index < (c.mode == kModel ? 12 : 11)) in[bump_index] *= 1.0 + bump;
+    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 12 : 11)) in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
+      case kDAniso: return c.d->ref_d_aniso(glm::dvec3(in[4], in[5], in[2]), in[6], in[12]);
+      case kG1Aniso: return c.g->ref_g1_aniso(glm::dvec3(in[4], in[5], in[1]), in[7], in[12]);
+      case kBrdfAniso: {
+        // as kernels/agree.cl and the whole models: the record's directions as
+        // they are in float32 (made unit in float64 builds), the half vector
+        // formed from them (nearly opposite l and v leave it ill-conditioned)
+        ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
+        s.pd2 = s.pg2 = in[12];
+        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        if (fp64) wi = glm::normalize(wi), wo = glm::normalize(wo);
+        if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
+        const glm::dvec3 sum = wi + wo;
+        const double len = glm::length(sum);
+        const ref::Shading sh{wi.z, wo.z, sum.z / len, std::min(0.5 * len, 1.0)};
+        return s.kd / M_PI + ref::eval_d(s, sum / len) * c.f->ref_f(sh.VoH, s.f0, s.f1) * ref::eval_g(s, wi, wo, sh) /
+                                 (4.0 * sh.NoL * sh.NoV);
+      }
       case kD: return c.d->ref_d(in[2], in[6]);
       case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
       case kG1: return c.g->ref_g1(in[1], in[7]);
@@ -126,18 +163,21 @@ struct Evaluator {
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
-  int inputs() const { return c.mode == kBrdf ? 15 : c.mode == kModel ? 12 : 11; }
+  bool aniso() const { return c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso; }
+  int inputs() const { return aniso() ? 13 : c.mode == kBrdf ? 15 : c.mode == kModel ? 12 : 11; }
 };
 
 std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string in;
-  if (c.mode == kBrdf || c.mode == kModel)
+  if (c.mode == kBrdf || c.mode == kModel || c.mode == kBrdfAniso)
     in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[0], r[1], r[2], r[3], r[4], r[5]);
   else
     in = fmt::format("NoL={:a} NoV={:a} NoH={:a} VoH={:a}", r[0], r[1], r[2], r[3]);
   std::string ps;
   const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd", "p5"};
   for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[6 + s]);
+  if (c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso)
+    ps += fmt::format(" h.x|v.x={:a} h.y|v.y={:a} alpha_y={:a}", r[4], r[5], r[14]);
   return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
 }
 
@@ -236,7 +276,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
     put_range(ranges, 4, nullptr);  // kd in [0, 1]
     put_range(ranges, 5, nullptr);
     ranges[3 * 5 + 1] = 0.0f;  // p5: whole models only
-    if (c.mode != kBrdf) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
+    if (c.mode != kBrdf && c.mode != kBrdfAniso) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
     if (c.model)  // a whole model: its own parameters in every slot, 0 past its count
       for (int k = 0; k < kSlots; ++k) {
         put_range(ranges, k, size_t(k) < c.model->params.size() ? &c.model->params[size_t(k)] : nullptr);

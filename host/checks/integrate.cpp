@@ -24,6 +24,9 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.brdf.f1 = s.f1;
   r.brdf.kd = s.kd;
   r.brdf.p5 = s.p5;
+  r.brdf.pd2 = s.pd2;  // one second width for D and G (kernels/integrate.cl spec_aniso)
+  r.brdf.pg2 = s.pd2;
+  r.phi_o = s.phi_o;
   r.brdf.model = model_by_number(s.model);  // whole models 1..999; nullptr for 0
   r.width = s.width;
   r.cos_o = s.cos_o;

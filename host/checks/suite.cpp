@@ -66,6 +66,17 @@ const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4,
 const std::vector<double>& suite_norm_alphas() { return kNormAlphas; }
 const std::vector<double>& suite_alphas() { return kAlphas; }
 
+bool suite_check_wanted(const SuiteOptions& opt, const std::string& check) {
+  return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
+}
+
+bool suite_model_wanted(const std::vector<std::string>& filter, const std::string& name) {
+  if (filter.empty()) return true;
+  for (auto& f : filter)
+    if (name.find(f) != std::string::npos) return true;
+  return false;
+}
+
 std::vector<double> view_cosines(int n) {
   // dense towards grazing: cos from 1e-4 (0.006 degrees above the horizon) to 1
   std::vector<double> c;
@@ -143,16 +154,8 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
 
 // ---- running ---------------------------------------------------------------
 
-bool check_wanted(const SuiteOptions& opt, const std::string& check) {
-  return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
-}
-
-bool wanted(const std::vector<std::string>& filter, const std::string& name) {
-  if (filter.empty()) return true;
-  for (auto& f : filter)
-    if (name.find(f) != std::string::npos) return true;
-  return false;
-}
+bool check_wanted(const SuiteOptions& opt, const std::string& check) { return suite_check_wanted(opt, check); }
+bool wanted(const std::vector<std::string>& filter, const std::string& name) { return suite_model_wanted(filter, name); }
 
 void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
                double pg, double f0, double f1, double kd, double cos_o, double expected, bool upper,
@@ -311,6 +314,7 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   combos("furnace", IntegralKind::Albedo, kSuiteBaseSamples, 12, 32, {none}, {0.0});
   combos("energy", IntegralKind::Albedo, kSuiteBaseSamples / 2, 6, 24, real_fs, {0.0});
   combos("energy_diffuse", IntegralKind::Albedo, kSuiteBaseSamples / 2, 3, 8, {try_find_term("schlick", Kind::F)}, {0.5, 1.0});
+  add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
   return plans;
 }
 
@@ -554,6 +558,7 @@ void validate_suite_options(const SuiteOptions& opt) {
       for (auto* f : terms_of(Kind::F)) any = any || wanted(opt.models, d->id + "/" + g->id + "/" + f->id);
     }
   }
+  for (auto& name : aniso_model_names()) any = any || wanted(opt.models, name);
   if (!any) throw Error("no model matches the --model filter (names are D, D/G, D/G/F or model[case]: see 'mfv list')");
 }
 

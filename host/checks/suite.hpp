@@ -141,6 +141,15 @@ void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<Integr
                         std::chrono::steady_clock::time_point t0, SuiteReport& rep);
 constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
 
+// The option filters: is `check` selected; does `name` match the --model filter.
+bool suite_check_wanted(const SuiteOptions& opt, const std::string& check);
+bool suite_model_wanted(const std::vector<std::string>& filter, const std::string& name);
+
+// The anisotropic D and Smith G cases (host/checks/suite_aniso.cpp): d_norm,
+// masking and furnace plans, and the model names they use.
+void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt);
+std::vector<std::string> aniso_model_names();
+
 // z-test verdicts for every point, then one verdict per model x check.
 void judge(SuiteReport& rep, const SuiteOptions& opt);
 std::string model_name(const PointResult& p);

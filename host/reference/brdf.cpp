@@ -30,9 +30,29 @@ double brdf(const BrdfSpec& s, const Shading& c) {
   return s.kd / M_PI + D * F * G / (4.0 * c.NoL * c.NoV);
 }
 
+double eval_d(const BrdfSpec& s, const glm::dvec3& m) {
+  if (s.aniso() && s.d->aniso) return s.d->ref_d_aniso(m, s.pd, s.pd2);
+  return s.d->ref_d(m.z / glm::length(m), s.pd);
+}
+
+double eval_g(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo, const Shading& c) {
+  if (s.aniso() && s.g->aniso) return s.g->ref_g_aniso(wi, wo, c.VoH, s.pg, s.pg2);
+  return s.g->ref_g(c.NoL, c.NoV, c.NoH, c.VoH, s.pg);
+}
+
+double eval_g1(const BrdfSpec& s, const glm::dvec3& v) {
+  if (s.aniso() && s.g->aniso) return s.g->ref_g1_aniso(v, s.pg, s.pg2);
+  return s.g->ref_g1(v.z / glm::length(v), s.pg);
+}
+
 double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo) {
   if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;  // below the horizon; also keeps L + V != 0
-  return brdf(s, shading_from(wi, wo));
+  if (!s.aniso()) return brdf(s, shading_from(wi, wo));
+  // seed 000's BRDF with the anisotropic D(h) and G(l, v) (unit directions)
+  const glm::dvec3 l = glm::normalize(wi), v = glm::normalize(wo);
+  const Shading c = shading_from(l, v);
+  const glm::dvec3 h = glm::normalize(l + v);
+  return s.kd / M_PI + eval_d(s, h) * s.f->ref_f(c.VoH, s.f0, s.f1) * eval_g(s, l, v, c) / (4.0 * c.NoL * c.NoV);
 }
 
 }  // namespace mfv::ref

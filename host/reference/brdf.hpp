@@ -18,6 +18,10 @@ struct BrdfSpec {
   // A whole model instead of D x G x F: its p[0..5] are pd, pg, f0, f1, kd, p5.
   const Model* model = nullptr;
   double p5 = 0;
+  // Anisotropic terms (Term::aniso): the second widths along b = +y; 0 for
+  // isotropic specs (twin of IntegralSpec::pd2, which D and G share).
+  double pd2 = 0, pg2 = 0;
+  bool aniso() const { return pd2 > 0; }
 };
 
 // The cosines a microfacet BRDF depends on, formed from the directions.
@@ -27,6 +31,12 @@ struct Shading {
 
 Shading shading_from(const glm::dvec3& wi, const glm::dvec3& wo);  // n = +z
 double brdf(const BrdfSpec& s, const Shading& c);
-double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo);
+double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo);  // anisotropic too when s.aniso()
+
+// The directions' D and G, anisotropic terms with two widths, isotropic ones
+// as brdf() evaluates them (twins of eval_D_aniso, eval_G_aniso, eval_G1_aniso).
+double eval_d(const BrdfSpec& s, const glm::dvec3& m);
+double eval_g(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo, const Shading& c);
+double eval_g1(const BrdfSpec& s, const glm::dvec3& v);
 
 }  // namespace mfv::ref

@@ -55,6 +55,24 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), c};
 }
 
+// Anisotropic widths (wx, wy) along (t, b) = (+x, +y): the Cauchy slopes
+// stretched, slope density (1/(2π wx wy)) (1 + sx²/wx² + sy²/wy²)^(-3/2),
+// over solid angle divided by cos³θ (twin of pdf_slope_aniso in integrate.cl).
+double pdf_m_aniso(const glm::dvec3& m, double wx, double wy) {
+  const double c = m.z, sx = m.x / c, sy = m.y / c;
+  const double slope = std::pow(1.0 + sx * sx / (wx * wx) + sy * sy / (wy * wy), -1.5) / (2.0 * M_PI * wx * wy);
+  return kMixCos * c / M_PI + (1.0 - kMixCos) * slope / (c * c * c);
+}
+
+glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, double wy) {
+  double c, s2;
+  if (u_pick < kMixCos) return sample_m(u_pick, u_phi, u_r, wx, c, s2);
+  const double phi = 2.0 * M_PI * u_phi;
+  const double t = std::sqrt(1.0 / ((1.0 - u_r) * (1.0 - u_r)) - 1.0);  // unit-width |slope|, as sample_m
+  const double sx = wx * t * std::cos(phi), sy = wy * t * std::sin(phi);
+  return glm::normalize(glm::dvec3(sx, sy, 1.0));  // the normal of slope (sx, sy), up to its sign
+}
+
 namespace {
 // Twin of spec_brdf in kernels/integrate.cl: a whole model is evaluated with
 // the fixed direction o as the light and the sampled i as the view.
@@ -73,7 +91,8 @@ double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o
   const double oh = glm::dot(o, h);
   if (oh <= 0.0) return 0.0;
   const double hs2 = h.x * h.x + h.y * h.y;
-  const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pdf_m(h.z, hs2, w) / (4.0 * oh);
+  const double pm = b.aniso() ? pdf_m_aniso(h, w, b.pd2) : pdf_m(h.z, hs2, w);
+  const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pm / (4.0 * oh);
   return spec_brdf(b, i, o) * i.z / pdf;
 }
 
@@ -167,18 +186,39 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   if (s.kind == Integral::DNorm) {
     // stratified radial uniform, as in the kernel: stratum `index` of `strata`
     // picks the component and, rescaled, drives it
+    double u_phi_s = u_phi;
     if (s.strata > 0) {
       const uint64_t n_cos = s.strata / 4;
       const bool cosine = index < n_cos;
       const uint64_t k = cosine ? index : index - n_cos, n = cosine ? n_cos : s.strata - n_cos;
       u_pick = cosine ? 0.0 : 1.0;
-      u_r = std::min((double(k) + u_r) / double(n), 1.0 - 0x1p-24);
+      if (b.aniso()) {
+        // n_phi columns x n / n_phi rows of equal cells (twin of stratum_2d)
+        uint64_t n_phi = 1;
+        while (4 * n_phi * n_phi <= n && n % (2 * n_phi) == 0) n_phi *= 2;
+        u_r = std::min((double(k / n_phi) + u_r) / double(n / n_phi), 1.0 - 0x1p-24);
+        u_phi_s = (double(k % n_phi) + u_phi) / double(n_phi);
+      } else {
+        u_r = std::min((double(k) + u_r) / double(n), 1.0 - 0x1p-24);
+      }
+    }
+    if (b.aniso()) {
+      const glm::dvec3 m = sample_m_aniso(u_pick, u_phi_s, u_r, w, b.pd2);
+      return eval_d(b, m) * m.z / pdf_m_aniso(m, w, b.pd2);
     }
     double c, s2;
     sample_m(u_pick, u_phi, u_r, w, c, s2);
     return b.d->ref_d(c, b.pd) * c / pdf_m(c, s2, w);
   }
-  const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
+  const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
+  const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
+  if (s.kind == Integral::Masking && b.aniso()) {
+    // Heitz 2014 eq. 19 with the view's own Smith G1(o), Λ at α(φ_o)
+    const glm::dvec3 m = sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2);
+    const double om = glm::dot(o, m);
+    if (om <= 0.0) return 0.0;
+    return eval_g1(b, o) * eval_d(b, m) * om / (pdf_m_aniso(m, w, b.pd2) * s.cos_o);
+  }
   if (s.kind == Integral::Masking) {
     // Heitz 2014 eq. 19 with G1(o,m) = G2(n, o, m)
     double c, s2;
@@ -194,7 +234,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
   } else {
     double c, s2;
-    const glm::dvec3 m = sample_m(u_pick, u_phi, u_r, w, c, s2);
+    const glm::dvec3 m = b.aniso() ? sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2) : sample_m(u_pick, u_phi, u_r, w, c, s2);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
   return albedo_weight(b, i, o, w);

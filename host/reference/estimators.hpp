@@ -18,7 +18,8 @@ struct IntegralRef {
   Integral kind = Integral::DNorm;
   BrdfSpec brdf;         // D, G, F and their native parameters, kd
   double width = 0.1;    // proposal width (equivalent alpha)
-  double cos_o = 1.0;    // view for masking and albedo, in the xz-plane
+  double cos_o = 1.0;    // view for masking and albedo, at azimuth phi_o about n
+  double phi_o = 0.0;    // (0: in the xz-plane); twin of IntegralSpec::phi_o
   uint32_t stream = 0;   // Philox stream = integral id
   uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid)
 };
@@ -32,6 +33,9 @@ double pdf_slope(double c, double s2, double w);  // 2D Cauchy slopes of width w
 double pdf_m(double c, double s2, double w);      // the conformance mixture: cosine lobe + Cauchy slopes
 glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c, double& s2);
 double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double w);  // light direction reflect(o, h)
+// The anisotropic proposal (brdf.aniso(): Cauchy slopes stretched by (wx, wy)).
+double pdf_m_aniso(const glm::dvec3& m, double wx, double wy);
+glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, double wy);
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
 
 // Reciprocity pair `index` of integral `stream` (twin of the `reciprocity` kernel).

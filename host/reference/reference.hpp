@@ -24,6 +24,15 @@ double D_beckmann_ct82(double NoH, double m);       // seed 001, as written (kno
 // for θ below ~1e-8 where a double cosine no longer resolves 1 − cosθ.
 double D_ggx_cs(double cos2, double sin2, double alpha);
 
+// ---- Anisotropic D, tangent frame t = +x, b = +y, n = +z ------------------
+// m: the microfacet normal (need not be unit: it is made unit first); ax, ay:
+// the widths along t and b. The *_slice forms are the one-width view the
+// generic checks take (m in the xz-plane, ay = ax): equal to D_ggx/D_beckmann.
+double D_ggx_aniso(const glm::dvec3& m, double ax, double ay);       // Heitz 2014; Burley 2012 app. B
+double D_beckmann_aniso(const glm::dvec3& m, double ax, double ay);  // Heitz 2014
+double D_ggx_aniso_slice(double NoH, double alpha);
+double D_beckmann_aniso_slice(double NoH, double alpha);
+
 // ---- Smith Lambda and G1 (one direction), argument NoV = cos(theta_v) -----
 double Lambda_beckmann(double NoV, double alpha);   // exact, with erf
 double Lambda_ggx(double NoV, double alpha);
@@ -31,6 +40,16 @@ double G1_smith_beckmann(double NoV, double alpha);        // 1 / (1 + Lambda)
 double G1_smith_beckmann_approx(double NoV, double alpha); // seed 000 rational
 double G1_smith_phong(double NoV, double alpha_p);         // seed 000, a = sqrt(ap/2+1)/tan
 double G1_smith_ggx(double NoV, double alpha);             // seed 000 "GGX"
+
+// Anisotropic Smith: the isotropic Λ at the projected width
+// α_o = sqrt(cos²φ ax² + sin²φ ay²) of the direction v's azimuth φ (Heitz 2014).
+double alpha_projected(const glm::dvec3& v, double ax, double ay);
+double Lambda_ggx_aniso(const glm::dvec3& v, double ax, double ay);
+double Lambda_beckmann_aniso(const glm::dvec3& v, double ax, double ay);
+double G1_smith_ggx_aniso(const glm::dvec3& v, double ax, double ay);
+double G1_smith_beckmann_aniso(const glm::dvec3& v, double ax, double ay);
+double G1_smith_ggx_aniso_slice(double NoV, double alpha);
+double G1_smith_beckmann_aniso_slice(double NoV, double alpha);
 
 // ---- G2: shadowing-masking for the pair, all return G (not visibility) ----
 // Arguments: NoL, NoV, NoH, VoH (= LoH for the exact half vector), param.
@@ -43,6 +62,11 @@ double G_smith_phong(double NoL, double NoV, double NoH, double VoH, double alph
 double G_smith_ggx(double NoL, double NoV, double NoH, double VoH, double alpha);
 double G_smith_ggx_correlated(double NoL, double NoV, double NoH, double VoH, double alpha);
 double G_hammon_002(double NoL, double NoV, double NoH, double VoH, double alpha);
+// Anisotropic separable Smith G1(l) G1(v) (directions l, v; VoH for the χ+ test).
+double G_smith_ggx_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
+double G_smith_beckmann_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
+double G_smith_ggx_aniso_slice(double NoL, double NoV, double NoH, double VoH, double alpha);
+double G_smith_beckmann_aniso_slice(double NoL, double NoV, double NoH, double VoH, double alpha);
 
 // ---- F: Fresnel reflectance of one colour channel, argument VoH ----------
 double F_none(double VoH, double unused0, double unused1);

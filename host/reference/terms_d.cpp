@@ -99,3 +99,62 @@ double D_beckmann_ct82(double NoH, double m) {
 }
 
 }  // namespace mfv::ref
+
+// ---- Anisotropic D ----------------------------------------------------------
+// Tangent frame t = +x, b = +y, n = +z (seed 004's Ward: h·t over α_t, h·b
+// over α_b). Written with the angles of m, as the papers write them.
+
+namespace mfv::ref {
+namespace {
+
+// cos²θ, sin²θ and cos²φ of a direction, after making it unit.
+struct Angles {
+    double cos2, sin2, cos2phi, sin2phi;  // sin²φ apart: 1 − cos²φ cancels near φ = 0
+};
+Angles angles_of(const glm::dvec3& m_in) {
+    const glm::dvec3 m = m_in / std::sqrt(m_in.x * m_in.x + m_in.y * m_in.y + m_in.z * m_in.z);
+    const double s2 = m.x * m.x + m.y * m.y;
+    return {m.z * m.z, s2, s2 > 0.0 ? m.x * m.x / s2 : 1.0, s2 > 0.0 ? m.y * m.y / s2 : 0.0};
+}
+
+// The slope ellipse's factor cos²φ/ax² + sin²φ/ay².
+double ellipse(const Angles& a, double ax, double ay) {
+    return a.cos2phi / (ax * ax) + a.sin2phi / (ay * ay);
+}
+
+glm::dvec3 slice_normal(double NoH) {
+    const double c = saturate(NoH);
+    return {std::sqrt(sin2_from_cos(c)), 0.0, c};
+}
+
+}  // namespace
+
+double D_ggx_aniso(const glm::dvec3& m, double ax, double ay) {
+    // Heitz 2014 (anisotropic GGX); Burley 2012 appendix B, GTR2 aniso:
+    //   D = 1 / (π ax ay cos⁴θ (1 + tan²θ (cos²φ/ax² + sin²φ/ay²))²)
+    //     = 1 / (π ax ay (cos²θ + sin²θ (cos²φ/ax² + sin²φ/ay²))²)
+    // (multiplied through by cos⁴θ: no tan²θ, finite at θ = π/2).
+    if (m.z <= 0.0) return 0.0;  // χ+(m·n)
+    const Angles a = angles_of(m);
+    const double k = a.cos2 + a.sin2 * ellipse(a, ax, ay);
+    return 1.0 / (kPi * ax * ay * k * k);
+}
+
+double D_beckmann_aniso(const glm::dvec3& m, double ax, double ay) {
+    // Heitz 2014 (anisotropic Beckmann):
+    //   D = exp(-tan²θ (cos²φ/ax² + sin²φ/ay²)) / (π ax ay cos⁴θ)
+    if (m.z <= 0.0) return 0.0;  // χ+(m·n)
+    const Angles a = angles_of(m);
+    const double e = std::exp(-(a.sin2 / a.cos2) * ellipse(a, ax, ay));
+    if (e == 0.0) return 0.0;  // θ→π/2: the exponential wins, D→0 (no 0/0)
+    return e / (kPi * ax * ay * a.cos2 * a.cos2);
+}
+
+double D_ggx_aniso_slice(double NoH, double alpha) {
+    return NoH <= 0.0 ? 0.0 : D_ggx_aniso(slice_normal(NoH), alpha, alpha);
+}
+double D_beckmann_aniso_slice(double NoH, double alpha) {
+    return NoH <= 0.0 ? 0.0 : D_beckmann_aniso(slice_normal(NoH), alpha, alpha);
+}
+
+}  // namespace mfv::ref

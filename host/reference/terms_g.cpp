@@ -193,4 +193,87 @@ double G_hammon_002(double NoL, double NoV, double, double, double alpha) {
     return 4.0 * NoL * NoV * V;
 }
 
+// ---- Anisotropic Smith ---------------------------------------------------
+// Heitz 2014, "Understanding the masking-shadowing function", anisotropic
+// distributions: stretching the microsurface by (1/ax, 1/ay) maps it onto
+// the isotropic one of width 1, so the anisotropic Λ(ω) is the isotropic Λ at
+// the projected width α_o = sqrt(cos²φ ax² + sin²φ ay²) of ω's azimuth φ.
+// Tangent frame t = +x, b = +y, n = +z. Directions need not be unit.
+
+namespace {
+glm::dvec3 unit(const glm::dvec3& v) { return v / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+glm::dvec3 slice_dir(double NoV) {
+    const double c = std::clamp(NoV, -1.0, 1.0);
+    return {std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c))), 0.0, c};
+}
+}  // namespace
+
+double alpha_projected(const glm::dvec3& v, double ax, double ay) {
+    const double s2 = v.x * v.x + v.y * v.y;
+    if (s2 == 0.0) return ax;  // at the normal the azimuth is undefined (and tanθ = 0)
+    const double cos2phi = v.x * v.x / s2, sin2phi = v.y * v.y / s2;  // apart: 1 − cos²φ cancels near φ = 0
+    return std::sqrt(cos2phi * ax * ax + sin2phi * ay * ay);
+}
+
+// a = 1 / (α_o tanθ) of a direction, tanθ from its own components (a cosine
+// near 1 would lose sin²θ); +inf at the normal, 0 at the horizon.
+double cot_over_width(const glm::dvec3& v, double ax, double ay) {
+    const glm::dvec3 u = unit(v);
+    const double s = std::sqrt(u.x * u.x + u.y * u.y);
+    if (s == 0.0) return kInf;
+    return std::max(u.z, 0.0) / (alpha_projected(v, ax, ay) * s);
+}
+
+double Lambda_ggx_aniso(const glm::dvec3& v, double ax, double ay) {
+    // Heitz 2014: Λ = (−1 + sqrt(1 + 1/a²)) / 2, as x / (2 (1 + sqrt(1 + x))), x = 1/a²
+    const double a = cot_over_width(v, ax, ay);
+    if (a == 0.0) return kInf;  // at or below the horizon
+    const double x = 1.0 / (a * a);
+    return std::isinf(x) ? kInf : x / (2.0 * (1.0 + std::sqrt(1.0 + x)));
+}
+
+double Lambda_beckmann_aniso(const glm::dvec3& v, double ax, double ay) {
+    // Heitz 2014 / Walter et al. 2007: Λ = (erf(a) − 1)/2 + exp(−a²) / (2 a √π), erf − 1 = −erfc
+    const double a = cot_over_width(v, ax, ay);
+    if (a == 0.0) return kInf;
+    if (std::isinf(a)) return 0.0;
+    return -0.5 * std::erfc(a) + std::exp(-a * a) / (2.0 * a * std::sqrt(kPi));
+}
+
+double G1_smith_ggx_aniso(const glm::dvec3& v, double ax, double ay) {
+    // G1 = 1 / (1 + Λ(α_o)), Walter et al. 2007 eq. 34 at the projected width
+    return 1.0 / (1.0 + Lambda_ggx_aniso(v, ax, ay));
+}
+
+double G1_smith_beckmann_aniso(const glm::dvec3& v, double ax, double ay) {
+    return 1.0 / (1.0 + Lambda_beckmann_aniso(v, ax, ay));
+}
+
+double G1_smith_ggx_aniso_slice(double NoV, double alpha) {
+    return NoV <= 0.0 ? 0.0 : G1_smith_ggx_aniso(slice_dir(NoV), alpha, alpha);
+}
+double G1_smith_beckmann_aniso_slice(double NoV, double alpha) {
+    return NoV <= 0.0 ? 0.0 : G1_smith_beckmann_aniso(slice_dir(NoV), alpha, alpha);
+}
+
+double G_smith_ggx_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay) {
+    // separable Smith (Walter et al. 2007 eq. 23) with the anisotropic G1
+    if (!pair_visible(l.z, v.z, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_ggx_aniso(l, ax, ay) * G1_smith_ggx_aniso(v, ax, ay);
+}
+
+double G_smith_beckmann_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay) {
+    if (!pair_visible(l.z, v.z, VoH)) return 0.0;  // χ+ factors
+    return G1_smith_beckmann_aniso(l, ax, ay) * G1_smith_beckmann_aniso(v, ax, ay);
+}
+
+double G_smith_ggx_aniso_slice(double NoL, double NoV, double, double VoH, double alpha) {
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;
+    return G_smith_ggx_aniso(slice_dir(NoL), slice_dir(NoV), VoH, alpha, alpha);
+}
+double G_smith_beckmann_aniso_slice(double NoL, double NoV, double, double VoH, double alpha) {
+    if (!pair_visible(NoL, NoV, VoH)) return 0.0;
+    return G_smith_beckmann_aniso(slice_dir(NoL), slice_dir(NoV), VoH, alpha, alpha);
+}
+
 }  // namespace mfv::ref

@@ -6,9 +6,9 @@ namespace mfv {
 
 TermSelection TermSelection::all() {
   TermSelection s;
-  s.d = terms_of(Kind::D);
-  s.g = terms_of(Kind::G);
-  s.f = terms_of(Kind::F);
+  s.d = all_terms_of(Kind::D);
+  s.g = all_terms_of(Kind::G);
+  s.f = all_terms_of(Kind::F);
   s.g1 = true;
   for (auto& m : ::mfv::models()) s.models.push_back(&m);
   return s;
@@ -18,32 +18,54 @@ int term_index(const Term& t) { return static_cast<int>(&t - catalog().data()); 
 
 namespace {
 
-// One function `name(int id, args)` switching over `terms`, calling `fn(t)`.
-template <class Fn>
-std::string switch_fn(const std::string& name, const std::string& params, const std::string& args,
-                      const std::vector<const Term*>& terms, Fn fn) {
+// One function `name(int id, params)` switching over `terms`; `call(t)` is
+// the expression that evaluates term t from the parameters.
+template <class Call>
+std::string switch_fn(const std::string& name, const std::string& params, const std::vector<const Term*>& terms,
+                      Call call) {
   std::string s = fmt::format("static inline real {}(int id, {}) {{\n", name, params);
-  if (terms.size() == 1) return s + fmt::format("  return {}({});\n}}\n", fn(*terms[0]), args);
+  if (terms.empty()) return fmt::format("static inline real {}(int id, {}) {{ return NAN; }}\n", name, params);
+  if (terms.size() == 1) return s + fmt::format("  return {};\n}}\n", call(*terms[0]));
   s += "  switch (id) {\n";
-  for (auto* t : terms) s += fmt::format("    case {}: return {}({});\n", term_index(*t), fn(*t), args);
+  for (auto* t : terms) s += fmt::format("    case {}: return {};\n", term_index(*t), call(*t));
   return s + "  }\n  return NAN;\n}\n";
+}
+
+// Anisotropic terms (Term::aniso) seen through the one-width functions:
+// their isotropic slice, the direction in the xz-plane and alpha_y = alpha_x.
+std::string slice_dir(const char* cos) {
+  return fmt::format("(real3)(sqrt(sin2_from_cos({0})), R(0.0), {0})", cos);
 }
 
 }  // namespace
 
 std::string generate_dispatch(const TermSelection& s) {
   std::string out;
-  auto kfn = [](const Term& t) { return t.kernel_fn; };
   // A kind left out still gets a function (returning NaN, so a stray call
   // cannot pass silently): shared code such as brdf_eval must compile.
-  auto emit = [&](const char* name, const std::string& params, const std::string& args,
-                  const std::vector<const Term*>& terms) {
-    out += terms.empty() ? fmt::format("static inline real {}(int id, {}) {{ return NAN; }}\n", name, params)
-                         : switch_fn(name, params, args, terms, kfn);
-  };
-  emit("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d);
-  emit("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g);
-  emit("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f);
+  out += switch_fn("eval_D", "real NoH, real sin2H, real p", s.d, [](const Term& t) {
+    return t.aniso ? t.kernel_fn + "(NoH, sqrt(sin2H), R(0.0), p, p)" : t.kernel_fn + "(NoH, sin2H, p)";
+  });
+  out += switch_fn("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", s.g, [](const Term& t) {
+    return t.aniso ? fmt::format("{}({}, {}, VoH, p, p)", t.kernel_fn, slice_dir("NoL"), slice_dir("NoV"))
+                   : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
+  });
+  out += switch_fn("eval_F", "real VoH, real p0, real p1", s.f, [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; });
+  // Two widths and the tangent components (kernels/integrate.cl, agree.cl):
+  // isotropic terms ignore hx, hy and p2 and see exactly what eval_D gives them.
+  out += switch_fn("eval_D_aniso", "real NoH, real sin2H, real hx, real hy, real p, real p2", s.d, [](const Term& t) {
+    return t.aniso ? t.kernel_fn + "(NoH, hx, hy, p, p2)" : t.kernel_fn + "(NoH, sin2H, p)";
+  });
+  out += switch_fn("eval_G_aniso", "real3 l, real3 v, real NoL, real NoV, real NoH, real VoH, real p, real p2", s.g,
+                   [](const Term& t) {
+                     return t.aniso ? t.kernel_fn + "(l, v, VoH, p, p2)" : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
+                   });
+  std::vector<const Term*> smith;
+  for (auto* t : s.g)
+    if (!t->g1_kernel_fn.empty()) smith.push_back(t);
+  out += switch_fn("eval_G1_aniso", "real NoV, real vx, real vy, real p, real p2", smith, [](const Term& t) {
+    return t.aniso ? t.g1_kernel_fn + "(NoV, vx, vy, p, p2)" : t.g1_kernel_fn + "(NoV, p)";
+  });
   // Whole models (kernels/models.cl), by Model::number(); none selected
   // still gives the function, returning NaN.
   std::string mp = "real3 wi, real3 wo, const real* p";
@@ -57,13 +79,11 @@ std::string generate_dispatch(const TermSelection& s) {
     for (auto* m : s.models) out += fmt::format("    case {}: return {}(wi, wo, p);\n", m->number(), m->kernel_fn);
     out += "  }\n  return NAN;\n}\n";
   }
-  if (s.g1) {
-    std::vector<const Term*> smith;
-    for (auto* t : s.g)
-      if (!t->g1_kernel_fn.empty()) smith.push_back(t);
-    if (!smith.empty())
-      out += switch_fn("eval_G1", "real NoV, real p", "NoV, p", smith, [](const Term& t) { return t.g1_kernel_fn; });
-  }
+  if (s.g1 && !smith.empty())
+    out += switch_fn("eval_G1", "real NoV, real p", smith, [](const Term& t) {
+      return t.aniso ? fmt::format("{}(NoV, sqrt(sin2_from_cos(NoV)), R(0.0), p, p)", t.g1_kernel_fn)
+                     : t.g1_kernel_fn + "(NoV, p)";
+    });
   return out;
 }
 
