@@ -12,12 +12,10 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
   // v·h = l·h = |l + v| / 2 for unit l, v: symmetric in l and v (so f is
   // reciprocal to the last bit) and free of the cancellation dot(v, h) has
   // when l and v are nearly opposite and v·h -> 0.
-  real3 sum = wi + wo;
-  real len = length(sum);
-  real3 h = sum / len;
-  real NoH = h.z;
+  real hx, hy, NoH;
+  real len = normalize_sum(wi.x + wo.x, wi.y + wo.y, wi.z + wo.z, &hx, &hy, &NoH);
   real VoH = min(R(0.5) * len, R(1.0));
-  real sin2H = h.x * h.x + h.y * h.y;  // |n×h|², exact where 1 - NoH is not
+  real sin2H = hx * hx + hy * hy;  // |n×h|², exact where 1 - NoH is not
   real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
   // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
   // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.

@@ -22,12 +22,11 @@ static inline real over_4_cosines(real spec, real NoL, real NoV) {
 // The unit half vector of l and v above the horizon, with |n×h|² from its
 // components (exact where 1 - n·h is not) and v·h = |l + v| / 2.
 static inline real3 half_vector(real3 l, real3 v, real* sin2h, real* voh) {
-  real3 s = l + v;
-  real len = length(s);
-  real3 h = s / len;
-  *sin2h = h.x * h.x + h.y * h.y;
+  real hx, hy, hz;
+  real len = normalize_sum(l.x + v.x, l.y + v.y, l.z + v.z, &hx, &hy, &hz);
+  *sin2h = hx * hx + hy * hy;
   *voh = min(R(0.5) * len, R(1.0));
-  return h;
+  return (real3)(hx, hy, hz);
 }
 
 static inline real model_lambert(real3 l, real3 v, const real* p) {
