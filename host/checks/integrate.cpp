@@ -32,6 +32,7 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.cos_o = s.cos_o;
   r.stream = s.stream;
   r.strata = s.strata;
+  r.estimator = s.estimator;
   if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmcB)) {
     // B by its definition: the albedo with Schlick's F at F0 = 0 (the
     // reference's own Schlick), where the kernel multiplies by (1 - o·h)^5
@@ -84,7 +85,8 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
   // widths (width <= 0) draws its component from u_pick, which
   // stratification fixes: those d_norm integrals stay iid.
   for (auto& s : specs)
-    s.strata = (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
+    s.strata = s.estimator != 0 ? 0u  // mfv convergence's estimators are iid or RQMC
+               : (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
                        s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
                    ? uint32_t(n)
                    : 0u;

@@ -23,5 +23,6 @@ void add_energy(CLI::App& app, Globals& g, int& rc);
 void add_check(CLI::App& app, Globals& g, int& rc);
 void add_samplers(CLI::App& app, Globals& g, int& rc);
 void add_bench(CLI::App& app, Globals& g, int& rc);
+void add_convergence(CLI::App& app, Globals& g, int& rc);
 
 }  // namespace mfv::cli

@@ -176,7 +176,83 @@ void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3
   }
 }
 
+namespace {
+
+// mfv convergence's estimators, written from the formulas (twin of
+// convergence_value in kernels/integrate.cl, on the same uniforms).
+glm::dvec3 direction_of(double c, double phi) {
+  const double st = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c)));
+  return {st * std::cos(phi), st * std::sin(phi), c};
+}
+
+// D of the proposal's shape: GGX 1/(π w² cos⁴ (1 + tan²/w²)²), Beckmann
+// exp(-tan²/w²)/(π w² cos⁴) (Walter et al. 2007 eq. 33, 28).
+double shape_d(Estimator e, double c, double w) {
+  const double t2 = (1.0 - c) * (1.0 + c) / (c * c), c4 = c * c * c * c;
+  if (e == Estimator::DSampleBeckmann) return std::exp(-t2 / (w * w)) / (M_PI * w * w * c4);
+  return 1.0 / (M_PI * w * w * c4 * (1.0 + t2 / (w * w)) * (1.0 + t2 / (w * w)));
+}
+
+double convergence_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  const auto est = static_cast<Estimator>(s.estimator);
+  const double w = s.width;
+  double u_phi, u_r;
+  if (est == Estimator::Rqmc) {
+    if (s.kind != Integral::DNorm) return albedo_rqmc(s, seed, index);
+    const auto shift = philox(seed, s.stream, 2, 0);
+    const uint32_t k = static_cast<uint32_t>(index);
+    u_phi = u01_open(shift[0] + k * kRqmcG[0]);
+    u_r = u01_open(shift[1] + k * kRqmcG[1]);
+  } else {
+    const auto r = philox(seed, s.stream, 0, index);
+    u_phi = u01_open(r[2]);
+    u_r = u01_open(r[3]);
+  }
+  const double phi = 2.0 * M_PI * u_phi;
+  const BrdfSpec& b = s.brdf;
+  if (s.kind == Integral::DNorm) {
+    // uniform: pdf 1/(2π); cosine: pdf cos/π; RQMC: the Cauchy slopes alone.
+    // Never D or visible-normal sampling: D c / (D c) = 1 by construction.
+    if (est == Estimator::Uniform) return b.d->ref_d(u_r, b.pd) * u_r * 2.0 * M_PI;
+    if (est == Estimator::Cosine) return b.d->ref_d(std::sqrt(1.0 - u_r), b.pd) * M_PI;
+    if (est == Estimator::Rqmc) {
+      double c, s2;
+      sample_m(1.0, u_phi, u_r, w, c, s2);
+      return b.d->ref_d(c, b.pd) * c / pdf_slope(c, s2, w);
+    }
+    return std::nan("");
+  }
+  const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
+  if (est == Estimator::Uniform) {
+    const glm::dvec3 i = direction_of(u_r, phi);
+    return spec_brdf(b, i, o) * i.z * 2.0 * M_PI;
+  }
+  if (est == Estimator::Cosine) {
+    const glm::dvec3 i = direction_of(std::sqrt(1.0 - u_r), phi);
+    return i.z > 0.0 ? spec_brdf(b, i, o) * M_PI : 0.0;
+  }
+  if (est == Estimator::DSampleGgx || est == Estimator::DSampleBeckmann) {
+    // inverse CDFs of the slope length: GGX tan² = w² u/(1-u) (eq. 35), Beckmann -w² log(1-u) (eq. 28)
+    const double t2 = est == Estimator::DSampleBeckmann ? -w * w * std::log(1.0 - u_r) : w * w * u_r / (1.0 - u_r);
+    const double c = 1.0 / std::sqrt(1.0 + t2);
+    const glm::dvec3 h = direction_of(c, phi);
+    const double oh = glm::dot(o, h);
+    if (oh <= 0.0) return 0.0;
+    const glm::dvec3 i = 2.0 * oh * h - o;
+    if (i.z <= 0.0) return 0.0;
+    return spec_brdf(b, i, o) * i.z / (shape_d(est, c, w) * c / (4.0 * oh));  // pdf_i = D_w (h·n) / (4 o·h)
+  }
+  if (est == Estimator::Vndf) {
+    const glm::dvec3 m = sample_vis(o, u_phi, u_r, w);
+    return m.z > 0.0 ? energy_weight(b, m, o, w) : 0.0;
+  }
+  return std::nan("");
+}
+
+}  // namespace
+
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  if (s.estimator != 0) return convergence_value(s, seed, index);
   if (s.kind == Integral::AlbedoRqmc || s.kind == Integral::EavgRqmc) return albedo_rqmc(s, seed, index);
   auto r = philox(seed, s.stream, 0, index);
   const double u_branch = u01_open(r[0]), u_phi = u01_open(r[2]);

@@ -22,7 +22,11 @@ struct IntegralRef {
   double phi_o = 0.0;    // (0: in the xz-plane); twin of IntegralSpec::phi_o
   uint32_t stream = 0;   // Philox stream = integral id
   uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid)
+  uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
 };
+
+// mfv convergence's estimators (twins of EST_* in kernels/integrate.cl).
+enum class Estimator : uint32_t { Own = 0, Uniform = 1, Cosine = 2, DSampleGgx = 3, DSampleBeckmann = 4, Vndf = 5, Rqmc = 6 };
 
 // The index-th sample of the estimator: its mean over samples is the integral.
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);

@@ -1,0 +1,40 @@
+// Deterministic product rules over the hemisphere for integrands peaked at
+// the normal (microfacet lobes down to alpha = 1e-3 and below): the truth
+// mfv convergence measures errors against, and its quadrature estimator.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <functional>
+
+namespace mfv {
+
+// Gauss-Legendre of `order` nodes on every panel. In t = 1 - cos θ the
+// panels are geometric towards both ends of the range (the lobe's peak at
+// t = 0 and, for reflected integrals, the cut where the light reaches the
+// horizon), `per_decade` a decade down to 1e-12 of the range; in φ ∈ [0, π]
+// (the integrands are symmetric about the plane of the view) `phi_panels`.
+struct ProductRule {
+  int order = 16;
+  int per_decade = 4;
+  int phi_panels = 8;
+};
+
+struct QuadratureResult {
+  double value = 0;
+  long evaluations = 0;  // integrand calls
+};
+
+// ∫ g(m) dω over the hemisphere of m (D normalization: g = D(m)(m·n)).
+QuadratureResult integrate_normals(const std::function<double(const glm::dvec3& m)>& g, const ProductRule& rule);
+
+// ∫ f(i) dω_i over the upper hemisphere of light directions i, taken over
+// half vectors h = (i + o)/|i + o| with dω_i = 4 (o·h) dω_h (Walter et al.
+// 2007 eq. 14), so a BRDF lobe is resolved where D peaks. For each φ_h the
+// range ends where i = reflect(o, h) reaches the horizon:
+// co cos 2θ + so cos φ sin 2θ = 0, θ_c = (π/2 + atan2(so cos φ, co)) / 2,
+// so no kink lies inside a panel. The view o must lie in the xz-plane.
+QuadratureResult integrate_reflected(const std::function<double(const glm::dvec3& i)>& f, const glm::dvec3& o,
+                                     const ProductRule& rule);
+
+}  // namespace mfv
