@@ -202,17 +202,20 @@ const BenchRow* find_row(const BenchReport& r, const std::string& integrand, con
 // terms_*.cl), branch shares weighted as sampled; ±20%:
 //   Philox4x32-10: 10 rounds of 2 32x32->64 multiplies, 4 xors, 2 key adds
 //     (~80 integer ops) + 4 uniform conversions (shift, or, convert, multiply).
-//   d_norm: stratum mapping 6, sample_m ~19 (+ sin, cos), pdf_m 14, D_ggx 9,
-//     weight 2, stratified accumulation 4: ~55.
-//   albedo: view 5, branch + sample_m ~17 (+ sin, cos), reflection 12, half
+//   sincos_2pi (kernels/common.cl, in place of sin and cos): quarter-turn
+//     reduction 4, two degree-4 Horner polynomials in x² 17, sign/swap
+//     selects (not counted): ~22.
+//   d_norm: stratum mapping 6, sample_m ~19 + sincos_2pi 22, pdf_m 14, D_ggx 9,
+//     weight 2, stratified accumulation 4: ~77.
+//   albedo: view 5, branch + sample_m ~17 + sincos_2pi 22, reflection 12, half
 //     vector and proposal pdf (cosine + mixture, Jacobian) ~38, brdf_eval 74
 //     (half vector 14, D_ggx 9, Schlick 9, correlated Smith with two
-//     Λ_ggx ~30, assembly 7, checks 5), weight and accumulation 5: ~150.
+//     Λ_ggx ~30, assembly 7, checks 5), weight and accumulation 5: ~172.
 //   reciprocity: two directions ~25 (+ 2 sin, 2 cos), offsets for the
 //     near-retro/mirror half ~8, two brdf_eval 148, asymmetry 6: ~185.
 FlopCount flops_per_sample(const std::string& integrand) {
-  if (integrand == "d_norm") return {55, 2, 96};
-  if (integrand == "albedo") return {150, 2, 96};
+  if (integrand == "d_norm") return {77, 0, 96};
+  if (integrand == "albedo") return {172, 0, 96};
   return {185, 4, 96};
 }
 
