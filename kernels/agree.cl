@@ -46,14 +46,8 @@ static inline void store_value(__global float* r, real value) {
   r[13] = isfinite(value) ? (float)(value - (real)hi) : 0.0f;
 }
 
-__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
-                         __global const float* ranges, __global float* rec) {
-  size_t i = get_global_id(0);
-  ulong idx = first + i;
-  uint4 rg = mfv_philox(seed, stream, 0, idx);
-  uint4 rp = mfv_philox(seed, stream, 1, idx);
-  uint4 rk = mfv_philox(seed, stream, 2, idx);
-
+// The directions of one input from the uniforms rg; also the half vector.
+static inline void agree_directions(uint4 rg, real3* wi_out, real3* wo_out, real3* h_out) {
   // View: cosθ = u² (dense at grazing); half vector: θ = (π/2) u³ (dense at
   // the normal, where D peaks); light = view mirrored about the half vector
   // (it may fall below the horizon: terms must return 0 there).
@@ -67,7 +61,20 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
   // Keep the half vector on the view's side (v·h >= 0), the terms' domain:
   // turning it by π about the normal makes v·h >= 2 (n·v)(n·h).
   if (dot(wo, h) < R(0.0)) h = (real3)(-h.x, -h.y, h.z);
-  real3 wi = R(2.0) * dot(wo, h) * h - wo;
+  *wi_out = R(2.0) * dot(wo, h) * h - wo;
+  *wo_out = wo;
+  *h_out = h;
+}
+
+__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
+                         __global const float* ranges, __global float* rec) {
+  size_t i = get_global_id(0);
+  ulong idx = first + i;
+  uint4 rg = mfv_philox(seed, stream, 0, idx);
+  uint4 rp = mfv_philox(seed, stream, 1, idx);
+  uint4 rk = mfv_philox(seed, stream, 2, idx);
+  real3 wi, wo, h;
+  agree_directions(rg, &wi, &wo, &h);
 
   // Inputs are written to the float record first and evaluated from there,
   // so the value belongs to exactly the recorded numbers.

@@ -42,6 +42,9 @@ typedef struct {
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
 // parameters p[0..5] from pd, pg, f0, f1, kd, p5.
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
+#ifdef MFV_WITH_GLTF
+  if (s->model == MFV_MODEL_GLTF) return model_gltf_pbr(i, o, s->pd, s->pg, s->f0, s->f1, s->kd, s->p5);
+#endif
   return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
 }
 

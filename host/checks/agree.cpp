@@ -1,5 +1,7 @@
 #include "checks/agree.hpp"
 
+#include "checks/agree_gltf.hpp"
+
 #include "catalog/catalog.hpp"
 #include "reference/brdf.hpp"
 #include "runtime/dispatch.hpp"
@@ -18,7 +20,7 @@
 namespace mfv {
 namespace {
 
-enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4 };  // = EvalMode, = AGREE_* in agree.cl
+enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kGltf = 5 };  // = EvalMode, = AGREE_* in agree.cl; kGltf: agree_gltf.cl
 constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
 constexpr int kSlots = 5;     // D param, G param, F p0, F p1, kd
 
@@ -60,6 +62,7 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
           cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdf, d, g, f,
                            d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
                            std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
+  if (opt.combinations) cases.push_back({"MODEL gltf", kGltf, nullptr, nullptr, nullptr, kGltfUlpBudget, 1e-30});
   if (!opt.only.empty()) {
     std::vector<Case> kept;
     for (auto& c : cases)
@@ -88,6 +91,7 @@ struct Evaluator {
     // kernel's half-vector formation is covered too.
     if (bump_index >= 0 && bump_index < 11) in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
+      case kGltf: break;  // evaluated by agree_gltf.cpp
       case kD: return c.d->ref_d(in[2], in[6]);
       case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
       case kG1: return c.g->ref_g1(in[1], in[7]);
@@ -202,6 +206,11 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
 
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
+    if (c.mode == kGltf) {  // a whole model: its own kernel and reference (agree_gltf.cpp)
+      rep.results.push_back(agree_gltf(rt, prog, opt, uint32_t(ci), rep.kernel_seconds, rep.reference_seconds));
+      rep.samples += opt.samples;
+      continue;
+    }
     std::array<float, 3 * kSlots> ranges{};
     put_range(ranges, 0, param(c.d, 0));
     put_range(ranges, 1, param(c.g, 0));
@@ -270,8 +279,11 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "agree.cl"}, defines,
-                  generate_dispatch(TermSelection::all()), "brdf.cl");
+  TermSelection all = TermSelection::all();
+  all.gltf = true;
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "model_gltf.cl", "agree.cl",
+                   "agree_gltf.cl"},
+                  defines, generate_dispatch(all), "brdf.cl");
 }
 }  // namespace
 

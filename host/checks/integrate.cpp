@@ -22,6 +22,8 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.brdf.f0 = s.f0;
   r.brdf.f1 = s.f1;
   r.brdf.kd = s.kd;
+  r.brdf.model = s.model;
+  r.brdf.p5 = s.p5;
   r.width = s.width;
   r.cos_o = s.cos_o;
   r.stream = s.stream;
@@ -32,7 +34,7 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
 Integrator::Integrator(Runtime& rt, const TermSelection& terms) : rt_(rt), acc_double_(rt.device().fp64) {
   std::vector<std::string> defines;
   if (acc_double_) defines.push_back("MFV_ACC_DOUBLE");
-  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
+  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "model_gltf.cl", "integrate.cl"},
                       defines, generate_dispatch(terms), "brdf.cl");
   size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
   while (local_size_ > max_wg) local_size_ /= 2;

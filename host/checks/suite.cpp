@@ -61,12 +61,16 @@ const std::vector<double> kNormAlphas = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1
 const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 1e5, 1e6};
 // Shared widths and view cosines for the combination checks.
 const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
+}  // namespace
+
 std::vector<double> view_cosines(int n) {
   // dense towards grazing: cos from 1e-4 (0.006 degrees above the horizon) to 1
   std::vector<double> c;
   for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -4.0 * double(n - 1 - i) / double(n - 1)));
   return c;
 }
+
+namespace {
 
 struct FParams {
   double f0, f1;
@@ -90,11 +94,7 @@ double width_of(const Term& d, double native) {
 // ---- expectations --------------------------------------------------------
 // Which models must fail which check, and why, from catalog properties.
 
-struct Expectation {
-  Expect expect = Expect::Hold;
-  std::string reason;
-  double tolerance = 0;
-};
+}  // namespace
 
 // The catalog's prediction for one point. alpha is the shared width, f0 the
 // first F parameter, kd the diffuse albedo.
@@ -134,15 +134,11 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
   return {Expect::Hold, "", fit ? fit->tol : 0.0};
 }
 
+namespace {
+
 // ---- running ---------------------------------------------------------------
 
-struct Plan {
-  std::string check;
-  std::vector<IntegralSpec> specs;
-  std::vector<PointResult> points;
-  uint64_t samples = 0;
-  TermSelection terms;
-};
+using Plan = SuitePlan;
 
 bool check_wanted(const SuiteOptions& opt, const std::string& check) {
   return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
@@ -156,6 +152,7 @@ bool wanted(const std::vector<std::string>& filter, const std::string& name) {
 }
 
 std::string model_name(const PointResult& p) {
+  if (!p.model.empty()) return p.model;  // a named group (mfv run --scene: one parameter set)
   std::string m = p.d ? p.d->id : "";
   if (p.g) m += "/" + p.g->id;
   if (p.f) m += "/" + p.f->id;
@@ -193,7 +190,9 @@ void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, cons
   plan.points.push_back(p);
 }
 
-std::vector<Plan> make_plans(const SuiteOptions& opt) {
+}  // namespace
+
+std::vector<SuitePlan> make_plans(const SuiteOptions& opt) {
   std::vector<Plan> plans;
   auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
   auto Ds = terms_of(Kind::D), Gs = terms_of(Kind::G), Fs = terms_of(Kind::F);
@@ -335,6 +334,8 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
 }
 
 
+namespace {
+
 // The reference runs the same estimator on the identical first N samples of
 // every k-th integral; the two means must agree to rounding.
 void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
@@ -358,17 +359,13 @@ void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions
   }
 }
 
-void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, double& build_seconds) {
-  auto t0 = std::chrono::steady_clock::now();
-  TermSelection all = TermSelection::all();
-  all.g1 = false;  // the reciprocity kernel shares integrate.cl's program
-  double b0 = rt.build_stats().seconds;
-  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "integrate.cl"},
-                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
-                              generate_dispatch(all), "brdf.cl");
-  build_seconds += rt.build_stats().seconds - b0;
-  std::vector<IntegralSpec> specs;
-  std::vector<PointResult> pts;
+}  // namespace
+
+SuitePlan reciprocity_plan(const SuiteOptions& opt) {
+  SuitePlan plan{"reciprocity", {}, {}, 0, TermSelection::all()};
+  plan.terms.g1 = false;  // the reciprocity kernel shares integrate.cl's program
+  std::vector<IntegralSpec>& specs = plan.specs;
+  std::vector<PointResult>& pts = plan.points;
   const double alpha = 0.3;
   for (auto* d : terms_of(Kind::D))
     for (auto* g : terms_of(Kind::G))
@@ -385,7 +382,6 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           s.f0 = float(fp.f0);
           s.f1 = float(fp.f1);
           s.kd = 0.2f;
-          s.stream = uint32_t(specs.size());
           specs.push_back(s);
           PointResult p;
           p.check = "reciprocity";
@@ -397,7 +393,20 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           pts.push_back(p);
         }
       }
+  return plan;
+}
+
+void run_reciprocity(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep) {
+  std::vector<IntegralSpec>& specs = plan.specs;
+  std::vector<PointResult>& pts = plan.points;
   if (specs.empty()) return;
+  auto t0 = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
+  double b0 = rt.build_stats().seconds;
+  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "model_gltf.cl", "integrate.cl"},
+                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
+                              generate_dispatch(plan.terms), "brdf.cl");
+  rep.build_seconds += rt.build_stats().seconds - b0;
   const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * opt.scale));
   cl::Kernel k(prog, "reciprocity");
   cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
@@ -427,7 +436,25 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
   rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(local) * per_item * 2, secs});
 }
 
-}  // namespace
+void run_plan(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep, uint32_t& stream) {
+  if (plan.specs.empty()) return;
+  for (auto& s : plan.specs) s.stream = stream++;
+  double b0 = rt.build_stats().seconds;
+  Integrator in(rt, plan.terms);
+  rep.build_seconds += rt.build_stats().seconds - b0;
+  in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (size_t i = 0; i < est.size(); ++i) {
+    plan.points[i].estimate = est[i].mean;
+    plan.points[i].stderr_ = est[i].stderr_;
+    plan.points[i].samples = est[i].samples;
+  }
+  rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
+  compare_with_reference(in, plan, opt, rep);
+  rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
+}
 
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
@@ -451,26 +478,11 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   uint32_t stream = 0;
   std::vector<Plan> plans = make_plans(opt);
-  for (auto& plan : plans) {
-    if (plan.specs.empty()) continue;
-    for (auto& s : plan.specs) s.stream = stream++;
-    double b0 = rt.build_stats().seconds;
-    Integrator in(rt, plan.terms);
-    rep.build_seconds += rt.build_stats().seconds - b0;
-    in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
-    auto t0 = std::chrono::steady_clock::now();
-    std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
-    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    for (size_t i = 0; i < est.size(); ++i) {
-      plan.points[i].estimate = est[i].mean;
-      plan.points[i].stderr_ = est[i].stderr_;
-      plan.points[i].samples = est[i].samples;
-    }
-    rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
-    compare_with_reference(in, plan, opt, rep);
-    rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
+  for (auto& plan : plans) run_plan(rt, plan, opt, rep, stream);
+  if (check_wanted(opt, "reciprocity")) {
+    SuitePlan rp = reciprocity_plan(opt);
+    run_reciprocity(rt, rp, opt, rep);
   }
-  if (check_wanted(opt, "reciprocity")) run_reciprocity(rt, opt, rep, rep.build_seconds);
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);
   return rep;

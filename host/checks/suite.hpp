@@ -4,6 +4,8 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "checks/integrate.hpp"
+#include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -36,6 +38,7 @@ struct PointResult {
   Expect expect = Expect::Hold;
   double tolerance = 0;     // documented approximation tolerance (relative)
   std::string reason;       // why the point is expected to (or may) fail
+  std::string model;        // group name when not D/G/F (mfv run --scene: one parameter set)
 };
 
 // All points of one model under one check, with its expectation.
@@ -93,6 +96,34 @@ struct SuiteReport {
 const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
+
+// ---- the pieces of run_suite, shared with mfv run --scene (host/scene/) ----
+
+// The catalog's prediction for one point of a D/G/F model: alpha is the
+// shared width, f0 the first F parameter, kd the diffuse albedo.
+struct Expectation {
+  Expect expect = Expect::Hold;
+  std::string reason;
+  double tolerance = 0;
+};
+Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd);
+
+// The integrals of one check, built into one program with `terms`.
+struct SuitePlan {
+  std::string check;
+  std::vector<IntegralSpec> specs;
+  std::vector<PointResult> points;  // one per spec
+  uint64_t samples = 0;             // per integral
+  TermSelection terms;
+};
+std::vector<SuitePlan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog
+SuitePlan reciprocity_plan(const SuiteOptions& opt);         // every D x G x F reciprocity batch
+// Builds, integrates, compares with the reference; appends to rep. Streams
+// are numbered from `stream` on.
+void run_plan(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep, uint32_t& stream);
+void run_reciprocity(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep);
+void judge(SuiteReport& rep, const SuiteOptions& opt);  // verdicts per point and per group
+std::vector<double> view_cosines(int n);  // n view cosines from 1e-4 to 1, dense towards grazing
 
 // z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
 double normal_two_sided_quantile(double p);

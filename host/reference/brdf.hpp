@@ -5,6 +5,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
+
 namespace mfv::ref {
 
 // One BRDF: a D, G and F term with their native parameters, plus a Lambert
@@ -14,6 +16,10 @@ struct BrdfSpec {
   const Term* g = nullptr;
   const Term* f = nullptr;
   double pd = 0, pg = 0, f0 = 0, f1 = 0, kd = 0;
+  // A whole model instead of D x G x F (IntegralSpec::model): its parameters
+  // are pd, pg, f0, f1, kd, p5. 0 = the microfacet BRDF above.
+  uint32_t model = 0;
+  double p5 = 0;
 };
 
 // The cosines a microfacet BRDF depends on, formed from the directions.

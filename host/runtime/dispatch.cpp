@@ -31,7 +31,7 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
 }  // namespace
 
 std::string generate_dispatch(const TermSelection& s) {
-  std::string out;
+  std::string out = s.gltf ? "#define MFV_WITH_GLTF 1\n" : "";
   auto kfn = [](const Term& t) { return t.kernel_fn; };
   // A kind left out still gets a function (returning NaN, so a stray call
   // cannot pass silently): shared code such as brdf_eval must compile.

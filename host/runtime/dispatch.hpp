@@ -14,6 +14,7 @@ namespace mfv {
 struct TermSelection {
   std::vector<const Term*> d, g, f;
   bool g1 = false;  // also emit eval_G1 for the Smith G terms in g
+  bool gltf = false;  // compile the glTF metallic-roughness model (kernels/model_gltf.cl)
   static TermSelection all();
 };
 
