@@ -4,6 +4,7 @@
 #include "report/energy_report.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "scene/scene_filters.hpp"
 
 #include <fmt/format.h>
 
@@ -31,7 +32,16 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
                                           "standard errors (Bonferroni over all values)");
   cmd->add_option("--alpha-fw", alpha_fw, "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
       ->check(CLI::Range(1e-300, 0.5));
+  static std::string scene_path;
+  cmd->add_option("--scene", scene_path, "only the D x G the materials of this scene use (.gltf, .glb, material .json); "
+                                         "prints each material's energy loss at its roughness");
   cmd->callback([&g, &rc] {
+    Scene scene;
+    if (!scene_path.empty()) {
+      if (!opt.models.empty()) throw Error("--models and --scene cannot be combined: the scene chooses the models");
+      scene = load_scene(scene_path);
+      opt.models = scene_energy_models(scene);
+    }
     if (!grid.empty()) {
       int m = 0, a = 0;
       char x = 0, extra = 0;
@@ -53,6 +63,7 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
     Runtime rt(g.device, g.kernel_dir);
     EnergyReport rep = run_energy(rt, opt);
     print_energy_console(rep);
+    if (!scene_path.empty()) print_scene_energy(scene, rep);
     BaselineDiff diff;
     if (!baseline.empty()) {
       diff = compare_energy_baseline(rep, base_text, alpha_fw);
