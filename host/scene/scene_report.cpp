@@ -57,8 +57,8 @@ std::string material_params(const SceneMaterial& m) {
                        m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness,
                        m.alpha, m.factors.ior, m.factors.specular, m.factors.specular_color[0],
                        m.factors.specular_color[1], m.factors.specular_color[2]);
-  std::string s = fmt::format("{}: {}={:g}", m.model(), m.d->params[0].name, m.pd);
-  if (!m.g->params.empty()) s += fmt::format(", {}={:g}", m.g->params[0].name, m.pg);
+  std::string s = fmt::format("{}: D {}={:g}", m.model(), m.d->params[0].name, m.pd);
+  if (!m.g->params.empty()) s += fmt::format(", G {}={:g}", m.g->params[0].name, m.pg);
   for (size_t i = 0; i < m.f->params.size(); ++i) s += fmt::format(", {}={:g}", m.f->params[i].name, i ? m.f1 : m.f0);
   if (m.kd > 0) s += fmt::format(", kd={:g}", m.kd);
   return s + fmt::format(" (alpha {:g})", m.alpha);
