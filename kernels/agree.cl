@@ -66,15 +66,20 @@ static inline void agree_directions(uint4 rg, real3* wi_out, real3* wo_out, real
   *h_out = h;
 }
 
+// Input idx of a case: directions, and the uniforms rp, rk for its parameters.
+static inline void agree_draw(ulong seed, uint stream, ulong idx, uint4* rp, uint4* rk, real3* wi, real3* wo,
+                              real3* h) {
+  *rp = mfv_philox(seed, stream, 1, idx);
+  *rk = mfv_philox(seed, stream, 2, idx);
+  agree_directions(mfv_philox(seed, stream, 0, idx), wi, wo, h);
+}
+
 __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
                          __global const float* ranges, __global float* rec) {
   size_t i = get_global_id(0);
-  ulong idx = first + i;
-  uint4 rg = mfv_philox(seed, stream, 0, idx);
-  uint4 rp = mfv_philox(seed, stream, 1, idx);
-  uint4 rk = mfv_philox(seed, stream, 2, idx);
+  uint4 rp, rk;
   real3 wi, wo, h;
-  agree_directions(rg, &wi, &wo, &h);
+  agree_draw(seed, stream, first + i, &rp, &rk, &wi, &wo, &h);
 
   // Inputs are written to the float record first and evaluated from there,
   // so the value belongs to exactly the recorded numbers.

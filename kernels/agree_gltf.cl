@@ -7,12 +7,9 @@
 #ifdef MFV_WITH_GLTF
 __kernel void agree_gltf(ulong seed, uint stream, ulong first, __global float* rec) {
   size_t i = get_global_id(0);
-  ulong idx = first + i;
-  uint4 rg = mfv_philox(seed, stream, 0, idx);
-  uint4 rp = mfv_philox(seed, stream, 1, idx);
-  uint4 rk = mfv_philox(seed, stream, 2, idx);
+  uint4 rp, rk;
   real3 wi, wo, h;
-  agree_directions(rg, &wi, &wo, &h);
+  agree_draw(seed, stream, first + i, &rp, &rk, &wi, &wo, &h);
   __global float* r = rec + i * AGREE_RECORD;
   r[0] = wi.x; r[1] = wi.y; r[2] = wi.z;
   r[3] = wo.x; r[4] = wo.y; r[5] = wo.z;

@@ -11,6 +11,23 @@
 
 namespace mfv {
 
+IntegralSpec make_spec(IntegralKind kind, const Term* d, const Term* g, const Term* f, double pd, double pg, double f0,
+                       double f1, double kd, double width, double cos_o) {
+  IntegralSpec s;
+  s.check = static_cast<int32_t>(kind);
+  s.d = term_index(*d);
+  s.g = g ? term_index(*g) : 0;
+  s.f = f ? term_index(*f) : 0;
+  s.pd = float(pd);
+  s.pg = float(pg);
+  s.f0 = float(f0);
+  s.f1 = float(f1);
+  s.kd = float(kd);
+  s.width = float(width);
+  s.cos_o = float(cos_o);
+  return s;
+}
+
 ref::IntegralRef reference_of(const IntegralSpec& s) {
   ref::IntegralRef r;
   r.kind = static_cast<ref::Integral>(s.check);

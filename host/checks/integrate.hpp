@@ -10,6 +10,8 @@
 
 namespace mfv {
 
+struct Term;
+
 // AlbedoRqmc/EavgRqmc: the Albedo estimator on randomized-QMC uniforms, one
 // randomization per integral (mfv energy; kernels/integrate.cl).
 enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4 };
@@ -30,6 +32,10 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
   uint64_t samples = 0;
 };
+
+// One microfacet (D x G x F, model 0) integral; g and f may be null.
+IntegralSpec make_spec(IntegralKind kind, const Term* d, const Term* g, const Term* f, double pd, double pg, double f0,
+                       double f1, double kd, double width, double cos_o);
 
 // The same integral for the double reference twin (host/reference/estimators).
 ref::IntegralRef reference_of(const IntegralSpec& s);

@@ -162,19 +162,7 @@ std::string model_name(const PointResult& p) {
 void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
                double pg, double f0, double f1, double kd, double cos_o, double expected, bool upper,
                std::map<std::string, double> params) {
-  IntegralSpec s;
-  s.check = static_cast<int32_t>(kind);
-  s.d = term_index(*d);
-  s.g = g ? term_index(*g) : 0;
-  s.f = f ? term_index(*f) : 0;
-  s.pd = float(pd);
-  s.pg = float(pg);
-  s.f0 = float(f0);
-  s.f1 = float(f1);
-  s.kd = float(kd);
-  s.width = float(alpha);
-  s.cos_o = float(cos_o);
-  plan.specs.push_back(s);
+  plan.specs.push_back(make_spec(kind, d, g, f, pd, pg, f0, f1, kd, alpha, cos_o));
   PointResult p;
   p.check = plan.check;
   p.d = d;

@@ -55,27 +55,12 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
   sp.plan.points.push_back(p);
 }
 
-IntegralSpec spec_of(IntegralKind kind, const Term* d, const Term* g, const Term* f, double width, double cos_o) {
-  IntegralSpec s;
-  s.check = static_cast<int32_t>(kind);
-  s.d = term_index(*d);
-  s.g = g ? term_index(*g) : 0;
-  s.f = f ? term_index(*f) : 0;
-  s.width = float(width);
-  s.cos_o = float(cos_o);
-  return s;
-}
 
 // The glTF model at one channel's parameters (kernels/model_gltf.cl p[0..5]).
 IntegralSpec gltf_spec(IntegralKind kind, const GltfChannelParams& c, double cos_o) {
-  IntegralSpec s = spec_of(kind, &term("ggx", Kind::D), &term("smith_ggx_correlated", Kind::G),
-                           &term("schlick", Kind::F), c.alpha, cos_o);
+  IntegralSpec s = make_spec(kind, &term("ggx", Kind::D), &term("smith_ggx_correlated", Kind::G),
+                             &term("schlick", Kind::F), c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.alpha, cos_o);
   s.model = ref::kModelGltf;
-  s.pd = float(c.alpha);
-  s.pg = float(c.metallic);
-  s.f0 = float(c.base);
-  s.f1 = float(c.f0);
-  s.kd = float(c.f0_max);
   s.p5 = float(c.weight);
   return s;
 }
@@ -147,8 +132,7 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
       SetPlan& sp = plan_for(s, "d_norm", scaled(256 * kSuiteBaseSamples));
       std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, pd);
       if (claim(sp, key, d->id)) {
-        IntegralSpec is = spec_of(IntegralKind::DNorm, d, nullptr, nullptr, m.alpha, 1.0);
-        is.pd = float(pd);
+        IntegralSpec is = make_spec(IntegralKind::DNorm, d, nullptr, nullptr, pd, 0, 0, 0, 0, m.alpha, 1.0);
         add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, pd}}, expect("d_norm", d, nullptr, m.alpha, 0, 0),
             false);
         sp.add_terms(d, nullptr, nullptr);
@@ -159,9 +143,7 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
       std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, m.alpha, pd, pg);
       if (claim(sp, key, dgf(d, g, nullptr))) {
         for (double co : views) {
-          IntegralSpec is = spec_of(IntegralKind::Masking, d, g, nullptr, m.alpha, co);
-          is.pd = float(pd);
-          is.pg = float(pg);
+          IntegralSpec is = make_spec(IntegralKind::Masking, d, g, nullptr, pd, pg, 0, 0, 0, m.alpha, co);
           add(sp, key, is, d, g, nullptr, {{"alpha", m.alpha}, {"cos_o", co}},
               expect("masking", d, g, m.alpha, 0, 0), false);
         }
@@ -186,9 +168,7 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
         std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
         if (claim(sp, key, dgf(d, g, none))) {
           for (double co : views) {
-            IntegralSpec is = spec_of(IntegralKind::Albedo, d, g, none, m.alpha, co);
-            is.pd = float(pd);
-            is.pg = float(pg);
+            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, none, pd, pg, 0, 0, 0, m.alpha, co);
             add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect("furnace", d, g, m.alpha, 1, 0),
                 true);
           }
@@ -216,12 +196,7 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
                                       m.f1, m.kd);
         if (claim(dp, key, m.model())) {
           for (double co : views) {
-            IntegralSpec is = spec_of(IntegralKind::Albedo, d, g, m.f, m.alpha, co);
-            is.pd = float(pd);
-            is.pg = float(pg);
-            is.f0 = float(m.f0);
-            is.f1 = float(m.f1);
-            is.kd = float(m.kd);
+            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, co);
             std::map<std::string, double> ps{{"alpha", m.alpha}, {"cos_o", co}};
             for (size_t i = 0; i < m.f->params.size(); ++i) ps[m.f->params[i].name] = i ? m.f1 : m.f0;
             if (diffuse) ps["kd"] = m.kd;
@@ -245,12 +220,7 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
         std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
                                       m.f1, m.kd);
         if (claim(sp, key, m.model())) {
-          IntegralSpec is = spec_of(IntegralKind::Albedo, d, g, m.f, m.alpha, 1.0);
-          is.pd = float(pd);
-          is.pg = float(pg);
-          is.f0 = float(m.f0);
-          is.f1 = float(m.f1);
-          is.kd = float(m.kd);
+          IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, 1.0);
           add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
           sp.add_terms(d, g, m.f);
         }
