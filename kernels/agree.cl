@@ -2,18 +2,19 @@
 // Philox-generated inputs and writes the inputs it used beside the value, so
 // the reference evaluates the identical (float-rounded) inputs.
 //
-// Record layout (16 floats): [0..5] geometry, [6..10] parameters, [11] unused,
+// Record layout (16 floats): [0..5] geometry, [6..11] parameters (a whole model's p[0..5]),
 // [12] value (float part), [13] value - float part (double builds), [14..15] unused.
-// Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; mode BRDF stores wi.xyz, wo.xyz.
+// Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; modes BRDF and MODEL store wi.xyz, wo.xyz.
 
 #define AGREE_D 0
 #define AGREE_G 1
 #define AGREE_F 2
 #define AGREE_G1 3
 #define AGREE_BRDF 4
+#define AGREE_MODEL 5  // `d` carries the model's number
 #define AGREE_RECORD 16
 
-// ranges: 5 slots (D param, G param, F p0, F p1, kd) x (lo, hi, log flag)
+// ranges: 6 slots (D param, G param, F p0, F p1, kd, p5) x (lo, hi, log flag)
 static inline real draw_param(__global const float* ranges, int slot, real u) {
   real lo = ranges[3 * slot], hi = ranges[3 * slot + 1];
   if (ranges[3 * slot + 2] != 0.0f) return exp(log(lo) + u * (log(hi) - log(lo)));
@@ -25,6 +26,16 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
   // A record names directions. In double builds the float-rounded record is
   // unit only to ~1e-8, far above double rounding, so it is made unit first
   // (the reference does the same in double); float builds take it as it is.
+  if (mode == AGREE_MODEL) {
+    // as for the BRDF: made unit in double builds (the reference does the same)
+    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
+#ifdef MFV_DOUBLE
+    wi = normalize(wi);
+    wo = normalize(wo);
+#endif
+    real p[6] = {r[6], r[7], r[8], r[9], r[10], r[11]};
+    return eval_model(d, wi, wo, p);
+  }
   if (mode == AGREE_BRDF) {
     real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
 #ifdef MFV_DOUBLE
@@ -46,8 +57,14 @@ static inline void store_value(__global float* r, real value) {
   r[13] = isfinite(value) ? (float)(value - (real)hi) : 0.0f;
 }
 
-// The directions of one input from the uniforms rg; also the half vector.
-static inline void agree_directions(uint4 rg, real3* wi_out, real3* wo_out, real3* h_out) {
+__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
+                         __global const float* ranges, __global float* rec) {
+  size_t i = get_global_id(0);
+  ulong idx = first + i;
+  uint4 rg = mfv_philox(seed, stream, 0, idx);
+  uint4 rp = mfv_philox(seed, stream, 1, idx);
+  uint4 rk = mfv_philox(seed, stream, 2, idx);
+
   // View: cosθ = u² (dense at grazing); half vector: θ = (π/2) u³ (dense at
   // the normal, where D peaks); light = view mirrored about the half vector
   // (it may fall below the horizon: terms must return 0 there).
@@ -61,44 +78,26 @@ static inline void agree_directions(uint4 rg, real3* wi_out, real3* wo_out, real
   // Keep the half vector on the view's side (v·h >= 0), the terms' domain:
   // turning it by π about the normal makes v·h >= 2 (n·v)(n·h).
   if (dot(wo, h) < R(0.0)) h = (real3)(-h.x, -h.y, h.z);
-  *wi_out = R(2.0) * dot(wo, h) * h - wo;
-  *wo_out = wo;
-  *h_out = h;
-}
-
-// Input idx of a case: directions, and the uniforms rp, rk for its parameters.
-static inline void agree_draw(ulong seed, uint stream, ulong idx, uint4* rp, uint4* rk, real3* wi, real3* wo,
-                              real3* h) {
-  *rp = mfv_philox(seed, stream, 1, idx);
-  *rk = mfv_philox(seed, stream, 2, idx);
-  agree_directions(mfv_philox(seed, stream, 0, idx), wi, wo, h);
-}
-
-__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
-                         __global const float* ranges, __global float* rec) {
-  size_t i = get_global_id(0);
-  uint4 rp, rk;
-  real3 wi, wo, h;
-  agree_draw(seed, stream, first + i, &rp, &rk, &wi, &wo, &h);
+  real3 wi = R(2.0) * dot(wo, h) * h - wo;
 
   // Inputs are written to the float record first and evaluated from there,
   // so the value belongs to exactly the recorded numbers.
-  real p[5];
+  real p[6];
   p[0] = draw_param(ranges, 0, u01_open(rp.x));
   p[1] = draw_param(ranges, 1, u01_open(rp.y));
   p[2] = draw_param(ranges, 2, u01_open(rp.z));
   p[3] = draw_param(ranges, 3, u01_open(rp.w));
   p[4] = draw_param(ranges, 4, u01_open(rk.x));
+  p[5] = draw_param(ranges, 5, u01_open(rk.y));
 
   __global float* r = rec + i * AGREE_RECORD;
-  if (mode == AGREE_BRDF) {
+  if (mode == AGREE_BRDF || mode == AGREE_MODEL) {
     r[0] = wi.x; r[1] = wi.y; r[2] = wi.z;
     r[3] = wo.x; r[4] = wo.y; r[5] = wo.z;
   } else {
     r[0] = wi.z; r[1] = wo.z; r[2] = h.z; r[3] = dot(wo, h); r[4] = 0.0f; r[5] = 0.0f;
   }
-  for (int k = 0; k < 5; ++k) r[6 + k] = p[k];
-  r[11] = 0.0f;
+  for (int k = 0; k < 6; ++k) r[6 + k] = p[k];
   r[14] = 0.0f;
   r[15] = 0.0f;
   store_value(r, eval_record(mode, d, g, f, r));

@@ -4,10 +4,12 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double real;
 typedef double3 real3;
+typedef double2 real2;
 #define R(x) (x)
 #else
 typedef float real;
 typedef float3 real3;
+typedef float2 real2;
 #define R(x) (x##f)
 #endif
 

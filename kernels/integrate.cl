@@ -19,33 +19,69 @@ typedef float acc_t;
 #define CHECK_D_NORM 0
 #define CHECK_MASKING 1
 #define CHECK_ALBEDO 2
-// mfv energy (host/checks/energy.cpp): the albedo estimator's proposal with
-// its three components taken deterministically (multi-sample MIS, balance
-// heuristic) on randomized quasi-Monte Carlo points; each integral is one
-// randomization (its stream picks the random shift), so the spread over
-// several integrals gives the standard error. Twin: albedo_rqmc in estimators.cpp.
+// mfv energy (host/checks/energy.cpp): the albedo with a visible-normal
+// proposal (see energy_weight) on randomized quasi-Monte Carlo points; each
+// integral is one randomization (its stream picks the random shift), so the
+// spread over several integrals gives the standard error.
 #define CHECK_ALBEDO_RQMC 3  // E(o) at cos_o, as CHECK_ALBEDO
-#define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ drawn with density 2μ per point
+#define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ with density 2μ, stratified
+#define CHECK_ALBEDO_RQMC_B 5  // sample_values only: the B of CHECK_ALBEDO_RQMC, for the reference
 
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
 
-// 16 four-byte fields; host twin: IntegralSpec in host/checks/integrate.hpp.
+// 20 four-byte fields; host twin: IntegralSpec in host/checks/integrate.hpp.
 typedef struct {
   int check, d, g, f;
   float pd, pg, f0, f1;
   float kd, width, cos_o, p5;
-  uint stream, strata, model, unused3;  // strata: samples of a stratified integral, 0 = iid
+  uint stream, strata, model, channel;  // strata: samples of a stratified integral, 0 = iid
+                                        // channel: the RGB channel of a user BRDF (mfv check)
+  float pd2, phi_o;                     // anisotropic D: second width (alpha_y); view azimuth
+  uint estimator, spare;                // mfv convergence: which estimator (0 = the check's own)
 } IntegralSpec;
+
+#ifdef MFV_USER_BRDF
+// mfv check --brdf: the user's functions, through adapters defined in
+// kernels/user_brdf.cl, which is built after the user's file (host/user/).
+static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, real3 o);
+static inline real user_D_adapter(__global const IntegralSpec* s, real3 m);
+static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m);
+#endif
 
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
 // parameters p[0..5] from pd, pg, f0, f1, kd, p5.
+#define MFV_MODEL_CATALOG_END 1000u  // models 1..999: the catalog's whole models (kernels/models.cl)
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
-#ifdef MFV_WITH_GLTF
-  if (s->model == MFV_MODEL_GLTF) return model_gltf_pbr(i, o, s->pd, s->pg, s->f0, s->f1, s->kd, s->p5);
+#ifdef MFV_USER_BRDF
+  return user_brdf_adapter(s, i, o);
 #endif
+  if (s->model > 0u && s->model < MFV_MODEL_CATALOG_END) {
+    // Whole models need not be reciprocal, so the albedo is taken per light:
+    // the estimator's fixed direction o is the light, the sampled i the
+    // view, and the integral is E(l) = ∫ f(l, v) (n·v) dv, the energy a beam
+    // from l reflects (twin: spec_brdf in host/reference/estimators.cpp).
+    real p[6] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5};
+    return eval_model((int)s->model, o, i, p);
+  }
   return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+}
+
+// The D of d_norm and masking at microfacet normal m (cos θ = c, sin²θ = s2).
+static inline real spec_D(__global const IntegralSpec* s, real3 m, real c, real s2) {
+#ifdef MFV_USER_BRDF
+  return user_D_adapter(s, m);
+#endif
+  return eval_D(s->d, c, s2, s->pd);
+}
+
+// The Smith G1(o, m) of masking: the G2 with the light at the normal.
+static inline real spec_G1(__global const IntegralSpec* s, real3 o, real3 m, real co, real c, real om) {
+#ifdef MFV_USER_BRDF
+  return user_G1_adapter(s, o, m);
+#endif
+  return eval_G(s->g, R(1.0), co, c, om, s->pg);
 }
 
 // Cauchy slopes in solid angle: p_slope(s) / cos³θ with
@@ -57,8 +93,22 @@ static inline real pdf_slope(real c, real s2, real w) {
   return R(1.0) / (R(2.0) * MFV_PI * w2 * k * sqrt(k));
 }
 
+// Width w <= 0 (mfv check on code that declares no roughness): a defensive
+// mixture of Cauchy slopes of widths 4^-k, k = 0..MIX_WIDTHS-1 (1 down to
+// 1/256), in equal shares, so any width from ~1e-3 to a few has a component
+// within a factor of 4 of it. Twin: kMixWidths in estimators.cpp.
+#define MIX_WIDTHS 5
+static inline real mix_width(int k) { return ldexp(R(1.0), -2 * k); }
+
+static inline real pdf_cauchy(real c, real s2, real w) {
+  if (w > R(0.0)) return pdf_slope(c, s2, w);
+  real p = R(0.0);
+  for (int k = 0; k < MIX_WIDTHS; ++k) p += pdf_slope(c, s2, mix_width(k));
+  return p / (real)MIX_WIDTHS;
+}
+
 static inline real pdf_m(real c, real s2, real w) {
-  return MIX_COS * c * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_slope(c, s2, w);
+  return MIX_COS * c * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_cauchy(c, s2, w);
 }
 
 // Draws m from the mixture; returns it with cos θ and sin²θ formed without
@@ -71,6 +121,8 @@ static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c,
     *c = sqrt(R(1.0) - u_r);
     st = sqrt(u_r);
   } else {
+    // mixture of widths: u_pick, rescaled to [0, 1), picks the component
+    if (w <= R(0.0)) w = mix_width(min((int)((u_pick - MIX_COS) / (R(1.0) - MIX_COS) * MIX_WIDTHS), MIX_WIDTHS - 1));
     real t = w * sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // inverse CDF of |slope|: tanθ
     real t2 = t * t;
     *c = R(1.0) / sqrt(R(1.0) + t2);
@@ -94,42 +146,98 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
   return f * i.z / pdf;
 }
 
-// Kronecker (additive recurrence) sequence of Roberts 2018: point k is
-// frac(shift + k·g), g_j = 1/φ^j with φ the real root of x⁴ = x + 1 (the
-// 3-dimensional generalized golden ratio), in 32-bit fixed point so that
-// k·g mod 1 is exact. Cranley-Patterson shift from Philox draw 2 of the
+// Kronecker (additive recurrence) sequence of Roberts 2018 in 2D: point k is
+// frac(shift + k·g), g_j = 1/φ^j with φ the plastic number (x³ = x + 1), in
+// 32-bit fixed point so that k·g mod 1 is exact. (The 3D generators' first
+// two coordinates are a much worse 2D set: measured N^-1/2 instead of N^-1
+// at grazing view.) Cranley-Patterson shift from Philox draw 2 of the
 // integral's stream. Host twin: kRqmcG in estimators.cpp.
-#define RQMC_G1 3518319155u
-#define RQMC_G2 2882110345u
-#define RQMC_G3 2360945575u
+#define RQMC_G1 3242174889u
+#define RQMC_G2 2447445414u
 
-// One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the same proposal as the
-// albedo check, but each of its three components (cosine-lobe light, o
-// reflected about a cosine-lobe m, o reflected about a Cauchy m) gets one
-// direction from the point's (u_phi, u_r), weighted by its mixture share:
-// Σ_c p_c E_c[f cos / pdf] is the integral when pdf = Σ_c p_c pdf_c.
-static inline real albedo_rqmc_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  uint4 shift = mfv_philox(seed, s->stream, 2, 0);
+// mfv energy's proposal (CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC): o reflected
+// about a visible normal of the GGX *shape* of width w. The proposal is its
+// own code (not the catalog's D_ggx, whose value only appears in the
+// numerator), so a wrong D under test still shows. It covers every light
+// direction (every h with o·h > 0 has D_w(h) > 0) and takes the 1/cos_o
+// growth of the integrand at grazing view; the weight D G / (D_w G1_w(o)) is
+// bounded for every D of the catalog (Beckmann, Phong and ρ tails are no
+// heavier than GGX's once masked). Measured against the conformance
+// proposal's cosine + Cauchy mixture: the same error per point with one
+// BRDF evaluation instead of three. Twin: albedo_rqmc in estimators.cpp.
+
+// pdf over light directions of i = reflect(o, h) when h is a visible normal of
+// D_w(h) = w² / (π (h_c² w² + h_s²)²) (Walter et al. 2007 eq. 33, with
+// h_s² = |n×h|² so it has no cancellation): G1(o) (o·h) D_w(h) / cos_o
+// (Heitz 2018 eq. 3) times the reflection Jacobian 1 / (4 o·h), with Smith
+// G1(o) = 2 cos_o / (cos_o + sqrt(cos_o² + w² sin_o²)) (Heitz 2014 eq. 72):
+// D_w(h) / (2 (cos_o + sqrt(cos_o² + w² sin_o²))), finite at cos_o = 0.
+static inline real vis_pdf_i(real hc, real hs2, real co, real so2, real w) {
+  real w2 = w * w;
+  real k = hc * hc * w2 + hs2;
+  return w2 / (MFV_PI * k * k) / (R(2.0) * (co + sqrt(co * co + w2 * so2)));
+}
+
+// A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
+// Listing 3, isotropic). Returns 0 where the sample degenerates (h = 0).
+static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
+  real3 os = normalize((real3)(w * o.x, w * o.y, o.z));  // o in the stretched (w = 1) configuration
+  real phi = R(2.0) * MFV_PI * u_phi;
+  real z = (R(1.0) - u_r) * (R(1.0) + os.z) - os.z;
+  real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
+  real3 hs = (real3)(st * cos(phi), st * sin(phi), z) + os;
+  real3 h = (real3)(w * hs.x, w * hs.y, hs.z);
+  real len2 = dot(h, h);
+  return len2 > R(0.0) ? h * rsqrt(len2) : (real3)(R(0.0), R(0.0), R(0.0));
+}
+
+// f(i,o) (n·i) / pdf(i) for i = reflect(o, m), m a visible normal of D_w;
+// *schlick0 = (1 - o·h)^5, Schlick's F at F0 = 0 (the split sum's B weight).
+static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 o, real so2, real w,
+                                 real* schlick0) {
+  *schlick0 = R(0.0);
+  real3 i = R(2.0) * dot(o, m) * m - o;
+  if (i.z <= R(0.0)) return R(0.0);
+  real3 sum = i + o;
+  real len = length(sum);
+  real3 h = sum / len;  // = m up to rounding; formed as brdf_eval forms it
+  real c = R(1.0) - min(R(0.5) * len, R(1.0));  // 1 - o·h as brdf_eval's VoH
+  *schlick0 = c * c * c * c * c;
+  return spec_brdf(s, i, o) * i.z / vis_pdf_i(h.z, h.x * h.x + h.y * h.y, o.z, so2, w);
+}
+
+static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, 2, 0); }
+
+// One point of CHECK_ALBEDO_RQMC / CHECK_EAVG_RQMC: the albedo integrand and,
+// on the same direction, that of the split sum's B (the same BRDF with F
+// multiplied by (1 - o·h)^5: B is defined with F = none, kd = 0).
+// `shift` is the integral's Cranley-Patterson shift, rqmc_shift(s, seed):
+// one Philox draw per integral, taken by the caller outside its sample loop.
+static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shift, ulong index) {
   uint k = (uint)index;
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real co = s->cos_o;
-  if (s->check == CHECK_EAVG_RQMC) co = sqrt(u01_open(shift.z + k * RQMC_G3));  // density 2μ
-  real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
-  real w = s->width;
-  real st = sqrt(u_r), phi = R(2.0) * MFV_PI * u_phi;
-  real3 i = (real3)(st * cos(phi), st * sin(phi), sqrt(R(1.0) - u_r));
-  real v = MIX_I_COS * albedo_weight(s, i, o, w);
-  real c, s2;
-  real3 m = sample_m(R(0.0), u_phi, u_r, w, &c, &s2);  // u_pick = 0: the cosine lobe
-  v += (R(1.0) - MIX_I_COS) * MIX_COS * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
-  m = sample_m(R(1.0), u_phi, u_r, w, &c, &s2);        // u_pick = 1: Cauchy slopes
-  v += (R(1.0) - MIX_I_COS) * (R(1.0) - MIX_COS) * albedo_weight(s, R(2.0) * dot(o, m) * m - o, o, w);
-  return v;
+  if (s->check == CHECK_EAVG_RQMC) {
+    // density 2μ: μ² stratified over the integral's `strata` points with one
+    // random shift (a rank-1 lattice with the 2D sequence), N^-1 like the rest
+    real u = u01_open(shift.z) + (real)k / (real)s->strata;
+    co = sqrt(u - floor(u));
+  }
+  real so2 = sin2_from_cos(co);
+  real3 o = (real3)(sqrt(so2), R(0.0), co);
+  real3 m = sample_vis(o, u_phi, u_r, s->width);
+  if (!(m.z > R(0.0))) return (real2)(R(0.0), R(0.0));
+  real b;
+  real e = energy_weight(s, m, o, so2, s->width, &b);
+  return (real2)(e, e * b);
 }
 
 // One sample of the estimator of integral `s`.
 static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  if (s->check >= CHECK_ALBEDO_RQMC) return albedo_rqmc_value(s, seed, index);
+  if (s->check >= CHECK_ALBEDO_RQMC) {
+    real2 v = albedo_rqmc_value(s, rqmc_shift(s, seed), index);
+    return s->check == CHECK_ALBEDO_RQMC_B ? v.y : v.x;
+  }
   uint4 r = mfv_philox(seed, s->stream, 0, index);
   real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
   real w = s->width;
@@ -150,8 +258,8 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
       u_pick = cosine ? R(0.0) : R(1.0);
       u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
     }
-    sample_m(u_pick, u_phi, u_r, w, &c, &s2);
-    return eval_D(s->d, c, s2, s->pd) * c / pdf_m(c, s2, w);
+    real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
+    return spec_D(s, m, c, s2) * c / pdf_m(c, s2, w);
   }
   real co = s->cos_o;
   real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
@@ -162,8 +270,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     real3 m = sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     real om = dot(o, m);
     if (om <= R(0.0)) return R(0.0);
-    real g1 = eval_G(s->g, R(1.0), co, c, om, s->pg);
-    return g1 * eval_D(s->d, c, s2, s->pd) * om / (pdf_m(c, s2, w) * co);
+    return spec_G1(s, o, m, co, c, om) * spec_D(s, m, c, s2) * om / (pdf_m(c, s2, w) * co);
   }
   // directional albedo E(o) = ∫ f(i,o) (n·i) di; i from a cosine lobe or by
   // reflecting o about an m from the mixture; the pdf is that of the union.
@@ -180,12 +287,13 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
 }
 
 // Work-group g integrates slice (g % slices) of integral (g / slices): each
-// work-item takes per_item consecutive sample indices.
+// work-item takes per_item consecutive sample indices, counted from `first`
+// (a later pass extends an iid or Kronecker point set; 0 for stratified ones).
 __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint per_item, ulong seed,
-                        __global acc_t* sums, __local acc_t* scratch) {
+                        __global acc_t* sums, __local acc_t* scratch, ulong first) {
   size_t group = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);
   __global const IntegralSpec* s = specs + group / slices;
-  ulong base = ((ulong)(group % slices) * lsize + lid) * per_item;
+  ulong base = first + ((ulong)(group % slices) * lsize + lid) * per_item;
   acc_t sum = 0, sumsq = 0;
   if (s->strata > 0u) {
     // stratified: sumsq collects squared differences of neighbouring strata
@@ -194,6 +302,15 @@ __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint pe
       acc_t v0 = (acc_t)sample_value(s, seed, base + k), v1 = (acc_t)sample_value(s, seed, base + k + 1);
       sum += v0 + v1;
       sumsq += (v0 - v1) * (v0 - v1);
+    }
+  } else if (s->check == CHECK_ALBEDO_RQMC) {
+    // RQMC errors come from the spread of replicates, not from a sum of
+    // squares: the second accumulator takes the split sum's B on the same points
+    uint4 shift = rqmc_shift(s, seed);
+    for (uint k = 0; k < per_item; ++k) {
+      real2 v = albedo_rqmc_value(s, shift, base + k);
+      sum += (acc_t)v.x;
+      sumsq += (acc_t)v.y;
     }
   } else {
     for (uint k = 0; k < per_item; ++k) {
@@ -230,7 +347,7 @@ __kernel void sample_values(__global const IntegralSpec* specs, uint n, ulong se
   out[i] = (float)sample_value(s, seed, (ulong)(i % n) * stride);
 }
 
-// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|) over pairs drawn
+// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs drawn
 // by kind (index % 4): uniform hemisphere, grazing, near-retro, near-mirror.
 // Each work-item writes its worst asymmetry and the sample index where it was.
 __kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulong seed, __global float* worst,
@@ -261,7 +378,11 @@ __kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulo
     real f1 = spec_brdf(s, a, b);
     real f2 = spec_brdf(s, b, a);
     real m = max(fabs(f1), fabs(f2));
-    float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / m) : 0.0f;
+    // Relative, except below f = 1e-4 /sr (a thousandth of a white Lambertian
+    // surface's 1/π), where float code loses its relative precision without
+    // consequence: F = (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and
+    // intermediates go subnormal.
+    float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / max(m, R(1e-4))) : 0.0f;
     if (!(asym <= w)) {  // NaN counts as the worst
       w = isnan(asym) ? INFINITY : asym;
       wi = index;

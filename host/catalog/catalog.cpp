@@ -200,13 +200,16 @@ const Term& find_term(const std::string& id) {
   throw Error(fmt::format("unknown term '{}' (known: {})", id, known));
 }
 
+void validate_value(const std::string& owner, const Param& p, double value) {
+  if (std::isnan(value)) throw Error(fmt::format("{}.{} is NaN; give a number in [{}, {}]", owner, p.name, p.lo, p.hi));
+  if (value < p.lo || value > p.hi)
+    throw Error(fmt::format("{}.{} = {} is out of range [{}, {}]", owner, p.name, value, p.lo, p.hi));
+}
+
 void validate_param(const Term& t, size_t index, double value) {
   if (index >= t.params.size())
     throw Error(fmt::format("term '{}' has no parameter #{} (it takes {})", t.id, index, t.params.size()));
-  const Param& p = t.params[index];
-  if (std::isnan(value)) throw Error(fmt::format("{}.{} is NaN; give a number in [{}, {}]", t.id, p.name, p.lo, p.hi));
-  if (value < p.lo || value > p.hi)
-    throw Error(fmt::format("{}.{} = {} is out of range [{}, {}]", t.id, p.name, value, p.lo, p.hi));
+  validate_value(t.id, t.params[index], value);
 }
 
 double native_from_alpha(Roughness r, double alpha) {

@@ -83,5 +83,7 @@ std::vector<const Term*> terms_of(Kind k);
 // Parameter values checked at the boundary: NaN and out-of-range values are
 // rejected with a message naming the term, the parameter and its range.
 void validate_param(const Term& t, size_t index, double value);
+// The same check for one parameter of any catalog entry named `owner`.
+void validate_value(const std::string& owner, const Param& p, double value);
 
 }  // namespace mfv

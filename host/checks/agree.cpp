@@ -1,11 +1,12 @@
 #include "checks/agree.hpp"
 
-#include "checks/agree_gltf.hpp"
-
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "reference/brdf.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+
+#include <glm/geometric.hpp>
 
 #include <fmt/format.h>
 
@@ -20,9 +21,9 @@
 namespace mfv {
 namespace {
 
-enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kGltf = 5 };  // = EvalMode, = AGREE_* in agree.cl; kGltf: agree_gltf.cl
+enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kModel = 5 };  // = EvalMode, = AGREE_* in agree.cl
 constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
-constexpr int kSlots = 5;     // D param, G param, F p0, F p1, kd
+constexpr int kSlots = 6;     // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
 
 struct Case {
   std::string name;
@@ -31,6 +32,7 @@ struct Case {
   const Term* g = nullptr;
   const Term* f = nullptr;
   double ulp_budget = 0, abs_floor = 0;
+  const Model* model = nullptr;
 };
 
 // Sampling range of one parameter: log-uniform where it spans decades.
@@ -62,7 +64,11 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
           cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdf, d, g, f,
                            d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
                            std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
-  if (opt.combinations) cases.push_back({"MODEL gltf", kGltf, nullptr, nullptr, nullptr, kGltfUlpBudget, 1e-30});
+  for (auto& m : models()) {
+    Case c{fmt::format("MODEL {}", m.id), kModel, nullptr, nullptr, nullptr, m.ulp_budget, m.abs_floor};
+    c.model = &m;
+    cases.push_back(c);
+  }
   if (!opt.only.empty()) {
     std::vector<Case> kept;
     for (auto& c : cases)
@@ -82,6 +88,7 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
 struct Evaluator {
   const Case& c;
   const float* r;
+  bool fp64 = false;
   double eval(int bump_index, double bump) const {
     double in[6 + kSlots];
     for (int k = 0; k < 6; ++k) in[k] = r[k];
@@ -89,13 +96,24 @@ struct Evaluator {
     // inputs 0..3 are the cosines; for the BRDF they are derived from wi, wo
     // below and bumped there (index 11..14), so float rounding inside the
     // kernel's half-vector formation is covered too.
-    if (bump_index >= 0 && bump_index < 11) in[bump_index] *= 1.0 + bump;
+    // A whole model's direction components are bumped by an absolute amount:
+    // rounding a unit vector moves each component by ~eps of its length, not
+    // of the component (a small z is as uncertain as a large x).
+    if (c.mode == kModel && bump_index >= 0 && bump_index < 6) in[bump_index] += bump;
+    else if (bump_index >= 0 && bump_index < (c.mode == kModel ? 12 : 11)) in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
-      case kGltf: break;  // evaluated by agree_gltf.cpp
       case kD: return c.d->ref_d(in[2], in[6]);
       case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
       case kG1: return c.g->ref_g1(in[1], in[7]);
       case kF: return c.f->ref_f(in[3], in[8], in[9]);
+      case kModel: {
+        // as kernels/agree.cl: the float record's directions as they are in
+        // float32 (the model's formula then sees the kernel's own inputs, not
+        // unit vectors 1e-7 away), made unit in float64 as the kernel does
+        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        if (fp64) wi = glm::normalize(wi), wo = glm::normalize(wo);
+        return c.model->ref(wi, wo, in + 6);
+      }
       case kBrdf: {
         ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
         glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
@@ -108,17 +126,17 @@ struct Evaluator {
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
-  int inputs() const { return c.mode == kBrdf ? 15 : 11; }
+  int inputs() const { return c.mode == kBrdf ? 15 : c.mode == kModel ? 12 : 11; }
 };
 
 std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string in;
-  if (c.mode == kBrdf)
+  if (c.mode == kBrdf || c.mode == kModel)
     in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[0], r[1], r[2], r[3], r[4], r[5]);
   else
     in = fmt::format("NoL={:a} NoV={:a} NoH={:a} VoH={:a}", r[0], r[1], r[2], r[3]);
   std::string ps;
-  const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd"};
+  const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd", "p5"};
   for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[6 + s]);
   return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
 }
@@ -136,7 +154,7 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
     const float* r = rec + i * kRecord;
     double k = r[12];
     if (std::isfinite(k)) k += r[13];
-    Evaluator ev{c, r};
+    Evaluator ev{c, r, fp64};
     double ref = ev.eval(-1, 0.0);
     double diff = std::fabs(k - ref);
     bool same_nonfinite = (std::isinf(k) && k == ref);
@@ -155,9 +173,13 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
       // Conditioning allowance: what the exact function itself does when one
       // input moves by 2 units of rounding. A kernel within twice that is as
       // good as its format allows at this input.
+      // Whole models form their cosines (v·r, n·h) from three products and
+      // a normalisation each: several roundings of the inputs' scale, which
+      // a lobe (v·r)^n multiplies by n; their bump is 4 units, not 2.
+      const double units = c.mode == kModel ? 4 : 2;
       double dev = 0;
       for (int j = 0; j < ev.inputs(); ++j)
-        for (double b : {2 * eps, -2 * eps}) dev = std::max(dev, std::fabs(ev.eval(j, b) - ref));
+        for (double b : {units * eps, -units * eps}) dev = std::max(dev, std::fabs(ev.eval(j, b) - ref));
       fail = diff > std::max(allowed, 2.0 * dev);
     }
     double score = fail ? 1e300 + ulps : ulps;
@@ -206,18 +228,20 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
 
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
-    if (c.mode == kGltf) {  // a whole model: its own kernel and reference (agree_gltf.cpp)
-      rep.results.push_back(agree_gltf(rt, prog, opt, uint32_t(ci), rep.kernel_seconds, rep.reference_seconds));
-      rep.samples += opt.samples;
-      continue;
-    }
     std::array<float, 3 * kSlots> ranges{};
     put_range(ranges, 0, param(c.d, 0));
     put_range(ranges, 1, param(c.g, 0));
     put_range(ranges, 2, param(c.f, 0));
     put_range(ranges, 3, param(c.f, 1));
     put_range(ranges, 4, nullptr);  // kd in [0, 1]
+    put_range(ranges, 5, nullptr);
+    ranges[3 * 5 + 1] = 0.0f;  // p5: whole models only
     if (c.mode != kBrdf) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
+    if (c.model)  // a whole model: its own parameters in every slot, 0 past its count
+      for (int k = 0; k < kSlots; ++k) {
+        put_range(ranges, k, size_t(k) < c.model->params.size() ? &c.model->params[size_t(k)] : nullptr);
+        if (size_t(k) >= c.model->params.size()) ranges[3 * k + 1] = 0.0f;
+      }
     rt.queue().enqueueWriteBuffer(range_buf, CL_TRUE, 0, sizeof(ranges), ranges.data());
 
     Stats total;
@@ -230,7 +254,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       kern.setArg(1, static_cast<cl_uint>(ci));
       kern.setArg(2, static_cast<cl_ulong>(first));
       kern.setArg(3, static_cast<cl_int>(c.mode));
-      kern.setArg(4, static_cast<cl_int>(c.d ? term_index(*c.d) : 0));
+      kern.setArg(4, static_cast<cl_int>(c.model ? int(c.model->number()) : c.d ? term_index(*c.d) : 0));
       kern.setArg(5, static_cast<cl_int>(c.g ? term_index(*c.g) : 0));
       kern.setArg(6, static_cast<cl_int>(c.f ? term_index(*c.f) : 0));
       kern.setArg(7, range_buf);
@@ -279,11 +303,9 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  TermSelection all = TermSelection::all();
-  all.gltf = true;
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "model_gltf.cl", "agree.cl",
-                   "agree_gltf.cl"},
-                  defines, generate_dispatch(all), "brdf.cl");
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl", "brdf.cl",
+                   "agree.cl"},
+                  defines, generate_dispatch(TermSelection::all()), "brdf.cl");
 }
 }  // namespace
 
@@ -298,17 +320,17 @@ PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   rec[12] = std::numeric_limits<float>::quiet_NaN();  // sentinel
   cl::Buffer buf(rt.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(rec), rec.data());
   kern.setArg(0, static_cast<cl_int>(p.mode));
-  kern.setArg(1, static_cast<cl_int>(p.d ? term_index(*p.d) : 0));
+  kern.setArg(1, static_cast<cl_int>(p.model ? int(p.model->number()) : p.d ? term_index(*p.d) : 0));
   kern.setArg(2, static_cast<cl_int>(p.g ? term_index(*p.g) : 0));
   kern.setArg(3, static_cast<cl_int>(p.f ? term_index(*p.f) : 0));
   kern.setArg(4, buf);
   rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(1));
   rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, sizeof(rec), rec.data());
-  Case c{"point", static_cast<Mode>(p.mode), p.d, p.g, p.f, 0, 0};
+  Case c{"point", static_cast<Mode>(p.mode), p.d, p.g, p.f, 0, 0, p.model};
   PointResult r;
   r.kernel = rec[12];
   if (std::isfinite(r.kernel)) r.kernel += rec[13];
-  r.reference = Evaluator{c, rec.data()}.eval(-1, 0.0);
+  r.reference = Evaluator{c, rec.data(), fp64}.eval(-1, 0.0);
   double diff = r.kernel == r.reference ? 0.0 : std::fabs(r.kernel - r.reference);
   r.ulps = diff / ulp_of(r.reference, fp64);
   r.rel = diff / std::max(std::fabs(r.reference), std::numeric_limits<double>::min());

@@ -39,15 +39,18 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
 // One point evaluated by the kernel and the reference (mfv eval). A record
 // holds the inputs as kernels/agree.cl lays them out: for a BRDF wi.xyz,
 // wo.xyz; for a term NoL, NoV, NoH, VoH; then D param, G param, F p0, F p1, kd.
+// A whole model (Model) takes wi.xyz, wo.xyz and its p[0..5] in params.
 struct Term;
-enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4 };
+struct Model;
+enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4, Model = 5 };
 struct PointSpec {
   EvalMode mode = EvalMode::Brdf;
   const Term* d = nullptr;
   const Term* g = nullptr;
   const Term* f = nullptr;
+  const Model* model = nullptr;
   float inputs[6] = {0, 0, 1, 0, 0, 1};
-  float params[5] = {0, 0, 0, 0, 0};
+  float params[6] = {0, 0, 0, 0, 0, 0};
 };
 struct PointResult {
   double kernel = 0, reference = 0, rel = 0, ulps = 0;

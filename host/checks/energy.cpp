@@ -88,7 +88,6 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   rep.alpha = energy_alpha_grid(opt.n_alpha);
   const size_t nm = size_t(opt.n_mu), na = size_t(opt.n_alpha), R = size_t(opt.replicates);
   const Term& none = find_term("none");
-  const Term& schlick = find_term("schlick");
 
   TermSelection sel;
   for (auto* d : terms_of(Kind::D))
@@ -113,7 +112,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
     }
   if (rep.tables.empty()) throw Error("no D/G combination selected");
-  sel.f = {&none, &schlick};
+  sel.f = {&none};
 
   const double b0 = rt.build_stats().seconds;
   Integrator in(rt, sel);
@@ -140,67 +139,95 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     for (size_t a = 0; a < na; ++a) {
       for (size_t m = 0; m < nm; ++m) {
         units.push_back({ti, a * nm + m, false, spec(IntegralKind::AlbedoRqmc, a, rep.mu[m]), stream});
-        stream += uint32_t(2 * R);
+        stream += uint32_t(R);
       }
       units.push_back({ti, a, true, spec(IntegralKind::EavgRqmc, a, 1.0), stream});
       stream += uint32_t(R);
     }
   }
+  // R replicates (randomizations) per unit; an E/A/B cell's kernel integral
+  // yields E and, on the same points, B (kernels/integrate.cl albedo_rqmc_value).
   auto specs_of = [&](const Unit& u) {
     std::vector<IntegralSpec> v;
     for (size_t r = 0; r < R; ++r) {
       IntegralSpec s = u.base;
       s.stream = u.first_stream + uint32_t(r);
       v.push_back(s);
-      if (!u.eavg) {
-        s.f = term_index(schlick);  // F0 = 0: F = (1 - o·h)^5, the B term
-        s.f0 = 0;
-        s.stream = u.first_stream + uint32_t(R + r);
-        v.push_back(s);
-      }
     }
     return v;
   };
 
-  // Adaptive passes: every unit at min_points, then 4x for those above target.
+  // Adaptive passes: every unit at min_points; a unit above target then gets
+  // the power-of-two multiple of its points that its error predicts (RQMC
+  // error falls as 1/N here: measured N^-1 at normal and grazing view), at
+  // least 2x. E/A/B cells extend their point sets (the Kronecker points are
+  // nested), so no point is computed twice; E_avg's stratified view cosines
+  // depend on the count, so it restarts.
+  struct Progress {
+    uint64_t done = 0, want = 0;
+    std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values so far
+  };
+  std::vector<Progress> prog(units.size());
+  for (auto& p : prog) p.want = opt.min_points;
   std::vector<size_t> pending(units.size());
   for (size_t i = 0; i < units.size(); ++i) pending[i] = i;
-  for (uint64_t points = opt.min_points; !pending.empty(); points *= 4) {
-    std::vector<IntegralSpec> specs;
-    std::vector<size_t> offset;
+  while (!pending.empty()) {
+    // one pass per distinct (points to add, first index) among pending units
+    std::map<std::pair<uint64_t, uint64_t>, std::vector<size_t>> passes;
     for (size_t ui : pending) {
-      offset.push_back(specs.size());
-      auto v = specs_of(units[ui]);
-      specs.insert(specs.end(), v.begin(), v.end());
+      const Progress& p = prog[ui];
+      const uint64_t first = units[ui].eavg ? 0 : p.done;
+      passes[{p.want - first, first}].push_back(ui);
     }
-    std::vector<Estimate> est = in.run(specs, points, opt.seed);
-    const uint64_t used = in.samples_used(points);
-    rep.samples += used * specs.size();
     std::vector<size_t> next;
-    for (size_t k = 0; k < pending.size(); ++k) {
-      const Unit& u = units[pending[k]];
-      EnergyTable& t = rep.tables[u.table];
-      double worst;
-      if (u.eavg) {
-        std::vector<double> e;
-        for (size_t r = 0; r < R; ++r) e.push_back(est[offset[k] + r].mean);
-        t.eavg[u.index] = replicate_stats(e);
-        worst = t.eavg[u.index].se;
-      } else {
-        std::vector<double> e, a, b;
-        for (size_t r = 0; r < R; ++r) {
-          const double er = est[offset[k] + 2 * r].mean, br = est[offset[k] + 2 * r + 1].mean;
-          e.push_back(er);
-          b.push_back(br);
-          a.push_back(er - br);  // same shifted points: A and B share their noise
-        }
-        t.E[u.index] = replicate_stats(e);
-        t.A[u.index] = replicate_stats(a);
-        t.B[u.index] = replicate_stats(b);
-        t.points[u.index] = used;
-        worst = std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
+    for (auto& [key, group] : passes) {
+      const auto [add, first] = key;
+      std::vector<IntegralSpec> specs;
+      std::vector<size_t> offset;
+      for (size_t ui : group) {
+        offset.push_back(specs.size());
+        auto v = specs_of(units[ui]);
+        specs.insert(specs.end(), v.begin(), v.end());
       }
-      if (!(worst <= opt.target) && points * 4 <= opt.max_points && std::isfinite(worst)) next.push_back(pending[k]);
+      std::vector<Estimate> est = in.run(specs, add, opt.seed, first);
+      const uint64_t used = in.samples_used(add);
+      rep.samples += used * specs.size();
+      for (size_t k = 0; k < group.size(); ++k) {
+        const Unit& u = units[group[k]];
+        Progress& p = prog[group[k]];
+        if (first == 0) p.sum.assign(R, 0.0), p.b_sum.assign(R, 0.0);
+        for (size_t r = 0; r < R; ++r) {
+          p.sum[r] += est[offset[k] + r].mean * double(used);
+          p.b_sum[r] += est[offset[k] + r].b_mean * double(used);
+        }
+        p.done = first + used;
+        EnergyTable& t = rep.tables[u.table];
+        double worst;
+        if (u.eavg) {
+          std::vector<double> e;
+          for (size_t r = 0; r < R; ++r) e.push_back(p.sum[r] / double(p.done));
+          t.eavg[u.index] = replicate_stats(e);
+          worst = t.eavg[u.index].se;
+        } else {
+          std::vector<double> e, a, b;
+          for (size_t r = 0; r < R; ++r) {
+            const double er = p.sum[r] / double(p.done), br = p.b_sum[r] / double(p.done);
+            e.push_back(er);
+            b.push_back(br);
+            a.push_back(er - br);  // same shifted points: A and B share their noise
+          }
+          t.E[u.index] = replicate_stats(e);
+          t.A[u.index] = replicate_stats(a);
+          t.B[u.index] = replicate_stats(b);
+          t.points[u.index] = p.done;
+          worst = std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
+        }
+        if (worst <= opt.target || !std::isfinite(worst) || p.done >= opt.max_points) continue;
+        uint64_t want = p.done * 2;
+        while (want < opt.max_points && double(want) < 1.25 * double(p.done) * worst / opt.target) want *= 2;
+        p.want = std::min<uint64_t>(want, opt.max_points);
+        next.push_back(group[k]);
+      }
     }
     pending.swap(next);
   }
@@ -243,7 +270,14 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     size_t k = 0;
     for (auto& u : units)
       for (auto& s : specs_of(u))
-        if (k++ % size_t(std::max(1, opt.reference_every)) == 0) subset.push_back(s);
+        if (k++ % size_t(std::max(1, opt.reference_every)) == 0) {
+          subset.push_back(s);
+          if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+            s.check = static_cast<int32_t>(IntegralKind::AlbedoRqmcB);  // and its B channel
+            subset.push_back(s);
+          }
+        }
+    in.stratify(subset, opt.min_points);  // E_avg's view cosines are spaced by the point count
     auto agree = in.compare_with_reference(subset, opt.reference_samples, opt.seed);
     for (size_t j = 0; j < agree.size(); ++j) {
       rep.reference_compared++;

@@ -1,6 +1,7 @@
 #include "checks/integrate.hpp"
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
@@ -28,6 +29,21 @@ IntegralSpec make_spec(IntegralKind kind, const Term* d, const Term* g, const Te
   return s;
 }
 
+IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p, double cos_o) {
+  IntegralSpec s;
+  s.check = static_cast<int32_t>(kind);
+  s.model = m.number();
+  s.pd = float(p[0]);
+  s.pg = float(p[1]);
+  s.f0 = float(p[2]);
+  s.f1 = float(p[3]);
+  s.kd = float(p[4]);
+  s.p5 = float(p[5]);
+  s.width = float(m.proposal_width(p.data()));
+  s.cos_o = float(cos_o);
+  return s;
+}
+
 ref::IntegralRef reference_of(const IntegralSpec& s) {
   ref::IntegralRef r;
   r.kind = static_cast<ref::Integral>(s.check);
@@ -39,20 +55,35 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.brdf.f0 = s.f0;
   r.brdf.f1 = s.f1;
   r.brdf.kd = s.kd;
-  r.brdf.model = s.model;
   r.brdf.p5 = s.p5;
+  r.brdf.model = model_by_number(s.model);  // whole models 1..999; nullptr for 0
   r.width = s.width;
   r.cos_o = s.cos_o;
   r.stream = s.stream;
   r.strata = s.strata;
+  if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmcB)) {
+    // B by its definition: the albedo with Schlick's F at F0 = 0 (the
+    // reference's own Schlick), where the kernel multiplies by (1 - o·h)^5
+    r.kind = ref::Integral::AlbedoRqmc;
+    r.brdf.f = &find_term("schlick");
+    r.brdf.f0 = 0.0;
+  }
   return r;
 }
 
-Integrator::Integrator(Runtime& rt, const TermSelection& terms) : rt_(rt), acc_double_(rt.device().fp64) {
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
-  if (acc_double_) defines.push_back("MFV_ACC_DOUBLE");
-  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl", "model_gltf.cl", "integrate.cl"},
-                      defines, generate_dispatch(terms), "brdf.cl");
+  if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl", "brdf.cl",
+                   "integrate.cl"},
+                  defines, generate_dispatch(terms), "brdf.cl");
+}
+
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {}
+
+// The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
+Integrator::Integrator(Runtime& rt, cl::Program program)
+    : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
   size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
   while (local_size_ > max_wg) local_size_ /= 2;
 }
@@ -76,15 +107,27 @@ uint64_t Integrator::samples_used(uint64_t requested) const {
 void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
   const uint64_t n = samples_used(samples);
   if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
-  for (auto& s : specs) s.strata = s.check == static_cast<int32_t>(IntegralKind::DNorm) ? uint32_t(n) : 0u;
+  // d_norm: stratified radius; E_avg (RQMC): stratified view cosine² (the
+  // point count fixes the spacing, see kernels/integrate.cl). A mixture of
+  // widths (width <= 0) draws its component from u_pick, which
+  // stratification fixes: those d_norm integrals stay iid.
+  for (auto& s : specs)
+    s.strata = (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
+                       s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
+                   ? uint32_t(n)
+                   : 0u;
 }
 
-std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed) {
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
+                                     uint64_t first_index) {
   uint32_t per_item, slices;
   layout(samples, per_item, slices);
   const uint64_t n = uint64_t(slices) * local_size_ * per_item;
   std::vector<IntegralSpec> specs = specs_in;
   stratify(specs, samples);
+  if (first_index > 0)
+    for (auto& s : specs)
+      if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
   std::vector<Estimate> out(specs.size());
   if (specs.empty()) return out;
   cl::Kernel k(program_, "integrate");
@@ -103,6 +146,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     k.setArg(3, static_cast<cl_ulong>(seed));
     k.setArg(4, sums);
     k.setArg(5, cl::Local(2 * local_size_ * acc));
+    k.setArg(6, static_cast<cl_ulong>(first_index));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
     std::vector<double> host(groups * 2);
     if (acc_double_) {
@@ -121,14 +165,17 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
       Estimate& e = out[first + i];
       e.samples = n;
       e.mean = s / double(n);
-      if (specs[first + i].strata > 0) {
+      if (specs[first + i].check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+        e.b_mean = ss / double(n);  // the kernel's second accumulator holds B here
+        e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+      } else if (specs[first + i].strata > 0) {
         // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
         e.stderr_ = std::sqrt(ss) / double(n);
       } else {
         double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
         e.stderr_ = std::sqrt(var / double(n));
       }
-      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
     }
   }
   return out;
@@ -147,6 +194,30 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
   k.setArg(3, vals);
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
   rt_.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+  return out;
+}
+
+std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                uint64_t seed) {
+  std::vector<float> out(specs.size(), 0.0f);
+  if (specs.empty()) return out;
+  const size_t local = 64;  // the kernel indexes pairs by local id
+  cl::Kernel k(program_, "reciprocity");
+  cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer wb(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
+  cl::Buffer ib(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
+  k.setArg(0, sb);
+  k.setArg(1, static_cast<cl_uint>(per_item));
+  k.setArg(2, static_cast<cl_ulong>(seed));
+  k.setArg(3, wb);
+  k.setArg(4, ib);
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
+  std::vector<float> w(specs.size() * local);
+  rt_.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  for (size_t i = 0; i < specs.size(); ++i)
+    for (size_t l = 0; l < local; ++l)
+      if (!(w[i * local + l] <= out[i])) out[i] = w[i * local + l];
   return out;
 }
 

@@ -83,17 +83,13 @@ double min_normal(bool fp64) { return fp64 ? std::numeric_limits<double>::min() 
 // cosθ ∈ {0, 1e-7, 1e-4, ..., 1 - 1e-7, 1, 1 + 1 ulp}, plus values whose
 // square underflows (a unit vector can have such a z), and below the horizon.
 
-struct CosClass {
-  std::string name, what;
-  std::vector<double> values;
-  bool in_domain = true;
-};
-
 // Cosines whose square underflows in float: the smallest subnormal 2^-149,
 // 1e-30 and 1e-20 (a unit float vector can have such a z). Float64 kernels
 // are swept on the same values: the corresponding double extremes (cos below
 // ~1e-154) are beyond what the double reference itself can judge.
 const double kTiny[3] = {0x1p-149, 1e-30, 1e-20};
+
+}  // namespace
 
 std::vector<CosClass> cos_classes(bool fp64) {
   return {
@@ -107,6 +103,8 @@ std::vector<CosClass> cos_classes(bool fp64) {
       {"below_horizon", "cos in {-2^-149, -1e-7, -0.5, -1}", {-kTiny[0], -1e-7, -0.5, -1.0}},
   };
 }
+
+namespace {
 
 std::vector<double> all_cos(bool fp64) {
   std::vector<double> v;
@@ -358,14 +356,6 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
 
 // ---- Cases: assembled BRDFs -------------------------------------------------
 
-struct Pair {
-  glm::dvec3 wi, wo;
-};
-struct PairSet {
-  std::string name, what, expect;
-  std::vector<Pair> pairs;
-};
-
 glm::dvec3 mirror(const glm::dvec3& w) { return {-w.x, -w.y, w.z}; }
 glm::dvec3 rot_z(const glm::dvec3& w, double a) {
   return {w.x * std::cos(a) - w.y * std::sin(a), w.x * std::sin(a) + w.y * std::cos(a), w.z};
@@ -374,6 +364,8 @@ glm::dvec3 rot_z(const glm::dvec3& w, double a) {
 // Direction pairs of the BRDF sweep (wi = light, wo = view, n = +z). Mirror
 // pairs put h on the normal exactly (the peak of every D, the place a double
 // reference resolves exactly); the rest keep θh >= ~1e-4 or on the normal.
+}  // namespace
+
 std::vector<PairSet> pair_sets(bool fp64) {
   const double az = 0.3;  // view azimuth: off the axes so x and y both round
   std::vector<PairSet> out;
@@ -453,6 +445,8 @@ std::vector<PairSet> pair_sets(bool fp64) {
   }
   return out;
 }
+
+namespace {
 
 // F parameters of the BRDF sweep (η = 1 and friends are swept on F alone).
 std::vector<std::array<double, 2>> brdf_f_params(const Term& f) {

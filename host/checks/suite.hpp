@@ -6,8 +6,10 @@
 #include "catalog/catalog.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
+#include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -18,15 +20,16 @@ namespace mfv {
 enum class Verdict { Pass, Fail, XFail, XPass };
 const char* verdict_name(Verdict v);
 
-// What the catalog predicts for one point: it must hold, it must fail (a
-// known deficiency large enough to show at any seed), or it may fail (a
-// deficiency whose size depends on F, so either outcome is accepted).
-enum class Expect { Hold, Fail, May };
+// What the catalog predicts for one point: Expect (catalog/models.hpp) says
+// it must hold, it must fail (a known deficiency large enough to show at any
+// seed), or it may fail (a deficiency whose size depends on F, so either
+// outcome is accepted).
 
 // One integral (or one reciprocity batch) at one parameter point.
 struct PointResult {
   std::string check;
   const Term *d = nullptr, *g = nullptr, *f = nullptr;
+  std::string model;  // a whole model ("phong_004[n=1]") or user code (mfv check); empty: the D/G/F ids
   std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
   double estimate = 0, stderr_ = 0;
   double expected = 0;  // the value a correct model gives (d_norm, masking)
@@ -38,7 +41,11 @@ struct PointResult {
   Expect expect = Expect::Hold;
   double tolerance = 0;     // documented approximation tolerance (relative)
   std::string reason;       // why the point is expected to (or may) fail
-  std::string model;        // group name when not D/G/F (mfv run --scene: one parameter set)
+  // A measured maximum tested against the fixed `bound` (reciprocity, the
+  // finiteness census, pointwise agreement) rather than a z-test; `measure`
+  // names it and `detail` gives the input where it was worst.
+  bool bounded = false;
+  std::string measure, detail;
 };
 
 // All points of one model under one check, with its expectation.
@@ -89,6 +96,9 @@ struct SuiteReport {
   // view, where v.m ~ 1e-3) reached 1.5e-3 over 40 seeds; a term off by 1 %
   // shows as 1e-2.
   double reference_bound = 5e-3;
+  std::string reference_note;  // replaces the reference line where no double twin runs (mfv check)
+  std::string title = "mfv run";  // report heading and JUnit suite name
+  bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
   bool reference_ok() const;
   bool gate_ok() const;  // every verdict as expected and the reference agrees
 };
@@ -97,7 +107,34 @@ const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
-// ---- the pieces of run_suite, shared with mfv run --scene (host/scene/) ----
+// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
+double normal_two_sided_quantile(double p);
+
+// ---- Pieces mfv check (host/user/) shares with mfv run --------------------
+
+// One check's integrals, run through one program.
+struct Plan {
+  std::string check;
+  std::vector<IntegralSpec> specs;
+  std::vector<PointResult> points;
+  uint64_t samples = 0;
+  TermSelection terms;
+};
+
+// Widths and views of the grids (d_norm widths; combination widths; view
+// cosines from 1e-4 to 1, dense towards grazing).
+const std::vector<double>& suite_norm_alphas();
+const std::vector<double>& suite_alphas();
+std::vector<double> view_cosines(int n);
+
+// Runs the plan's integrals (streams numbered on from `stream`), records
+// estimates, timing and, when opt.reference_samples > 0, the same-sample
+// reference comparison into `rep`.
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+// The same through a program built here with plan.terms (its build time goes to rep.build_seconds).
+void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+
+// ---- Pieces mfv run --scene (host/scene/) shares with mfv run -------------
 
 // The catalog's prediction for one point of a D/G/F model: alpha is the
 // shared width, f0 the first F parameter, kd the diffuse albedo.
@@ -107,25 +144,22 @@ struct Expectation {
   double tolerance = 0;
 };
 Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd);
+std::vector<Plan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog, filtered by opt
+Plan reciprocity_plan(const SuiteOptions& opt);         // every reciprocity batch, filtered by opt.models
+// Builds the plan's program (terms without G1) and records one bounded point per batch.
+void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 
-// The integrals of one check, built into one program with `terms`.
-struct SuitePlan {
-  std::string check;
-  std::vector<IntegralSpec> specs;
-  std::vector<PointResult> points;  // one per spec
-  uint64_t samples = 0;             // per integral
-  TermSelection terms;
-};
-std::vector<SuitePlan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog
-SuitePlan reciprocity_plan(const SuiteOptions& opt);         // every D x G x F reciprocity batch
-// Builds, integrates, compares with the reference; appends to rep. Streams
-// are numbered from `stream` on.
-void run_plan(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep, uint32_t& stream);
-void run_reciprocity(Runtime& rt, SuitePlan& plan, const SuiteOptions& opt, SuiteReport& rep);
-void judge(SuiteReport& rep, const SuiteOptions& opt);  // verdicts per point and per group
-std::vector<double> view_cosines(int n);  // n view cosines from 1e-4 to 1, dense towards grazing
+// The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`, 64 x
+// per_item pairs each (per_item from the scale): one bounded point per spec
+// (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
+// and the check's timing since t0 go into `rep`.
+void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
+                        std::chrono::steady_clock::time_point t0, SuiteReport& rep);
+constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
 
-// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
-double normal_two_sided_quantile(double p);
+// z-test verdicts for every point, then one verdict per model x check.
+void judge(SuiteReport& rep, const SuiteOptions& opt);
+std::string model_name(const PointResult& p);
 
 }  // namespace mfv

@@ -1,5 +1,6 @@
 // mfv devices, mfv list.
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "cli/commands.hpp"
 #include "runtime/opencl.hpp"
 
@@ -23,7 +24,7 @@ void add_devices(CLI::App& app, Globals&, int& rc) {
 }
 
 void add_list(CLI::App& app, Globals&, int& rc) {
-  auto* cmd = app.add_subcommand("list", "print the catalog of terms with sources and parameters");
+  auto* cmd = app.add_subcommand("list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
   static bool json = false;
   cmd->add_flag("--json", json, "machine-readable output");
   cmd->callback([&rc] {
@@ -46,6 +47,23 @@ void add_list(CLI::App& app, Globals&, int& rc) {
         j["stable"] = t.stable;
         out.push_back(j);
       }
+      for (auto& m : models()) {
+        nlohmann::json j{{"id", m.id},         {"kind", "model"},   {"source", m.source},
+                         {"formula", m.formula}, {"kernel", m.kernel_fn}, {"ulp_budget", m.ulp_budget}};
+        j["params"] = nlohmann::json::array();
+        for (auto& p : m.params)
+          j["params"].push_back({{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
+        if (!m.radiance.empty()) j["radiance"] = m.radiance;
+        if (m.ref_albedo) j["closed_form_albedo"] = m.albedo_doc;
+        j["cases"] = nlohmann::json::array();
+        for (auto& c : m.cases)
+          j["cases"].push_back({{"case", m.id + "[" + c.label + "]"},
+                                {"energy", expect_name(c.energy)},
+                                {"energy_why", c.energy_why},
+                                {"reciprocity", expect_name(c.reciprocity)},
+                                {"reciprocity_why", c.reciprocity_why}});
+        out.push_back(j);
+      }
       std::cout << out.dump(2) << "\n";
     } else {
       for (auto& t : catalog()) {
@@ -53,6 +71,16 @@ void add_list(CLI::App& app, Globals&, int& rc) {
         for (auto& p : t.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
         fmt::print("{} {:<22} {:<40} {}\n", kind_name(t.kind), t.id, t.formula, ps.empty() ? "-" : ps);
         fmt::print("  {:<22} source: {}{}\n", "", t.source, t.known_bad.empty() ? "" : "  [known bad: " + t.known_bad + "]");
+      }
+      for (auto& m : models()) {
+        std::string ps;
+        for (auto& p : m.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
+        fmt::print("M {:<22} {}\n  {:<22} params: {}\n  {:<22} source: {}\n", m.id, m.formula, "", ps, "", m.source);
+        if (!m.radiance.empty()) fmt::print("  {:<22} radiance form: {}\n", "", m.radiance);
+        for (auto& c : m.cases)
+          fmt::print("  {:<22} [{}] energy {}{}; reciprocity {}{}\n", "", c.label, expect_name(c.energy),
+                     c.energy_why.empty() ? "" : " (" + c.energy_why + ")", expect_name(c.reciprocity),
+                     c.reciprocity_why.empty() ? "" : " (" + c.reciprocity_why + ")");
       }
     }
     rc = 0;

@@ -1,10 +1,12 @@
 // mfv eval: one term or one D/G/F BRDF at one point, on the device and in the
 // double reference, and how far apart they are.
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/agree.hpp"
 #include "cli/commands.hpp"
 #include "runtime/error.hpp"
+#include "util/parse.hpp"
 
 #include <fmt/format.h>
 
@@ -14,25 +16,6 @@
 
 namespace mfv::cli {
 namespace {
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string part;
-  while (std::getline(ss, part, sep)) out.push_back(part);
-  return out;
-}
-
-double parse_number(const std::string& what, const std::string& text) {
-  try {
-    size_t used = 0;
-    double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    throw Error(fmt::format("{}: '{}' is not a number", what, text));
-  }
-}
 
 std::array<float, 3> parse_direction(const std::string& what, const std::string& text) {
   auto parts = split(text, ',');
@@ -70,7 +53,8 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
   static double alpha = 0.3, kd = 0.0;
   static double NoL = 1, NoV = 1, NoH = 1, VoH = 1;
   static bool g1 = false, fp64 = false;
-  cmd->add_option("spec", spec, "a term id (ggx, smith_ggx, schlick...) or a BRDF D/G/F (ggx/smith_ggx/schlick)")
+  cmd->add_option("spec", spec, "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
+                                "a whole model (lambert, eon, phong_004...)")
       ->required();
   auto* alpha_opt = cmd->add_option("--alpha", alpha, "shared width alpha, converted to each term's parameter");
   cmd->add_option("--param", params, "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k...)");
@@ -113,6 +97,22 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
       for (size_t i = 0; i < ps.f->params.size(); ++i)
         ps.params[2 + i] = static_cast<float>(term_param(*ps.f, i, given, alpha, alpha_given));
       ps.params[4] = static_cast<float>(kd);
+    } else if (const Model* m = parts.size() == 1 ? try_find_model(spec) : nullptr) {
+      // a whole model: f(wi, wo) with its parameters by name, defaults otherwise
+      if (alpha_given) throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", spec));
+      ps.mode = EvalMode::Model;
+      ps.model = m;
+      auto wi = parse_direction("--wi", wi_s), wo = parse_direction("--wo", wo_s);
+      for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
+      for (size_t i = 0; i < m->params.size(); ++i) {
+        double v = m->params[i].fallback;
+        if (auto it = given.find(m->params[i].name); it != given.end()) {
+          v = it->second;
+          given.erase(it);
+        }
+        validate_model_param(*m, i, v);
+        ps.params[i] = static_cast<float>(v);
+      }
     } else if (parts.size() == 1) {
       const Term& t = find_term(spec);
       float cos[6] = {float(NoL), float(NoV), float(NoH), float(VoH), 0, 0};

@@ -25,8 +25,8 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--alpha-fw", opt.family_alpha, "family-wise false-alarm rate for the whole run")
       ->check(CLI::Range(1e-300, 0.5));
   cmd->add_option("--check", opt.checks, "only these checks (d_norm, masking, furnace, energy, energy_diffuse, "
-                                         "reciprocity)");
-  cmd->add_option("--model", opt.models, "only models whose D/G/F name contains one of these");
+                                         "reciprocity, closed_form)");
+  cmd->add_option("--model", opt.models, "only models whose D/G/F or model[case] name contains one of these");
   cmd->add_option("--reference-samples", opt.reference_samples, "samples compared with the reference per integral");
   cmd->add_option("--reference-every", opt.reference_every, "compare every k-th integral with the reference (1 = all)")
       ->check(CLI::PositiveNumber);

@@ -20,5 +20,8 @@ void add_eval(CLI::App& app, Globals& g, int& rc);
 void add_run(CLI::App& app, Globals& g, int& rc);
 void add_stability(CLI::App& app, Globals& g, int& rc);
 void add_energy(CLI::App& app, Globals& g, int& rc);
+void add_check(CLI::App& app, Globals& g, int& rc);
+void add_samplers(CLI::App& app, Globals& g, int& rc);
+void add_bench(CLI::App& app, Globals& g, int& rc);
 
 }  // namespace mfv::cli

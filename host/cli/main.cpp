@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
   mfv::cli::add_run(app, g, rc);
   mfv::cli::add_stability(app, g, rc);
   mfv::cli::add_energy(app, g, rc);
+  mfv::cli::add_check(app, g, rc);
+  mfv::cli::add_samplers(app, g, rc);
+  mfv::cli::add_bench(app, g, rc);
   try {
     // Name an unknown command instead of CLI11's "a subcommand is required".
     for (int i = 1; i < argc; ++i) {

@@ -1,7 +1,5 @@
 #include "reference/brdf.hpp"
 
-#include "reference/model_gltf.hpp"
-
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -33,7 +31,6 @@ double brdf(const BrdfSpec& s, const Shading& c) {
 }
 
 double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo) {
-  if (s.model == kModelGltf) return gltf_pbr({s.pd, s.pg, s.f0, s.f1, s.kd, s.p5}, wi, wo);
   if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;  // below the horizon; also keeps L + V != 0
   return brdf(s, shading_from(wi, wo));
 }

@@ -2,10 +2,9 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 
 #include <glm/vec3.hpp>
-
-#include <cstdint>
 
 namespace mfv::ref {
 
@@ -16,9 +15,8 @@ struct BrdfSpec {
   const Term* g = nullptr;
   const Term* f = nullptr;
   double pd = 0, pg = 0, f0 = 0, f1 = 0, kd = 0;
-  // A whole model instead of D x G x F (IntegralSpec::model): its parameters
-  // are pd, pg, f0, f1, kd, p5. 0 = the microfacet BRDF above.
-  uint32_t model = 0;
+  // A whole model instead of D x G x F: its p[0..5] are pd, pg, f0, f1, kd, p5.
+  const Model* model = nullptr;
   double p5 = 0;
 };
 

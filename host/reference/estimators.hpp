@@ -4,6 +4,8 @@
 
 #include "reference/brdf.hpp"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 
 namespace mfv::ref {
@@ -23,5 +25,16 @@ struct IntegralRef {
 
 // The index-th sample of the estimator: its mean over samples is the integral.
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);
+
+// The proposals on their own (twins of kernels/integrate.cl), for mfv
+// samplers' quadrature and chi-square tests. Densities are over solid angle.
+double pdf_slope(double c, double s2, double w);  // 2D Cauchy slopes of width w, at cos c, sin² s2
+double pdf_m(double c, double s2, double w);      // the conformance mixture: cosine lobe + Cauchy slopes
+glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c, double& s2);
+double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double w);  // light direction reflect(o, h)
+glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
+
+// Reciprocity pair `index` of integral `stream` (twin of the `reciprocity` kernel).
+void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b);
 
 }  // namespace mfv::ref

@@ -1,24 +1,18 @@
 // The glTF 2.0 metallic-roughness BRDF in double (twin of kernels/model_gltf.cl),
-// written plainly from the specification's Appendix B formulas.
+// written plainly from the specification's Appendix B formulas. One colour
+// channel; p[0..5] = alpha, metallic, base, f0, f0_max, weight as declared in
+// host/catalog/models.cpp ("gltf").
 #pragma once
-
-#include "reference/brdf.hpp"
 
 #include <glm/vec3.hpp>
 
-#include <cstdint>
-
 namespace mfv::ref {
 
-// IntegralSpec::model of the glTF model (MFV_MODEL_GLTF in kernels/model_gltf.cl).
-constexpr uint32_t kModelGltf = 1000;
-
-// One colour channel; see kernels/model_gltf.cl for the meaning of each.
-struct GltfChannel {
-  double alpha = 0.25, metallic = 0, base = 1, f0 = 0.04, f0_max = 0.04, weight = 1;
-};
-
-double gltf_pbr(const GltfChannel& p, const glm::dvec3& wi, const glm::dvec3& wo);
-double gltf_pbr(const GltfChannel& p, const Shading& c);  // from the cosines (shading_from)
+// f(l, v), l = light, v = view, unit (taken as given, as the other whole
+// models: host/reference/models.hpp), n = +z; 0 below either horizon.
+double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// Exact albedo where known: a dielectric without a specular layer (metallic 0,
+// weight 0) is Lambert, E = base; NaN elsewhere.
+double albedo_gltf(double cos_l, const double* p);
 
 }  // namespace mfv::ref

@@ -26,8 +26,9 @@ std::string params_text(const PointResult& p) {
 
 std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
   const PointResult& p = rep.points[g.worst];
-  if (p.check == "reciprocity")
-    return fmt::format("max asymmetry {:.3g} (bound {:.0e}) at {}", p.estimate, p.bound, params_text(p));
+  if (p.bounded)
+    return fmt::format("{} {:.3g} (bound {:.0e}){}{}{}{}", p.measure, p.estimate, p.bound, p.params.empty() ? "" : " at ",
+                       params_text(p), p.detail.empty() ? "" : ": ", p.detail);
   return fmt::format("{:.6f} ± {:.1e} vs {:g}{} at {}", p.estimate, p.stderr_, p.expected, p.upper_only ? " (max)" : "",
                      params_text(p));
 }
@@ -49,14 +50,17 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests, family-wise false-alarm {:g} -> "
              "|z| > {:.2f}\n",
              rep.build_seconds, rep.tests, opt.family_alpha, rep.z_threshold);
-  fmt::print("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}{}\n",
-             rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
-             rep.reference_worst_at.empty() ? "" : " at ", rep.reference_worst_at);
+  if (!rep.reference_note.empty())
+    fmt::print("{}\n", rep.reference_note);
+  else
+    fmt::print("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}{}\n",
+               rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
+               rep.reference_worst_at.empty() ? "" : " at ", rep.reference_worst_at);
   size_t counts[4] = {0, 0, 0, 0};
   for (auto& g : rep.groups) counts[int(g.verdict)]++;
   for (auto& g : rep.groups) {
     // pass lines are many; print the ones a person should read
-    if (g.verdict == Verdict::Pass) continue;
+    if (g.verdict == Verdict::Pass && !rep.list_passes) continue;
     fmt::print("{:<6} {:<15} {:<42} {}\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g));
     if (!g.reason.empty() && g.verdict != Verdict::Fail) fmt::print("       {:<15} reason: {}\n", "", g.reason);
   }
@@ -69,7 +73,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   using nlohmann::json;
   json j;
   j["schema_version"] = 1;
-  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}, {"command", rep.title}};
   j["run"] = {{"seed", opt.seed},       {"scale", opt.scale},
               {"family_alpha", opt.family_alpha}, {"z_threshold", rep.z_threshold},
               {"tests", rep.tests},     {"date", utc_timestamp()},
@@ -96,6 +100,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
            {"D", p.d ? p.d->id : ""},
            {"G", p.g ? p.g->id : ""},
            {"F", p.f ? p.f->id : ""},
+           {"model", p.model},
            {"params", params},
            {"estimate", std::isfinite(p.estimate) ? json(sig(p.estimate, 9)) : json(nullptr)},
            {"stderr", sig(p.stderr_, 3)},
@@ -105,6 +110,8 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
            {"verdict", p.failed ? "fail" : "pass"}};
     // the catalog's prediction where it is not "holds"; the reason is in the group
     if (p.expect != Expect::Hold) r["expect"] = p.expect == Expect::Fail ? "fail" : "may_fail";
+    if (!p.model.empty()) r["model"] = p.model;
+    if (!p.detail.empty()) r["at"] = p.detail;
     j["results"].push_back(r);
   }
   return j.dump();  // compact: one record per integral, over 10^5 of them
@@ -117,7 +124,8 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
 std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const Runtime& rt,
                                                                     const SuiteOptions& opt, const std::string& dir) {
   // report.md
-  std::string md = "# microfacet-verify conformance report\n\n";
+  std::string md = rep.title == "mfv run" ? "# microfacet-verify conformance report\n\n"
+                                          : fmt::format("# microfacet-verify: {}\n\n", rep.title);
   md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, commit {}.\n\n", rt.device().name,
                     rt.device().platform, rt.device().driver, opt.seed, opt.scale, MFV_GIT_COMMIT);
   md += fmt::format("{} statistical tests; family-wise false-alarm rate {:g}, so a deviation must exceed {:.2f} "
@@ -127,11 +135,13 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
   for (auto& c : rep.stats)
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
                       c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
-  md += fmt::format("\nKernel builds: {:.2f} s. Reference on the same samples: {} integrals, worst "
-                    "disagreement {:.2e} (bound {:g}: {}){}{}.\n\n",
-                    rep.build_seconds, rep.reference_compared, rep.reference_worst, rep.reference_bound,
-                    rep.reference_ok() ? "ok" : "FAILED", rep.reference_worst_at.empty() ? "" : " at ",
-                    rep.reference_worst_at);
+  md += fmt::format("\nKernel builds: {:.2f} s. ", rep.build_seconds);
+  md += !rep.reference_note.empty()
+            ? rep.reference_note + "\n\n"
+            : fmt::format("Reference on the same samples: {} integrals, worst disagreement {:.2e} (bound {:g}: {}){}{}.\n\n",
+                          rep.reference_compared, rep.reference_worst, rep.reference_bound,
+                          rep.reference_ok() ? "ok" : "FAILED", rep.reference_worst_at.empty() ? "" : " at ",
+                          rep.reference_worst_at);
   md += "| verdict | check | model | worst case | expected failure because |\n|---|---|---|---|---|\n";
   for (auto& g : rep.groups)
     md += fmt::format("| {} | {} | {} | {} | {} |\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g),
@@ -143,8 +153,8 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
   for (auto& g : rep.groups) failures += g.verdict == Verdict::Fail || g.verdict == Verdict::XPass;
   failures += !rep.reference_ok();
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  xml += fmt::format("<testsuites><testsuite name=\"mfv run\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
-                     rep.groups.size() + 1, failures);
+  xml += fmt::format("<testsuites><testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
+                     xml_escape(rep.title), rep.groups.size() + 1, failures);
   xml += fmt::format("  <testcase classname=\"reference\" name=\"kernel and reference on the same samples\">{}</testcase>\n",
                      rep.reference_ok() ? ""
                                         : fmt::format("<failure message=\"disagreement {:.3g} above {:g}\">{}</failure>",

@@ -10,6 +10,7 @@ TermSelection TermSelection::all() {
   s.g = terms_of(Kind::G);
   s.f = terms_of(Kind::F);
   s.g1 = true;
+  for (auto& m : ::mfv::models()) s.models.push_back(&m);
   return s;
 }
 
@@ -31,7 +32,7 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
 }  // namespace
 
 std::string generate_dispatch(const TermSelection& s) {
-  std::string out = s.gltf ? "#define MFV_WITH_GLTF 1\n" : "";
+  std::string out;
   auto kfn = [](const Term& t) { return t.kernel_fn; };
   // A kind left out still gets a function (returning NaN, so a stray call
   // cannot pass silently): shared code such as brdf_eval must compile.
@@ -43,6 +44,19 @@ std::string generate_dispatch(const TermSelection& s) {
   emit("eval_D", "real NoH, real sin2H, real p", "NoH, sin2H, p", s.d);
   emit("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", "NoL, NoV, NoH, VoH, p", s.g);
   emit("eval_F", "real VoH, real p0, real p1", "VoH, p0, p1", s.f);
+  // Whole models (kernels/models.cl), by Model::number(); none selected
+  // still gives the function, returning NaN.
+  std::string mp = "real3 wi, real3 wo, const real* p";
+  if (s.models.empty()) {
+    out += fmt::format("static inline real eval_model(int id, {}) {{ return NAN; }}\n", mp);
+  } else if (s.models.size() == 1) {
+    out += fmt::format("static inline real eval_model(int id, {}) {{\n  return {}(wi, wo, p);\n}}\n", mp,
+                       s.models[0]->kernel_fn);
+  } else {
+    out += fmt::format("static inline real eval_model(int id, {}) {{\n  switch (id) {{\n", mp);
+    for (auto* m : s.models) out += fmt::format("    case {}: return {}(wi, wo, p);\n", m->number(), m->kernel_fn);
+    out += "  }\n  return NAN;\n}\n";
+  }
   if (s.g1) {
     std::vector<const Term*> smith;
     for (auto* t : s.g)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 
 #include <string>
 #include <vector>
@@ -14,8 +15,8 @@ namespace mfv {
 struct TermSelection {
   std::vector<const Term*> d, g, f;
   bool g1 = false;  // also emit eval_G1 for the Smith G terms in g
-  bool gltf = false;  // compile the glTF metallic-roughness model (kernels/model_gltf.cl)
-  static TermSelection all();
+  std::vector<const Model*> models;  // whole models: eval_model(id, ...), id = Model::number()
+  static TermSelection all();  // every term and every model
 };
 
 int term_index(const Term& t);  // the id the kernels receive

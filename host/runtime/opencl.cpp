@@ -113,18 +113,25 @@ std::string Runtime::kernel_text(const std::string& file) const {
 }
 
 cl::Program Runtime::build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
-                           const std::string& generated, const std::string& insert_before) {
+                           const std::string& generated, const std::string& insert_before,
+                           const std::vector<ExtraSource>& extra) {
+  std::vector<ExtraSource> inserts = extra;
+  if (!generated.empty()) inserts.insert(inserts.begin(), {"<generated>", generated, insert_before});
+  std::vector<bool> done(inserts.size(), false);
   std::string source;
-  bool inserted = generated.empty();
+  auto insert = [&](const std::string& before) {
+    for (size_t i = 0; i < inserts.size(); ++i)
+      if (!done[i] && (inserts[i].before == before || before.empty())) {
+        source += "#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text + "\n";
+        done[i] = true;
+      }
+  };
   for (auto& f : files) {
-    if (!inserted && f == insert_before) {
-      source += "#line 1 \"<generated>\"\n" + generated + "\n";
-      inserted = true;
-    }
+    insert(f);
     source += kernel_text(f);
     source += "\n";
   }
-  if (!inserted) source += "#line 1 \"<generated>\"\n" + generated + "\n";
+  insert("");  // those whose file is not in the list, or that asked for the end
 
   std::string options = base_options();
   for (auto& d : defines) options += " -D" + d;

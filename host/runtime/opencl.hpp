@@ -40,11 +40,20 @@ class Runtime {
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
+  // A source that is not a kernels/ file (a user's file for mfv check),
+  // labelled `name` in build logs (#line 1 "name") and placed before the
+  // kernels/ file `before` ("" = at the end).
+  struct ExtraSource {
+    std::string name, text, before;
+  };
+
   // Concatenates the named kernels/ files (with `generated` inserted before
-  // the file named `insert_before`, or at the end) and builds them with the
-  // given -D definitions. Throws mfv::Error with the build log on failure.
+  // the file named `insert_before`, or at the end, and any `extra` sources
+  // where they ask) and builds them with the given -D definitions. Throws
+  // mfv::Error with the build log on failure.
   cl::Program build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
-                    const std::string& generated = "", const std::string& insert_before = "");
+                    const std::string& generated = "", const std::string& insert_before = "",
+                    const std::vector<ExtraSource>& extra = {});
 
   // Pinned options shared by every build, recorded in results files.
   std::string base_options() const;

@@ -1,7 +1,7 @@
 #include "scene/scene_checks.hpp"
 
 #include "catalog/roughness.hpp"
-#include "reference/model_gltf.hpp"
+#include "catalog/models.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
@@ -19,7 +19,7 @@ const Term& term(const char* id, Kind k) { return *try_find_term(id, k); }
 
 // One check's plan with the distinct sets already in it (by key).
 struct SetPlan {
-  SuitePlan plan;
+  Plan plan;
   std::map<std::string, bool> keys;  // set keys present
   std::set<std::string> models;      // D/G/F names or "gltf"
   void add_terms(const Term* d, const Term* g, const Term* f) {
@@ -29,6 +29,10 @@ struct SetPlan {
     add(plan.terms.d, d);
     add(plan.terms.g, g);
     add(plan.terms.f, f);
+  }
+  void add_model(const Model& m) {
+    if (std::find(plan.terms.models.begin(), plan.terms.models.end(), &m) == plan.terms.models.end())
+      plan.terms.models.push_back(&m);
   }
 };
 
@@ -56,13 +60,11 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
 }
 
 
-// The glTF model at one channel's parameters (kernels/model_gltf.cl p[0..5]).
-IntegralSpec gltf_spec(IntegralKind kind, const GltfChannelParams& c, double cos_o) {
-  IntegralSpec s = make_spec(kind, &term("ggx", Kind::D), &term("smith_ggx_correlated", Kind::G),
-                             &term("schlick", Kind::F), c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.alpha, cos_o);
-  s.model = ref::kModelGltf;
-  s.p5 = float(c.weight);
-  return s;
+// The catalog's glTF model (host/catalog/models.cpp "gltf") at one channel's parameters.
+const Model& gltf_model() { return *try_find_model("gltf"); }
+ModelParams gltf_p(const GltfChannelParams& c) { return {c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.weight}; }
+IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
+  return model_spec(IntegralKind::Albedo, gltf_model(), gltf_p(c), cos_l);
 }
 
 std::string gltf_key(const GltfChannelParams& c) {
@@ -70,9 +72,11 @@ std::string gltf_key(const GltfChannelParams& c) {
                      c.metallic, c.base, c.f0, c.f0_max, c.weight);
 }
 
-std::map<std::string, double> gltf_params(const GltfChannelParams& c, double cos_o) {
-  return {{"alpha", c.alpha}, {"metallic", c.metallic}, {"base", c.base}, {"f0", c.f0},
-          {"f0_max", c.f0_max}, {"specular", c.weight},  {"cos_o", cos_o}};
+std::map<std::string, double> gltf_params(const GltfChannelParams& c) {
+  std::map<std::string, double> out;
+  const ModelParams p = gltf_p(c);
+  for (size_t i = 0; i < gltf_model().params.size(); ++i) out[gltf_model().params[i].name] = p[i];
+  return out;
 }
 
 // The glTF model conserves energy where the Fresnel mix is not involved: a
@@ -160,9 +164,9 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
         std::string key = fmt::format("gltf alpha={:.9g} (white metal: F = 1)", m.alpha);
         if (claim(sp, key, "gltf")) {
           for (double co : views)
-            add(sp, key, gltf_spec(IntegralKind::Albedo, white, co), ggx, smith, nullptr,
-                {{"alpha", m.alpha}, {"cos_o", co}}, {}, true);
-          sp.plan.terms.gltf = true;
+            add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", m.alpha}, {"cos_l", co}}, {},
+                true);
+          sp.add_model(gltf_model());
         }
       } else {
         std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
@@ -184,10 +188,12 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
         for (auto& c : m.channels()) {
           std::string key = gltf_key(c);
           if (!claim(sp, key, "gltf")) continue;
-          for (double co : views)
-            add(sp, key, gltf_spec(IntegralKind::Albedo, c, co), ggx, smith, nullptr, gltf_params(c, co),
-                gltf_energy_expectation(c), true);
-          sp.plan.terms.gltf = true;
+          for (double co : views) {
+            std::map<std::string, double> ps = gltf_params(c);
+            ps["cos_l"] = co;
+            add(sp, key, gltf_spec(c, co), nullptr, nullptr, nullptr, ps, gltf_energy_expectation(c), true);
+          }
+          sp.add_model(gltf_model());
         }
       } else if (m.f != none || m.kd > 0) {
         const bool diffuse = m.kd > 0;
@@ -212,9 +218,8 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
         for (auto& c : m.channels()) {
           std::string key = gltf_key(c);
           if (!claim(sp, key, "gltf")) continue;
-          add(sp, key, gltf_spec(IntegralKind::Albedo, c, 1.0), ggx, smith, nullptr, gltf_params(c, 1.0), {}, false);
-          sp.plan.points.back().params.erase("cos_o");
-          sp.plan.terms.gltf = true;
+          add(sp, key, gltf_spec(c, 1.0), nullptr, nullptr, nullptr, gltf_params(c), {}, false);
+          sp.add_model(gltf_model());
         }
       } else {
         std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
@@ -230,7 +235,10 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   return s;
 }
 
-std::string full_model_name(const PointResult& p) { return dgf(p.d, p.g, p.f); }
+// A combination of the full catalog: D/G/F ids, or a whole model's id (without its case).
+std::string full_model_name(const PointResult& p) {
+  return p.d ? dgf(p.d, p.g, p.f) : p.model.substr(0, p.model.find('['));
+}
 
 }  // namespace
 
@@ -247,9 +255,9 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
   for (const std::string& check : suite_checks()) {
     auto it = sets.plans.find(check);
     if (it == sets.plans.end() || it->second.plan.specs.empty()) continue;
-    SuitePlan& plan = it->second.plan;
+    Plan& plan = it->second.plan;
     if (check == "reciprocity") run_reciprocity(rt, plan, opt, run.rep);
-    else run_plan(rt, plan, opt, run.rep, stream);
+    else run_plan(rt, plan, opt, stream, run.rep);
     stat_of[check] = run.rep.stats.size() - 1;
   }
   if (run.rep.points.empty()) throw Error("the scene's materials need none of the chosen checks");
@@ -267,7 +275,7 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
   // What the full catalog would have run with the same options.
   SuiteOptions full = opt;
   full.models.clear();
-  std::vector<SuitePlan> full_plans = make_plans(full);
+  std::vector<Plan> full_plans = make_plans(full);
   if (wants(opt, "reciprocity")) full_plans.push_back(reciprocity_plan(full));
   SuiteReport full_rep;
   if (compare_full) {
@@ -276,30 +284,35 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     run.full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
     run.full_measured = true;
   }
+  // One row per check: the full run has two energy plans (D x G x F, whole models).
   run.full_builds = 0;
+  std::map<std::string, std::set<std::string>> full_models;
   for (auto& fp : full_plans) {
     if (fp.specs.empty()) continue;
     ++run.full_builds;
-    LeftOut lo;
-    lo.check = fp.check;
-    std::set<std::string> models;
-    for (auto& p : fp.points) models.insert(full_model_name(p));
-    lo.full_combinations = models.size();
-    lo.full_integrals = fp.specs.size();
+    auto row = std::find_if(run.left_out.begin(), run.left_out.end(), [&](auto& l) { return l.check == fp.check; });
+    if (row == run.left_out.end()) {
+      LeftOut lo;
+      lo.check = fp.check;
+      for (auto& st : full_rep.stats)
+        if (st.check == fp.check) lo.full_samples += st.samples, lo.full_seconds += st.seconds;
+      if (auto s = stat_of.find(fp.check); s != stat_of.end()) {
+        const CheckStats& st = run.rep.stats[s->second];
+        lo.scene_integrals = st.integrals;
+        lo.scene_samples = st.samples;
+        lo.scene_seconds = st.seconds;
+        lo.scene_combinations = sets.plans[fp.check].models.size();
+      }
+      run.left_out.push_back(lo);
+      row = run.left_out.end() - 1;
+    }
+    for (auto& p : fp.points) full_models[fp.check].insert(full_model_name(p));
+    row->full_combinations = full_models[fp.check].size();
+    row->full_integrals += fp.specs.size();
     // reciprocity: per batch 64 work-items x 64 x scale pairs, two evaluations each (suite.cpp)
     const uint64_t per = fp.check == "reciprocity" ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2
                                                    : fp.samples;
-    lo.full_samples = lo.full_integrals * per;  // requested; a run rounds up to whole work-groups
-    for (auto& st : full_rep.stats)
-      if (st.check == fp.check) lo.full_samples = st.samples, lo.full_seconds = st.seconds;
-    if (auto s = stat_of.find(fp.check); s != stat_of.end()) {
-      const CheckStats& st = run.rep.stats[s->second];
-      lo.scene_integrals = st.integrals;
-      lo.scene_samples = st.samples;
-      lo.scene_seconds = st.seconds;
-      lo.scene_combinations = sets.plans[fp.check].models.size();
-    }
-    run.left_out.push_back(lo);
+    if (!compare_full) row->full_samples += fp.specs.size() * per;  // requested; a run rounds up to whole work-groups
   }
   return run;
 }

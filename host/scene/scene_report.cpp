@@ -22,6 +22,14 @@ struct CheckLine {
   double grazing_cos = 0;
 };
 
+// The fixed direction's cosine: the view (cos_o) of a D/G/F integral, the
+// light (cos_l) of a whole model's albedo (checks/suite.hpp).
+double fixed_cos(const PointResult& p) {
+  auto it = p.params.find("cos_o");
+  return it != p.params.end() ? it->second : p.params.at("cos_l");
+}
+const char* fixed_name(const PointResult& p) { return p.params.count("cos_o") ? "cos_o" : "cos_l"; }
+
 CheckLine check_line(const SuiteReport& rep, const GroupResult& g) {
   CheckLine c{g.check, g.model, verdict_name(g.verdict), "", g.verdict == Verdict::Pass ? "" : g.reason};
   const PointResult& w = rep.points[g.worst];
@@ -38,14 +46,15 @@ CheckLine check_line(const SuiteReport& rep, const GroupResult& g) {
     for (size_t i : g.points) {
       const PointResult& p = rep.points[i];
       if (!(p.estimate <= emax)) emax = p.estimate, at = &p;
-      const double co = p.params.at("cos_o");
+      const double co = fixed_cos(p);
       if (co == 1.0) c.e_normal = p.estimate;
       if (co < lo_cos) lo_cos = co, c.e_grazing = p.estimate, c.grazing_cos = co;
     }
-    c.text = fmt::format("max E {:.4f} at cos_o={:.3g} (<= 1)", emax, at ? at->params.at("cos_o") : 0.0);
+    const char* dir = at ? fixed_name(*at) : "cos_o";
+    c.text = fmt::format("max E {:.4f} at {}={:.3g} (<= 1)", emax, dir, at ? fixed_cos(*at) : 0.0);
     if (g.check == "furnace")
-      c.text += fmt::format("; energy loss 1-E {:.4f} at normal view, {:.4f} at cos_o={:.0e}", 1 - c.e_normal,
-                            1 - c.e_grazing, c.grazing_cos);
+      c.text += fmt::format("; energy loss 1-E {:.4f} at normal {}, {:.4f} at {}={:.0e}", 1 - c.e_normal,
+                            std::string(dir) == "cos_l" ? "incidence" : "view", 1 - c.e_grazing, dir, c.grazing_cos);
   }
   return c;
 }

@@ -1,0 +1,85 @@
+// Whole reflectance models in the one catalog (DESIGN.md §1): BRDFs the seeds
+// give as one formula rather than as a D x G x F product (Lambert, Oren-Nayar,
+// Toon, Phong, Blinn, Ward, seed 004's Cook-Torrance k-mix, seed 003's
+// Torrance-Sparrow, seed 002's compute_radiance). Each is declared once: up
+// to six parameters p[0..5], source, kernel function (kernels/models.cl),
+// reference twin (host/reference/models.cpp), the proposal width the albedo
+// estimator takes from its roughness-like parameter, and the parameter points
+// mfv run checks with the verdicts expected there and why.
+#pragma once
+
+#include "catalog/catalog.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+// What the catalog predicts for one check at one point: it must hold, it must
+// fail (a deficiency large enough to show at any seed), or it may fail.
+enum class Expect { Hold, Fail, May };
+
+constexpr size_t kModelParams = 6;  // p[0..5] travel in IntegralSpec pd, pg, f0, f1, kd, p5
+using ModelParams = std::array<double, kModelParams>;
+
+// f(l, v): l = light, v = view, both unit and pointing away from the surface, n = +z.
+using RefModel = double (*)(const glm::dvec3& wi, const glm::dvec3& wo, const double* p);
+// Exact directional albedo E(l) = ∫ f(l, v) (n·v) dv at n·l = cos_l; NaN where unknown.
+using RefAlbedo = double (*)(double cos_l, const double* p);
+
+// Where the albedo estimator's proposal width comes from (never the formula).
+enum class Width {
+  Diffuse,         // no lobe: width 1 (the cosine lobe of the proposal does the work)
+  Alpha,           // p[width_param] is a microfacet width alpha
+  AlphaPair,       // anisotropic: sqrt(p[a] p[b])
+  Perceptual,      // seed 002 roughness r: alpha = r^2
+  HalfExponent,    // (n.h)^e lobe: alpha = sqrt(2/(e+2)) (Walter et al. 2007)
+  MirrorExponent,  // (v.r)^e lobe: about (n.h)^(4e) in half-vector space
+  HalfCosine,      // threshold t on n.h: alpha = tan(acos t)
+};
+
+struct ModelCase {
+  std::string label;  // "n=1", shown in the group name
+  ModelParams p{};
+  Expect energy = Expect::Hold;  // albedo <= 1 (or = the closed form) at every light direction
+  std::string energy_why;
+  Expect reciprocity = Expect::Hold;
+  std::string reciprocity_why;
+};
+
+struct Model {
+  std::string id;         // catalog name, distinct from every term id
+  std::string kernel_fn;  // function in kernels/models.cl (gltf: kernels/model_gltf.cl)
+  std::string source;     // seed file and formula, or paper and equation
+  std::string formula;    // the BRDF, one line
+  std::vector<Param> params;  // at most kModelParams
+  // Non-empty where the seed gives reflected radiance per unit irradiance,
+  // f (n·l), rather than f: how the catalog's BRDF was formed from it.
+  std::string radiance;
+  Width width = Width::Diffuse;
+  int width_param = -1, width_param2 = -1;
+  RefModel ref = nullptr;
+  RefAlbedo ref_albedo = nullptr;  // exact albedo where known (the energy check then tests equality)
+  std::string albedo_doc;          // where the closed form holds and why
+  double ulp_budget = 64;          // kernel float vs double reference, identical inputs
+  double abs_floor = 1e-30;
+  std::vector<ModelCase> cases;    // the points mfv run checks, with expected verdicts
+
+  double proposal_width(const double* p) const;
+  uint32_t number() const;  // IntegralSpec::model: 1..999 (0 is the D x G x F BRDF)
+};
+
+const std::vector<Model>& models();
+const Model* try_find_model(const std::string& id);
+const Model* model_by_number(uint32_t number);  // nullptr for 0 and numbers no model of this list has
+const char* expect_name(Expect e);              // "hold", "fail", "may fail"
+// Parameter values checked at the boundary, as validate_param for terms.
+void validate_model_param(const Model& m, size_t index, double value);
+// The defaults p[i] = params[i].fallback, zero past the model's count.
+ModelParams model_defaults(const Model& m);
+
+}  // namespace mfv

@@ -1,0 +1,258 @@
+#include "checks/samplers.hpp"
+
+#include "checks/chi_square.hpp"
+#include "numeric/quadrature.hpp"
+#include "reference/estimators.hpp"
+#include "report/files.hpp"
+#include "rng/philox.hpp"
+#include "runtime/dispatch.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace mfv {
+namespace {
+
+glm::dvec3 view_of(double cos_o) { return {std::sqrt((1.0 - cos_o) * (1.0 + cos_o)), 0.0, cos_o}; }
+
+glm::dvec3 direction(double z, double phi) {
+  const double s = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
+  return {s * std::cos(phi), s * std::sin(phi), z};
+}
+
+// Lowest cos θ a case's draws can have: light directions reflected about a
+// visible normal may lie below the horizon.
+double z_low(const SamplerCase& c) { return c.sampler == Sampler::Vis ? -1.0 : 0.0; }
+
+// ∫∫ f(z, φ) dz dφ over [z0, z1] x [p0, p1] by an nz x np Gauss-Legendre product.
+template <class F>
+double cell_integral(const GaussRule& gz, const GaussRule& gp, double z0, double z1, double p0, double p1, F&& f) {
+  double sum = 0;
+  const double hz = 0.5 * (z1 - z0), hp = 0.5 * (p1 - p0);
+  for (size_t i = 0; i < gz.x.size(); ++i) {
+    const double z = z0 + hz * (gz.x[i] + 1.0);
+    for (size_t j = 0; j < gp.x.size(); ++j) sum += gz.w[i] * gp.w[j] * f(z, p0 + hp * (gp.x[j] + 1.0));
+  }
+  return sum * hz * hp;
+}
+
+}  // namespace
+
+std::string sampler_name(Sampler s) {
+  switch (s) {
+    case Sampler::Mixture: return "mixture";  // sample_m / pdf_m
+    case Sampler::Slopes: return "cauchy_slopes";
+    case Sampler::Cosine: return "cosine";
+    case Sampler::Vis: return "visible_normals";
+  }
+  return "?";
+}
+
+std::vector<SamplerCase> default_sampler_cases() {
+  // widths where a (cos θ, φ) histogram of 64 x 128 cells resolves the lobe;
+  // the visible normals at normal, oblique and grazing view (cos_o = 0.15)
+  return {{Sampler::Mixture, 0.2, 1},  {Sampler::Mixture, 0.8, 1}, {Sampler::Slopes, 0.3, 1},
+          {Sampler::Cosine, 1, 1},     {Sampler::Vis, 0.3, 0.9},   {Sampler::Vis, 0.3, 0.15},
+          {Sampler::Vis, 1.0, 0.5}};
+}
+
+double sampler_pdf(const SamplerCase& c, const glm::dvec3& d) {
+  if (c.sampler == Sampler::Vis) {
+    // i = reflect(o, h) for a visible normal h: the density of i at d is that
+    // of h = (d + o)/|d + o| times the Jacobian, zero where h is no visible normal
+    const glm::dvec3 o = view_of(c.cos_o), sum = d + o;
+    const double len = glm::length(sum);
+    if (!(len > 0.0)) return 0.0;
+    const glm::dvec3 h = sum / len;
+    return h.z > 0.0 ? ref::vis_pdf_i(h, o, c.width) : 0.0;
+  }
+  if (!(d.z > 0.0)) return 0.0;
+  const double s2 = d.x * d.x + d.y * d.y;
+  if (c.sampler == Sampler::Cosine) return d.z / M_PI;
+  if (c.sampler == Sampler::Slopes) return ref::pdf_slope(d.z, s2, c.width);
+  return ref::pdf_m(d.z, s2, c.width);
+}
+
+double sampler_pdf_total(const SamplerCase& c) {
+  // Over m (for Vis: over h, with dω_i = 4 (o·h) dω_h) in t = 1 - cos θ,
+  // panels geometric towards the normal, where every lobe here peaks; in φ
+  // 16 panels x 8 nodes. For Vis the domain o·h > 0 ends at cos θ = z_c(φ)
+  // (a kink no panel edge would follow), so the t range is cut there per φ:
+  // o·h = 0 at z_c = |sin_o cos φ| / sqrt(cos_o² + sin_o² cos² φ) where cos φ < 0.
+  const GaussRule gz = gauss_legendre(10), gp = gauss_legendre(8);
+  const std::vector<double> t = geometric_panels(1e-12, 4);
+  const glm::dvec3 o = view_of(c.cos_o);
+  double total = 0;
+  for (int b = 0; b < 16; ++b)  // edges at multiples of π/8 include π/2 and 3π/2, where z_c has kinks
+    for (size_t j = 0; j < gp.x.size(); ++j) {
+      const double phi = M_PI / 8 * (b + 0.5 * (gp.x[j] + 1.0));
+      const double cp = std::cos(phi) * o.x;
+      const double zc = c.sampler == Sampler::Vis && cp < 0 ? -cp / std::sqrt(o.z * o.z + cp * cp) : 0.0;
+      double inner = 0;
+      for (size_t a = 0; a + 1 < t.size(); ++a) {
+        const double t0 = t[a] * (1.0 - zc), t1 = t[a + 1] * (1.0 - zc), ht = 0.5 * (t1 - t0);
+        for (size_t i = 0; i < gz.x.size(); ++i) {
+          const glm::dvec3 m = direction(1.0 - (t0 + ht * (gz.x[i] + 1.0)), phi);
+          double f;
+          if (c.sampler != Sampler::Vis) {
+            f = sampler_pdf(c, m);
+          } else {
+            const double om = glm::dot(o, m);
+            f = om > 0.0 ? sampler_pdf(c, 2.0 * om * m - o) * 4.0 * om : 0.0;
+          }
+          inner += gz.w[i] * ht * f;
+        }
+      }
+      total += gp.w[j] * (M_PI / 16) * inner;
+    }
+  return total;
+}
+
+std::vector<glm::dvec3> reference_draws(const SamplerCase& c, uint64_t n, uint64_t seed) {
+  std::vector<glm::dvec3> out(n);
+  const glm::dvec3 o = view_of(c.cos_o);
+  for (uint64_t k = 0; k < n; ++k) {
+    const auto r = philox(seed, uint32_t(c.sampler), 3, k);  // as kernels/samplers.cl
+    double u_pick = u01_open(r[0]);
+    const double u_phi = u01_open(r[1]), u_r = u01_open(r[2]);
+    if (c.sampler == Sampler::Vis) {
+      const glm::dvec3 m = ref::sample_vis(o, u_phi, u_r, c.width);
+      out[k] = m.z > 0.0 ? 2.0 * glm::dot(o, m) * m - o : glm::dvec3(0.0);
+      continue;
+    }
+    if (c.sampler == Sampler::Slopes) u_pick = 1.0;
+    if (c.sampler == Sampler::Cosine) u_pick = 0.0;
+    double cz, s2;
+    out[k] = ref::sample_m(u_pick, u_phi, u_r, c.width, cz, s2);
+  }
+  return out;
+}
+
+SamplerResult test_draws(const SamplerCase& c, const std::vector<glm::dvec3>& draws, const SamplersOptions& opt,
+                         double level) {
+  SamplerResult r;
+  r.c = c;
+  r.level = level;
+  const int nz = opt.cos_bins, np = opt.phi_bins;
+  const double zlo = z_low(c);
+  std::vector<double> observed(size_t(nz) * np + 1, 0.0), expected(observed.size(), 0.0);
+  for (const auto& d0 : draws) {
+    const double len = glm::length(d0);
+    if (!(len > 0.5) || !std::isfinite(len)) {
+      ++r.lost;
+      observed.back() += 1;  // the last cell: draws that are no direction (expected count 0)
+      continue;
+    }
+    const glm::dvec3 d = d0 / len;
+    double phi = std::atan2(d.y, d.x);
+    if (phi < 0) phi += 2 * M_PI;
+    const int iz = std::clamp(int((d.z - zlo) / (1.0 - zlo) * nz), 0, nz - 1);
+    const int ip = std::clamp(int(phi / (2 * M_PI) * np), 0, np - 1);
+    if (d.z < zlo) ++r.lost;
+    observed[size_t(iz) * np + ip] += 1;
+  }
+  // expected counts: the reference pdf over each cell, 2 x 8 nodes in cos θ
+  // and 6 in φ per cell (a composite rule: lobes are at most a few cells wide)
+  const GaussRule gz = gauss_legendre(8), gp = gauss_legendre(6);
+  const double n = double(draws.size()), dz = (1.0 - zlo) / nz, dp = 2 * M_PI / np;
+  for (int iz = 0; iz < nz; ++iz)
+    for (int ip = 0; ip < np; ++ip) {
+      double m = 0;
+      for (int half = 0; half < 2; ++half) {
+        const double z0 = zlo + dz * (iz + 0.5 * half);
+        m += cell_integral(gz, gp, z0, z0 + 0.5 * dz, dp * ip, dp * (ip + 1),
+                           [&](double z, double phi) { return sampler_pdf(c, direction(z, phi)); });
+      }
+      expected[size_t(iz) * np + ip] = m * n;
+    }
+  // expected.back() stays 0: a draw that is no direction is impossible, not
+  // merely unlikely
+  const ChiSquare t = chi_square_test(observed, expected);
+  r.chi2 = t.statistic;
+  r.dof = t.dof;
+  r.p_value = t.p_value;
+  r.impossible = t.impossible;
+  r.fit_ok = t.impossible.empty() && r.p_value >= level;
+  return r;
+}
+
+std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt) {
+  if (opt.samples < 1000 || opt.samples > (uint64_t(1) << 26))
+    throw Error(fmt::format("--samples {}: must be between 1000 and 2^26", opt.samples));
+  if (!(opt.significance > 0 && opt.significance < 1))
+    throw Error(fmt::format("--significance {}: must lie in (0, 1)", opt.significance));
+  if (opt.cos_bins < 2 || opt.phi_bins < 1 || opt.cos_bins * opt.phi_bins > (1 << 20))
+    throw Error("--bins: need at least 2 x 1 cells and at most 2^20");
+  const auto cases = default_sampler_cases();
+  const int tests = int(cases.size()) * (opt.reference ? 2 : 1);
+  const double level = sidak_level(opt.significance, tests);
+  // integrate.cl holds the routines; it needs some D, G and F to compile
+  TermSelection sel;
+  sel.d = {&find_term("ggx")};
+  sel.g = {&find_term("smith_ggx")};
+  sel.f = {&find_term("none")};
+  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl",
+                               "integrate.cl", "samplers.cl"},
+                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
+                              generate_dispatch(sel), "brdf.cl");
+  cl::Kernel k(prog, "draw_samples");
+  cl::Buffer buf(rt.context(), CL_MEM_WRITE_ONLY, opt.samples * 3 * sizeof(float));
+  std::vector<float> host(opt.samples * 3);
+  std::vector<SamplerResult> out;
+  for (const auto& c : cases) {
+    const double total = sampler_pdf_total(c);
+    k.setArg(0, static_cast<cl_int>(c.sampler));
+    k.setArg(1, static_cast<cl_float>(c.width));
+    k.setArg(2, static_cast<cl_float>(c.cos_o));
+    k.setArg(3, static_cast<cl_ulong>(opt.seed));
+    k.setArg(4, buf);
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(opt.samples));
+    rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, host.size() * sizeof(float), host.data());
+    std::vector<glm::dvec3> draws(opt.samples);
+    for (uint64_t i = 0; i < opt.samples; ++i) draws[i] = {host[3 * i], host[3 * i + 1], host[3 * i + 2]};
+    std::vector<std::pair<std::string, std::vector<glm::dvec3>>> sets;
+    sets.emplace_back("device", std::move(draws));
+    if (opt.reference) sets.emplace_back("reference", reference_draws(c, opt.samples, opt.seed));
+    for (auto& [impl, d] : sets) {
+      SamplerResult r = test_draws(c, d, opt, level);
+      r.impl = impl;
+      r.pdf_total = total;
+      r.pdf_ok = std::fabs(total - 1.0) < 1e-6;  // the quadrature resolves the lobe to ~1e-10
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+void print_samplers(const std::vector<SamplerResult>& rs) {
+  fmt::print("{:<16} {:>5} {:>6} {:<9} {:>12} {:>10} {:>6} {:>10} {:>10} {:>6}  {}\n", "sampler", "w", "cos_o",
+             "draws", "∫pdf-1", "chi2", "dof", "p", "level", "lost", "verdict");
+  for (auto& r : rs)
+    fmt::print("{:<16} {:>5g} {:>6g} {:<9} {:>12.2e} {:>10.1f} {:>6} {:>10.3g} {:>10.3g} {:>6}  {}{}\n",
+               sampler_name(r.c.sampler), r.c.width, r.c.cos_o, r.impl, r.pdf_total - 1.0, r.chi2, r.dof, r.p_value,
+               r.level, r.lost, r.pass() ? "pass" : "FAIL", r.impossible.empty() ? "" : " (" + r.impossible + ")");
+}
+
+std::string samplers_json(const std::vector<SamplerResult>& rs, const Runtime& rt, const SamplersOptions& opt) {
+  using nlohmann::json;
+  json j;
+  j["schema"] = "mfv-samplers/1";
+  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver}};
+  j["date"] = utc_timestamp();
+  j["options"] = {{"samples", opt.samples}, {"seed", opt.seed}, {"significance", opt.significance},
+                  {"cells", {opt.cos_bins, opt.phi_bins}}, {"correction", "Sidak over every test of the run"}};
+  j["tests"] = json::array();
+  for (auto& r : rs)
+    j["tests"].push_back({{"sampler", sampler_name(r.c.sampler)}, {"width", r.c.width}, {"cos_o", r.c.cos_o},
+                          {"draws", r.impl}, {"pdf_integral", r.pdf_total}, {"chi2", r.chi2}, {"dof", r.dof},
+                          {"p_value", r.p_value}, {"level", r.level}, {"lost", r.lost},
+                          {"impossible", r.impossible}, {"pass", r.pass()}});
+  return j.dump(2) + "\n";
+}
+
+}  // namespace mfv

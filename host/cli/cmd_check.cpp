@@ -1,0 +1,69 @@
+// mfv check --brdf FILE.cl: the conformance checks on a renderer's own BRDF
+// code (contract in README "mfv check"); same verdicts, reports and exit
+// codes as mfv run, so it drops into a CI job.
+#include "cli/commands.hpp"
+#include "report/files.hpp"
+#include "report/suite_report.hpp"
+#include "runtime/error.hpp"
+#include "user/user_check.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace mfv::cli {
+
+void add_check(CLI::App& app, Globals& g, int& rc) {
+  auto* cmd = app.add_subcommand("check", "check your own BRDF code (an OpenCL C file) with the suite's checks; exit 0 "
+                                          "when every check passes, 1 when one fails, 2 on bad input");
+  static std::string path, as;
+  static UserParamArgs params;
+  static std::vector<std::string> map, channels;
+  static UserCheckOptions opt;
+  static std::string out_dir;
+  static int64_t samples = 0;
+  cmd->add_option("--brdf", path, "OpenCL C file defining float3 brdf(float3 wi, float3 wo, const float* params) "
+                                  "(optional D and G1)")
+      ->required();
+  cmd->add_option("--param", params.params, "NAME=VALUE fixes a parameter, NAME=LO:HI narrows (or declares) its range");
+  cmd->add_option("--roughness", params.roughness,
+                  "the parameter that sets the estimators' width: NAME (alpha) or NAME^2 (perceptual roughness)");
+  cmd->add_option("--as", as, "claim the code implements a catalog model D/G/F (e.g. ggx/smith_ggx_correlated/schlick): "
+                              "adds pointwise agreement with the double reference");
+  cmd->add_option("--map", map, "model parameter from yours: NAME=PARAM, NAME=PARAM^2 or NAME=NUMBER (e.g. alpha=r^2,f0=f0)");
+  cmd->add_option("--check", opt.checks, "only these checks (d_norm, masking, furnace, energy, reciprocity, finite, agree)");
+  cmd->add_option("--channel", channels, "only these RGB channels (r, g, b; default all three)");
+  cmd->add_option("--seed", opt.seed, "Philox key");
+  cmd->add_option("--scale", opt.scale, "multiply every check's samples");
+  auto* samples_opt = cmd->add_option("--samples", samples, "samples per masking/furnace integral (default 4096)");
+  cmd->add_option("--alpha-fw", opt.family_alpha, "family-wise false-alarm rate for the whole run")
+      ->check(CLI::Range(1e-300, 0.5));
+  cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
+  cmd->callback([&g, &rc, samples_opt] {
+    if (samples_opt->count() > 0) {
+      if (samples <= 0) throw Error(fmt::format("--samples must be a positive count, not {}", samples));
+      opt.scale = double(samples) / double(kSuiteBaseSamples);
+    }
+    if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
+    if (!channels.empty()) {
+      opt.channels.clear();
+      for (auto& c : channels) {
+        if (c != "r" && c != "g" && c != "b") throw Error(fmt::format("--channel {}: name r, g or b", c));
+        opt.channels.push_back(c == "r" ? 0 : c == "g" ? 1 : 2);
+      }
+    }
+    if (!map.empty() && as.empty()) throw Error("--map needs --as D/G/F (the model the mapping is for)");
+    UserBrdf u = load_user_brdf(path, params);
+    std::optional<Claim> claim;
+    if (!as.empty()) claim = parse_claim(as, map, u);
+    if (!out_dir.empty()) prepare_output_dir(out_dir);
+    Runtime rt(g.device, g.kernel_dir);
+    SuiteReport rep = run_user_check(rt, u, claim, opt);
+    SuiteOptions sopt = suite_options_of(opt);
+    print_suite_console(rep, rt, sopt);
+    if (!out_dir.empty()) write_suite_outputs(rep, rt, sopt, out_dir);
+    rc = rep.gate_ok() ? 0 : 1;
+  });
+}
+
+}  // namespace mfv::cli

@@ -1,0 +1,47 @@
+// mfv check --brdf FILE.cl: the user's OpenCL C file, its functions and its
+// parameters, checked against the contract (README "mfv check") before
+// anything is built, so that a missing function, a wrong signature or a
+// missing parameter gets one line naming the cause.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+// How a parameter sets the estimator's proposal width (the estimators use
+// the width, never the formula: DESIGN.md §3).
+enum class WidthRole { None, Alpha, Perceptual };  // width = value, value²
+
+struct UserParam {
+  std::string name;
+  double lo = 0, hi = 0, value = 0;  // range and default
+  bool fixed = false;                // --param NAME=V: this value in every check
+  WidthRole role = WidthRole::None;
+  int line = 0;  // line of its `// mfv: param` declaration; 0 = from the command line
+  // The values the checks use: the default, or the grid of a swept parameter.
+  std::vector<double> ends() const;  // lo and hi (one value if fixed or lo == hi)
+};
+
+struct UserBrdf {
+  std::string path, name, text;  // name: the file's stem, used as the model name
+  bool has_d = false, has_g1 = false;
+  std::vector<UserParam> params;  // params[k] of the contract
+  int roughness = -1;             // index of the width parameter, -1: none declared
+  double width(const std::vector<double>& values) const;  // proposal width at these parameter values (<= 0: mixture)
+  std::vector<double> defaults() const;
+};
+
+// At most this many parameters (IntegralSpec carries p[0..5]).
+constexpr size_t kUserMaxParams = 6;
+
+struct UserParamArgs {
+  std::vector<std::string> params;  // --param NAME=V or NAME=LO:HI
+  std::string roughness;            // --roughness NAME (width = value) or NAME^2 (width = value²)
+};
+
+// Reads and checks FILE against the contract; throws mfv::Error (one line,
+// exit 2) on any violation.
+UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args);
+
+}  // namespace mfv
