@@ -173,8 +173,6 @@ void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, cons
 
 // ---- whole models (catalog/models.hpp) ------------------------------------
 
-std::string case_name(const Model& m, const ModelCase& c) { return m.id + "[" + c.label + "]"; }
-
 std::map<std::string, double> case_params(const Model& m, const ModelCase& c) {
   std::map<std::string, double> out;
   for (size_t i = 0; i < m.params.size(); ++i) out[m.params[i].name] = c.p[i];
@@ -194,7 +192,7 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt, uint64_t
     for (auto& m : models()) {
       bool used = false;
       for (auto& c : m.cases) {
-        const std::string name = case_name(m, c);
+        const std::string name = model_case_name(m, c);
         if (!wanted(opt.models, name)) continue;
         for (double co : view_cosines(10)) {
           const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
@@ -435,7 +433,7 @@ Plan reciprocity_plan(const SuiteOptions& opt) {
   for (auto& m : models()) {
     bool used = false;
     for (auto& c : m.cases) {
-      const std::string name = case_name(m, c);
+      const std::string name = model_case_name(m, c);
       if (!wanted(opt.models, name)) continue;
       specs.push_back(model_spec(IntegralKind::DNorm, m, c.p, 1.0));  // the reciprocity kernel ignores the kind
       PointResult p;
@@ -532,7 +530,7 @@ void validate_suite_options(const SuiteOptions& opt) {
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();
   for (auto& m : models())
-    for (auto& c : m.cases) any = any || wanted(opt.models, case_name(m, c));
+    for (auto& c : m.cases) any = any || wanted(opt.models, model_case_name(m, c));
   for (auto* d : terms_of(Kind::D)) {
     any = any || wanted(opt.models, d->id);
     for (auto* g : terms_of(Kind::G)) {

@@ -13,19 +13,19 @@
 namespace mfv::cli {
 
 void add_stability(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("stability", "sweep every term, Smith G1, D x G x F BRDF and alternative form over "
-                                              "extreme inputs; report NaN/Inf/negative and error per region");
+  auto* cmd = app.add_subcommand("stability", "sweep every term, Smith G1, D x G x F BRDF, whole model and alternative "
+                                              "form over extreme inputs; report NaN/Inf/negative and error per region");
   static StabilityOptions opt;
   static std::string out;
   static bool terms_only = false;
   cmd->add_option("--out", out, "write stability.json, stability.md and plots (gnuplot) into this folder");
   cmd->add_flag("--fp64", opt.fp64, "run the kernels in double (device needs cl_khr_fp64)");
-  cmd->add_flag("--terms-only", terms_only, "skip the D x G x F combinations");
+  cmd->add_flag("--terms-only", terms_only, "skip the D x G x F combinations and the whole models");
   cmd->add_option("--only", opt.only,
-                  "only cases whose name contains one of these (e.g. 'D ggx', 'BRDF ggx/', 'variant')");
+                  "only cases whose name contains one of these (e.g. 'D ggx', 'BRDF ggx/', 'MODEL', 'variant')");
   static std::string scene_path;
-  cmd->add_option("--scene", scene_path, "only the terms and BRDFs the materials of this scene use (.gltf, .glb, "
-                                         "material .json)");
+  cmd->add_option("--scene", scene_path, "only the terms, BRDFs and models the materials of this scene use (.gltf, "
+                                         ".glb, material .json)");
   cmd->callback([&g, &rc] {
     Scene scene;
     if (!scene_path.empty()) {
@@ -34,6 +34,7 @@ void add_stability(CLI::App& app, Globals& g, int& rc) {
       opt.only = scene_stability_cases(scene);
     }
     opt.combinations = !terms_only;
+    opt.models = !terms_only;
     if (!out.empty()) {  // checked before the sweep, not after it
       std::error_code ec;
       std::filesystem::create_directories(out, ec);

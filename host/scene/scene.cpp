@@ -38,6 +38,13 @@ std::vector<GltfChannelParams> SceneMaterial::channels() const {
   return out;
 }
 
+const Model& gltf_model() { return *try_find_model("gltf"); }
+
+Expect gltf_energy_expect(const GltfChannelParams& c) {
+  const bool plain = c.metallic >= 1.0 || (1.0 - c.metallic) * c.base <= 0.0 || c.weight <= 0.0;
+  return plain ? Expect::Hold : Expect::May;
+}
+
 std::string SceneMaterial::model() const { return gltf ? "gltf" : d->id + "/" + g->id + "/" + f->id; }
 
 namespace {

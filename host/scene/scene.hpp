@@ -6,6 +6,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 
 #include <array>
 #include <string>
@@ -31,7 +32,14 @@ constexpr double kSceneMinAlpha = 1e-4;
 struct GltfChannelParams {
   double alpha, metallic, base, f0, f0_max, weight;
   bool operator==(const GltfChannelParams& o) const;
+  ModelParams params() const { return {alpha, metallic, base, f0, f0_max, weight}; }
 };
+// The catalog's glTF model (host/catalog/models.cpp "gltf").
+const Model& gltf_model();
+// Its albedo must stay <= 1 where fresnel_mix is not involved: a pure metal
+// (one GGX lobe with F <= 1), no diffuse base, or no specular layer (a
+// Lambert base <= 1); elsewhere it may exceed 1 (kGltfFresnelMixGain).
+Expect gltf_energy_expect(const GltfChannelParams& c);
 
 struct SceneMaterial {
   std::string name;    // as the scene names it ("material #3" when unnamed)

@@ -60,11 +60,9 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
 }
 
 
-// The catalog's glTF model (host/catalog/models.cpp "gltf") at one channel's parameters.
-const Model& gltf_model() { return *try_find_model("gltf"); }
-ModelParams gltf_p(const GltfChannelParams& c) { return {c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.weight}; }
+// The catalog's glTF model at one channel's parameters.
 IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
-  return model_spec(IntegralKind::Albedo, gltf_model(), gltf_p(c), cos_l);
+  return model_spec(IntegralKind::Albedo, gltf_model(), c.params(), cos_l);
 }
 
 std::string gltf_key(const GltfChannelParams& c) {
@@ -74,22 +72,14 @@ std::string gltf_key(const GltfChannelParams& c) {
 
 std::map<std::string, double> gltf_params(const GltfChannelParams& c) {
   std::map<std::string, double> out;
-  const ModelParams p = gltf_p(c);
+  const ModelParams p = c.params();
   for (size_t i = 0; i < gltf_model().params.size(); ++i) out[gltf_model().params[i].name] = p[i];
   return out;
 }
 
-// The glTF model conserves energy where the Fresnel mix is not involved: a
-// pure metal (one GGX lobe with F <= 1), no diffuse base, or no specular layer
-// (Lambert base <= 1). Elsewhere fresnel_mix weights the diffuse base by
-// 1 - F(v.h) rather than by what the specular layer leaves, so the albedo may
-// exceed 1 at grazing view; the specification says so itself.
 Expectation gltf_energy_expectation(const GltfChannelParams& c) {
-  if (c.metallic >= 1.0 || (1.0 - c.metallic) * c.base <= 0.0 || c.weight <= 0.0) return {};
-  return {Expect::May,
-          "glTF 2.0 Appendix B (\"Coupling Diffuse and Specular Reflection\"): fresnel_mix weights the diffuse base by "
-          "1 - F(v.h), not by the specular layer's directional albedo, which breaks energy conservation",
-          0};
+  const Expect e = gltf_energy_expect(c);
+  return {e, e == Expect::Hold ? "" : kGltfFresnelMixGain, 0};
 }
 
 struct SceneSets {

@@ -11,10 +11,13 @@
 
 namespace mfv {
 
-// "d/g" of every D x G the scene's materials use (glTF: ggx/smith_ggx_correlated).
-std::vector<std::string> scene_energy_models(const Scene& scene);
-// Console: tables run against the full catalog, and each material's E_avg and
-// energy loss 1 - E_avg at its own alpha (interpolated in log alpha).
+// mfv energy's selection for a scene: the D x G tables of its D/G/F materials
+// (by "d/g"), and the glTF model at each glTF material's distinct channels
+// and as a white metal (F = 1: the specular lobe's own loss); nothing else.
+void scene_energy_options(const Scene& scene, EnergyOptions& opt);
+// Console: tables and points run against the full catalog, and each
+// material's E_avg and energy loss 1 - E_avg: glTF at its own parameters,
+// D/G/F at its own alpha (interpolated in log alpha).
 void print_scene_energy(const Scene& scene, const EnergyReport& rep);
 
 // Stability case names (kernels the scene's materials evaluate): "D ggx",
