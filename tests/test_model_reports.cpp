@@ -83,7 +83,7 @@ TEST_CASE("mfv energy: seed 004's Phong (n = 1) gains energy and Lambert keeps E
   CHECK(run_mfv("energy --models 'nosuchmodel['").code == 2);
 }
 
-TEST_CASE("mfv stability sweeps every whole model: 0 below the horizon; finite wherever the reference is, or "
+TEST_CASE("mfv stability sweeps every whole model: 0 below the horizon, finite wherever the reference is or "
           "the catalog says where not",
           "[device][stability][models]") {
   Runtime* rt = test::device_runtime();
