@@ -53,7 +53,7 @@ struct ModelCase {
 
 struct Model {
   std::string id;         // catalog name, distinct from every term id
-  std::string kernel_fn;  // function in kernels/models.cl
+  std::string kernel_fn;  // function in kernels/models.cl (gltf: kernels/model_gltf.cl)
   std::string source;     // seed file and formula, or paper and equation
   std::string formula;    // the BRDF, one line
   std::vector<Param> params;  // at most kModelParams
@@ -68,6 +68,10 @@ struct Model {
   double ulp_budget = 64;          // kernel float vs double reference, identical inputs
   double abs_floor = 1e-30;
   std::vector<ModelCase> cases;    // the points mfv run checks, with expected verdicts
+  // Non-empty: where mfv stability's census finds the float32 kernel NaN or
+  // Inf though the reference is finite (measured); such a model is reported,
+  // not gated. Empty: finite wherever its reference is (gated).
+  std::string unstable;
 
   double proposal_width(const double* p) const;
   uint32_t number() const;  // IntegralSpec::model: 1..999 (0 is the D x G x F BRDF)
@@ -77,6 +81,9 @@ const std::vector<Model>& models();
 const Model* try_find_model(const std::string& id);
 const Model* model_by_number(uint32_t number);  // nullptr for 0 and numbers no model of this list has
 const char* expect_name(Expect e);              // "hold", "fail", "may fail"
+std::string model_case_name(const Model& m, const ModelCase& c);  // "phong_004[n=1]"
+// Why a glTF dielectric may reflect more than it receives (the "gltf" model's cases, mfv run --scene).
+extern const char* const kGltfFresnelMixGain;
 // Parameter values checked at the boundary, as validate_param for terms.
 void validate_model_param(const Model& m, size_t index, double value);
 // The defaults p[i] = params[i].fallback, zero past the model's count.

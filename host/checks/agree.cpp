@@ -343,8 +343,9 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "brdf.cl", "agree.cl"}, defines,
-                  generate_dispatch(TermSelection::all()), "brdf.cl");
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl", "brdf.cl",
+                   "agree.cl"},
+                  defines, generate_dispatch(TermSelection::all()), "brdf.cl");
 }
 }  // namespace
 

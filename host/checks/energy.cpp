@@ -37,13 +37,19 @@ void validate_energy_options(const EnergyOptions& o) {
   if (o.replicates < 2 || o.replicates > 256) throw Error(fmt::format("--replicates {}: must be 2..256", o.replicates));
   if (o.min_points < 64 || o.max_points < o.min_points || o.max_points > (uint64_t(1) << 24))
     throw Error(fmt::format("points per replicate {}..{}: need 64 <= min <= max <= 2^24", o.min_points, o.max_points));
-  // Every D and G filter must match something, or the user made a typo.
+  // Every filter must match something, or the user made a typo.
   for (auto& f : o.models) {
     bool hit = false;
-    for (auto* d : terms_of(Kind::D))
-      for (auto* g : terms_of(Kind::G)) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
-    if (!hit) throw Error(fmt::format("--models '{}' matches no D/G combination (see 'mfv list')", f));
+    if (o.tables)
+      for (auto* d : terms_of(Kind::D))
+        for (auto* g : terms_of(Kind::G)) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
+    if (o.catalog_models)
+      for (auto& m : models())
+        for (auto& c : m.cases) hit = hit || model_case_name(m, c).find(f) != std::string::npos;
+    if (!hit) throw Error(fmt::format("--models '{}' matches no D/G combination or model[case] (see 'mfv list')", f));
   }
+  for (auto& mp : o.model_points)
+    for (size_t i = 0; i < mp.model->params.size(); ++i) validate_model_param(*mp.model, i, mp.p[i]);
 }
 
 namespace {
@@ -53,6 +59,19 @@ bool wanted(const std::vector<std::string>& filter, const std::string& name) {
   for (auto& f : filter)
     if (name.find(f) != std::string::npos) return true;
   return false;
+}
+
+// The whole-model points a run integrates: catalog cases (filtered), then the caller's.
+std::vector<ModelPoint> model_points_of(const EnergyOptions& opt) {
+  std::vector<ModelPoint> out;
+  if (opt.catalog_models)
+    for (auto& m : models())
+      for (auto& c : m.cases) {
+        const std::string name = model_case_name(m, c);
+        if (wanted(opt.models, name)) out.push_back({&m, name, c.p, c.energy, c.energy_why});
+      }
+  out.insert(out.end(), opt.model_points.begin(), opt.model_points.end());
+  return out;
 }
 
 Cell replicate_stats(const std::vector<double>& v) {
@@ -65,14 +84,51 @@ Cell replicate_stats(const std::vector<double>& v) {
   return {mean, std::sqrt(ss / (n - 1) / n)};
 }
 
-// One quantity the adaptive loop refines: an E/A/B cell (2 specs per
-// replicate: F = none and Schlick with F0 = 0, the latter being B) or an
-// E_avg (1 spec per replicate).
+// E_avg = 2 ∫ E(mu) mu dmu by the midpoint rule over the mu grid (cells E[0..n-1]).
+Cell eavg_by_midpoints(const std::vector<double>& mu, const Cell* E) {
+  const size_t nm = mu.size();
+  double s = 0, v = 0;
+  for (size_t m = 0; m < nm; ++m) {
+    const double w = 2.0 * mu[m] / double(nm);
+    s += w * E[m].mean;
+    v += w * w * E[m].se * E[m].se;
+  }
+  return {s, std::sqrt(v)};
+}
+
+// A whole model gains energy where some E(mu) exceeds 1 beyond its noise:
+// one-sided Student t (R - 1 degrees of freedom) per cell, Bonferroni over
+// every model cell of the run at family-wise rate opt.gain_alpha.
+void judge_model_gains(EnergyReport& rep) {
+  size_t cells = 0;
+  for (auto& me : rep.models) cells += me.E.size();
+  const double threshold = rep.opt.gain_alpha / double(std::max<size_t>(1, cells));
+  const double df = rep.opt.replicates - 1;
+  for (auto& me : rep.models) {
+    me.max_at = 0;
+    me.excess_p = 1;
+    for (size_t m = 0; m < me.E.size(); ++m) {
+      const Cell& c = me.E[m];
+      if (c.mean > me.E[me.max_at].mean || !std::isfinite(c.mean)) me.max_at = m;
+      double p;
+      if (!std::isfinite(c.mean)) p = c.mean > 0 || std::isnan(c.mean) ? 0 : 1;
+      else if (c.se > 0) p = c.mean > 1 ? 0.5 * student_t_two_sided_p((c.mean - 1) / c.se, df) : 1;
+      else p = c.mean > 1 ? 0 : 1;
+      me.excess_p = std::min(me.excess_p, p);
+    }
+    me.gains = me.excess_p < threshold;
+  }
+}
+
+// One quantity the adaptive loop refines: an E/A/B cell (one integral per
+// replicate yields E and, on the same points, B), an E_avg, or a whole
+// model's E(mu) or E_avg (E only).
 struct Unit {
-  size_t table, index;  // cell index or alpha index
+  size_t table, index;  // table (or rep.models) index; cell index, alpha index or mu index
   bool eavg;
   IntegralSpec base;
   uint32_t first_stream;
+  bool model = false;   // `table` indexes rep.models
 };
 
 
@@ -92,7 +148,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   TermSelection sel;
   for (auto* d : terms_of(Kind::D))
     for (auto* g : terms_of(Kind::G)) {
-      if (!wanted(opt.models, d->id + "/" + g->id)) continue;
+      if (!opt.tables || !wanted(opt.models, d->id + "/" + g->id)) continue;
       EnergyTable t;
       t.d = d;
       t.g = g;
@@ -111,7 +167,15 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
       if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
     }
-  if (rep.tables.empty()) throw Error("no D/G combination selected");
+  for (auto& mp : model_points_of(opt)) {
+    ModelEnergy me;
+    me.point = mp;
+    me.E.resize(nm);
+    me.points.assign(nm, 0);
+    rep.models.push_back(me);
+    if (std::find(sel.models.begin(), sel.models.end(), mp.model) == sel.models.end()) sel.models.push_back(mp.model);
+  }
+  if (rep.tables.empty() && rep.models.empty()) throw Error("no D/G combination or whole model selected");
   sel.f = {&none};
 
   const double b0 = rt.build_stats().seconds;
@@ -144,6 +208,15 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       units.push_back({ti, a, true, spec(IntegralKind::EavgRqmc, a, 1.0), stream});
       stream += uint32_t(R);
     }
+  }
+  for (size_t mi = 0; mi < rep.models.size(); ++mi) {
+    const ModelPoint& mp = rep.models[mi].point;
+    for (size_t m = 0; m < nm; ++m) {
+      units.push_back({mi, m, false, model_spec(IntegralKind::AlbedoRqmc, *mp.model, mp.p, rep.mu[m]), stream, true});
+      stream += uint32_t(R);
+    }
+    units.push_back({mi, 0, true, model_spec(IntegralKind::EavgRqmc, *mp.model, mp.p, 1.0), stream, true});
+    stream += uint32_t(R);
   }
   // R replicates (randomizations) per unit; an E/A/B cell's kernel integral
   // yields E and, on the same points, B (kernels/integrate.cl albedo_rqmc_value).
@@ -201,14 +274,23 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
           p.b_sum[r] += est[offset[k] + r].b_mean * double(used);
         }
         p.done = first + used;
-        EnergyTable& t = rep.tables[u.table];
         double worst;
-        if (u.eavg) {
+        if (u.model) {
+          ModelEnergy& me = rep.models[u.table];
+          std::vector<double> e;
+          for (size_t r = 0; r < R; ++r) e.push_back(p.sum[r] / double(p.done));
+          Cell& c = u.eavg ? me.eavg : me.E[u.index];
+          c = replicate_stats(e);
+          if (!u.eavg) me.points[u.index] = p.done;
+          worst = c.se;
+        } else if (u.eavg) {
+          EnergyTable& t = rep.tables[u.table];
           std::vector<double> e;
           for (size_t r = 0; r < R; ++r) e.push_back(p.sum[r] / double(p.done));
           t.eavg[u.index] = replicate_stats(e);
           worst = t.eavg[u.index].se;
         } else {
+          EnergyTable& t = rep.tables[u.table];
           std::vector<double> e, a, b;
           for (size_t r = 0; r < R; ++r) {
             const double er = p.sum[r] / double(p.done), br = p.b_sum[r] / double(p.done);
@@ -235,15 +317,8 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   // E_avg by the midpoint rule over the mu grid, as a cross-check of the
   // dedicated integral (its error is the quadrature's O(1/n^2) plus noise).
   for (auto& t : rep.tables)
-    for (size_t a = 0; a < na; ++a) {
-      double s = 0, v = 0;
-      for (size_t m = 0; m < nm; ++m) {
-        const double w = 2.0 * rep.mu[m] / double(nm);
-        s += w * t.E[a * nm + m].mean;
-        v += w * w * t.E[a * nm + m].se * t.E[a * nm + m].se;
-      }
-      t.eavg_quad[a] = {s, std::sqrt(v)};
-    }
+    for (size_t a = 0; a < na; ++a) t.eavg_quad[a] = eavg_by_midpoints(rep.mu, &t.E[a * nm]);
+  for (auto& me : rep.models) me.eavg_quad = eavg_by_midpoints(rep.mu, me.E.data());
 
   auto consider = [&](const Cell& c, const std::string& where) {
     if (!(c.se <= opt.target)) rep.above_target++;
@@ -263,6 +338,11 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       }
       consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
     }
+  for (auto& me : rep.models) {
+    for (size_t m = 0; m < nm; ++m) consider(me.E[m], fmt::format("E {} mu_l={:.4g}", me.point.name, rep.mu[m]));
+    consider(me.eavg, "E_avg " + me.point.name);
+  }
+  judge_model_gains(rep);
 
   // The double reference on the identical first samples of every k-th integral.
   if (opt.reference_samples > 0) {
@@ -272,7 +352,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       for (auto& s : specs_of(u))
         if (k++ % size_t(std::max(1, opt.reference_every)) == 0) {
           subset.push_back(s);
-          if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+          if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc) && s.model == 0) {
             s.check = static_cast<int32_t>(IntegralKind::AlbedoRqmcB);  // and its B channel
             subset.push_back(s);
           }
@@ -284,10 +364,11 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       if (agree[j].disagreement <= rep.reference_worst) continue;
       rep.reference_worst = agree[j].disagreement;
       const ref::IntegralRef r = reference_of(subset[j]);
-      rep.reference_worst_at =
-          fmt::format("{}/{}/{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
-                      r.brdf.d->id, r.brdf.g->id, r.brdf.f->id, subset[j].check, r.width, r.cos_o, r.stream,
-                      agree[j].kernel_mean, agree[j].reference_mean);
+      const std::string what =
+          r.brdf.model ? "model " + r.brdf.model->id : r.brdf.d->id + "/" + r.brdf.g->id + "/" + r.brdf.f->id;
+      rep.reference_worst_at = fmt::format("{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
+                                           what, subset[j].check, r.width, r.cos_o, r.stream, agree[j].kernel_mean,
+                                           agree[j].reference_mean);
     }
   }
 
@@ -399,6 +480,22 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
     for (auto& [name, c] : old)
       if (std::none_of(now.tables.begin(), now.tables.end(), [&](const EnergyTable& t) { return t.name() == name; }))
         out.notes.push_back(name + " is in the baseline but not in this run");
+    // whole models, by point name (a baseline from before they existed has none)
+    std::map<std::string, const json*> old_models;
+    if (j.contains("models"))
+      for (auto& m : j.at("models")) old_models[m.at("name").get<std::string>()] = &m;
+    for (auto& me : now.models) {
+      auto it = old_models.find(me.point.name);
+      if (it == old_models.end()) {
+        out.notes.push_back(me.point.name + " is not in the baseline");
+        continue;
+      }
+      const json& c = *it->second;
+      for (size_t m = 0; m < nm; ++m)
+        tests.push_back({fmt::format("E {} mu_l={:.4g}", me.point.name, now.mu[m]), num(c.at("E")[m]),
+                         num(c.at("E_se")[m]), me.E[m].mean, me.E[m].se});
+      tests.push_back({"E_avg " + me.point.name, num(c.at("E_avg")), num(c.at("E_avg_se")), me.eavg.mean, me.eavg.se});
+    }
     out.compared = tests.size();
     out.threshold_p = alpha_fw / double(std::max<size_t>(1, tests.size()));
     for (auto& t : tests) {

@@ -11,9 +11,16 @@
 // independently shifted Kronecker point sets per quantity; the standard error
 // is the spread of the R replicate means / sqrt(R). Adaptive: cells whose
 // standard error is above the target get 4x the points, up to a cap.
+//
+// Whole models (catalog/models.hpp) get the same treatment at parameter
+// points (their catalog cases, or points a caller gives): E(mu) with mu the
+// light's cosine (a whole model need not be reciprocal; E is the energy a
+// beam from l reflects), E_avg and the energy loss 1 - E_avg, with the
+// proposal width taken from the model's roughness-like parameter.
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -22,8 +29,21 @@
 
 namespace mfv {
 
+// A whole model at one parameter point.
+struct ModelPoint {
+  const Model* model = nullptr;
+  std::string name;  // "phong_004[n=1]" for a catalog case; a caller's label otherwise
+  ModelParams p{};
+  Expect expect = Expect::Hold;  // the catalog's energy expectation (E <= 1 at every light), and why
+  std::string why;
+};
+
 struct EnergyOptions {
-  std::vector<std::string> models;  // substrings of "d/g"; empty = every D x G
+  std::vector<std::string> models;  // substrings of "d/g" or "model[case]"; empty = every D x G and model case
+  bool tables = true;               // the D x G tables
+  bool catalog_models = true;       // whole models at their catalog cases
+  std::vector<ModelPoint> model_points;  // more whole-model points (mfv energy --scene)
+  double gain_alpha = 1e-3;         // family-wise false-alarm rate of "gains energy" over every model cell
   int n_mu = 32, n_alpha = 32;
   double target = 1e-4;             // standard error per cell
   uint64_t seed = 1;
@@ -49,10 +69,23 @@ struct EnergyTable {
   std::string name() const { return d->id + "/" + g->id; }
 };
 
+// One whole model at one parameter point: E per mu of the light.
+struct ModelEnergy {
+  ModelPoint point;
+  std::vector<Cell> E;            // per mu
+  std::vector<uint64_t> points;   // points per replicate used, per mu
+  Cell eavg, eavg_quad;           // E_avg: its own integral; midpoint rule over the mu grid
+  size_t max_at = 0;              // mu index of the largest E
+  double excess_p = 1;            // one-sided p-value of E(mu[max_at]) <= 1 (Student t, R - 1 df)
+  bool gains = false;             // E > 1 beyond noise somewhere (Bonferroni over every model cell)
+  double loss() const { return 1 - eavg.mean; }
+};
+
 struct EnergyReport {
   EnergyOptions opt;
   std::vector<double> mu, alpha;  // mu: midpoints (m + 1/2)/n; alpha: log-spaced 1e-3..1
   std::vector<EnergyTable> tables;
+  std::vector<ModelEnergy> models;
   double seconds = 0, build_seconds = 0;
   uint64_t samples = 0;
   double samples_per_second = 0;

@@ -12,6 +12,38 @@
 
 namespace mfv {
 
+IntegralSpec make_spec(IntegralKind kind, const Term* d, const Term* g, const Term* f, double pd, double pg, double f0,
+                       double f1, double kd, double width, double cos_o) {
+  IntegralSpec s;
+  s.check = static_cast<int32_t>(kind);
+  s.d = term_index(*d);
+  s.g = g ? term_index(*g) : 0;
+  s.f = f ? term_index(*f) : 0;
+  s.pd = float(pd);
+  s.pg = float(pg);
+  s.f0 = float(f0);
+  s.f1 = float(f1);
+  s.kd = float(kd);
+  s.width = float(width);
+  s.cos_o = float(cos_o);
+  return s;
+}
+
+IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p, double cos_o) {
+  IntegralSpec s;
+  s.check = static_cast<int32_t>(kind);
+  s.model = m.number();
+  s.pd = float(p[0]);
+  s.pg = float(p[1]);
+  s.f0 = float(p[2]);
+  s.f1 = float(p[3]);
+  s.kd = float(p[4]);
+  s.p5 = float(p[5]);
+  s.width = float(m.proposal_width(p.data()));
+  s.cos_o = float(cos_o);
+  return s;
+}
+
 ref::IntegralRef reference_of(const IntegralSpec& s) {
   ref::IntegralRef r;
   r.kind = static_cast<ref::Integral>(s.check);
@@ -43,16 +75,15 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   return r;
 }
 
-namespace {
-cl::Program build_integrate(Runtime& rt, const TermSelection& terms) {
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "brdf.cl", "integrate.cl"},
+  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl", "brdf.cl",
+                   "integrate.cl"},
                   defines, generate_dispatch(terms), "brdf.cl");
 }
-}  // namespace
 
-Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate(rt, terms)) {}
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {}
 
 // The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
 Integrator::Integrator(Runtime& rt, cl::Program program)

@@ -1,6 +1,7 @@
 // Batched Monte Carlo integration on the device (kernels/integrate.cl).
 #pragma once
 
+#include "catalog/models.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
@@ -9,6 +10,8 @@
 #include <vector>
 
 namespace mfv {
+
+struct Term;
 
 // AlbedoRqmc/EavgRqmc: the albedo on randomized-QMC uniforms with a
 // visible-normal proposal, one randomization per integral (mfv energy;
@@ -37,6 +40,18 @@ struct Estimate {
   uint64_t samples = 0;
   double b_mean = 0;  // AlbedoRqmc: the split sum's B on the same points (no stderr: RQMC errors come from replicates)
 };
+
+// One microfacet (D x G x F, model 0) integral; g and f may be null.
+IntegralSpec make_spec(IntegralKind kind, const Term* d, const Term* g, const Term* f, double pd, double pg, double f0,
+                       double f1, double kd, double width, double cos_o);
+
+// integrate.cl with the generated dispatch of `terms` (MFV_ACC_DOUBLE where the device has fp64).
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms);
+
+// One whole-model integral (catalog/models.hpp): p[0..5] in pd, pg, f0, f1,
+// kd, p5, the proposal width from the model's roughness-like parameter; the
+// fixed direction at cos_o is the light (kernels/integrate.cl spec_brdf).
+IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p, double cos_o);
 
 // The same integral for the double reference twin (host/reference/estimators).
 ref::IntegralRef reference_of(const IntegralSpec& s);

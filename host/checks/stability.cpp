@@ -1,6 +1,7 @@
 #include "checks/stability.hpp"
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/agree.hpp"
 #include "reference/brdf.hpp"
@@ -36,7 +37,7 @@ double StabilityCase::max_ulps() const {
 
 namespace {
 
-enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kVariant = 5 };  // = STAB_* in stability.cl
+enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kVariant = 5, kModel = 6 };  // = STAB_* in stability.cl
 constexpr int kIn = 12;                                                  // = STAB_IN
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -61,6 +62,7 @@ struct CaseDef {
   const Term* d = nullptr;
   const Term* g = nullptr;
   const Term* f = nullptr;
+  const Model* model = nullptr;  // kModel: the kernel's `d` argument carries its number
   int variant = -1;
   std::vector<Region> regions;
   std::vector<Point> points;
@@ -500,6 +502,75 @@ CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64) {
   return c;
 }
 
+// ---- Cases: whole models (catalog/models.hpp) --------------------------------
+
+// A whole model's parameter points: its catalog cases, then each parameter at
+// the ends of its range with the others at their defaults.
+std::vector<ModelParams> model_points(const Model& m) {
+  std::vector<ModelParams> out;
+  for (auto& c : m.cases) out.push_back(c.p);
+  for (size_t i = 0; i < m.params.size(); ++i)
+    for (double v : {m.params[i].lo, m.params[i].hi}) {
+      ModelParams p = model_defaults(m);
+      p[i] = v;
+      out.push_back(p);
+    }
+  return out;
+}
+
+CaseDef model_case(const Model& m, bool fp64) {
+  CaseDef c;
+  c.info.group = "model";
+  c.info.family = "MODEL";
+  c.info.name = "MODEL " + m.id;
+  // gated unless the catalog records (measured) where its kernel is not finite
+  c.info.formula = m.formula + (m.unstable.empty() ? "" : " (not gated: " + m.unstable + ")");
+  c.info.stable = m.unstable.empty();
+  c.mode = kModel;
+  c.model = &m;
+  const Model* pm = &m;
+  c.ref = [pm](const In& r) { return pm->ref(glm::dvec3(r[0], r[1], r[2]), glm::dvec3(r[3], r[4], r[5]), &r[6]); };
+  c.describe = [pm](const In& r) {
+    std::string s = fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[0]), hx(r[1]), hx(r[2]), hx(r[3]), hx(r[4]),
+                                hx(r[5]));
+    for (size_t i = 0; i < pm->params.size(); ++i) s += fmt::format(" {}={}", pm->params[i].name, hx(r[6 + i]));
+    return s;
+  };
+  const std::vector<ModelParams> points = model_points(m);
+  auto add = [&](int region, const glm::dvec3& wi, const glm::dvec3& wo) {
+    for (auto& p : points) {
+      Point pt;
+      pt.region = region;
+      pt.in = {wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, p[0], p[1], p[2], p[3], p[4], p[5]};
+      c.points.push_back(pt);
+    }
+  };
+  const std::string params = "; the model's catalog cases and each parameter at its range ends";
+  for (auto& ps : pair_sets(fp64)) {
+    int r = c.add_region({ps.name, ps.what + params, true, ps.expect});
+    for (auto& pr : ps.pairs) add(r, pr.wi, pr.wo);
+  }
+  // Each cosine class as the light's and as the view's cosine, against a mid
+  // direction, retro-reflected and mirrored (a whole model need not be
+  // symmetric, so both roles are swept).
+  const double az = 0.3;
+  const glm::dvec3 mid = dir(0.5, az + 2.0);
+  for (auto& cc : cos_classes(fp64)) {
+    int r = c.add_region({"cos_" + cc.name, cc.what + " as n.l and as n.v" + params, cc.in_domain,
+                          cc.name == "below_horizon" ? "0" : ""});
+    for (double v : cc.values) {
+      // a raw cosine (above 1 or below 0 included) with the x, y of a unit vector at min(|c|, 1)
+      glm::dvec3 d = dir(std::min(std::fabs(v), 1.0), az);
+      d.z = v;
+      add(r, d, mid);
+      add(r, mid, d);
+      add(r, d, d);
+      if (v > 0) add(r, mirror(d), d);
+    }
+  }
+  return c;
+}
+
 // ---- Cases: alternative formulations -----------------------------------------
 
 enum Variant {  // = VAR_* in stability_variants.cl
@@ -706,7 +777,7 @@ std::vector<double> run_kernel(Runtime& rt, cl::Kernel& kern, const CaseDef& c, 
   // Sentinel: a result the kernel did not write reads as NaN and cannot pass.
   rt.queue().enqueueFillBuffer(out_buf, std::numeric_limits<T>::quiet_NaN(), 0, n * sizeof(T));
   kern.setArg(0, static_cast<cl_int>(c.mode));
-  kern.setArg(1, static_cast<cl_int>(c.d ? term_index(*c.d) : 0));
+  kern.setArg(1, static_cast<cl_int>(c.model ? int(c.model->number()) : c.d ? term_index(*c.d) : 0));
   kern.setArg(2, static_cast<cl_int>(c.g ? term_index(*c.g) : 0));
   kern.setArg(3, static_cast<cl_int>(c.f ? term_index(*c.f) : 0));
   kern.setArg(4, static_cast<cl_int>(c.variant));
@@ -729,6 +800,8 @@ std::vector<CaseDef> make_cases(const StabilityOptions& opt) {
     for (auto* d : terms_of(Kind::D))
       for (auto* g : terms_of(Kind::G))
         for (auto* f : terms_of(Kind::F)) cases.push_back(brdf_case(*d, *g, *f, opt.fp64));
+  if (opt.models)
+    for (auto& m : models()) cases.push_back(model_case(m, opt.fp64));
   if (!opt.only.empty()) {
     std::vector<CaseDef> kept;
     for (auto& c : cases)
@@ -760,6 +833,7 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
     add(sel.d, c.d);
     add(sel.g, c.g);
     add(sel.f, c.f);
+    if (c.model) sel.models.push_back(c.model);
   }
   sel.g1 = true;
   std::string dispatch = generate_dispatch(sel);
@@ -775,8 +849,8 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
   rep.precision = opt.fp64 ? "float64" : "float32";
   rep.build_options = rt.base_options() + (opt.fp64 ? " -DMFV_DOUBLE" : "");
   auto build0 = rt.build_stats().seconds;
-  cl::Program prog = rt.build({"common.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl",
-                               "stability_variants.cl", "stability.cl"},
+  cl::Program prog = rt.build({"common.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl",
+                               "brdf.cl", "stability_variants.cl", "stability.cl"},
                               defines, dispatch, "brdf.cl");
   rep.build_seconds = rt.build_stats().seconds - build0;
   cl::Kernel kern(prog, "stability_eval");

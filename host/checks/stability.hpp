@@ -20,6 +20,7 @@ namespace mfv {
 struct StabilityOptions {
   bool fp64 = false;              // kernels in double (needs cl_khr_fp64)
   bool combinations = true;       // the D x G x F BRDFs besides terms and variants
+  bool models = true;             // the catalog's whole models (catalog/models.hpp)
   std::vector<std::string> only;  // keep cases whose name contains one of these
 };
 
@@ -41,8 +42,8 @@ struct RegionResult {
 };
 
 struct StabilityCase {
-  std::string name;   // "D ggx", "G1 smith_ggx", "BRDF ggx/smith_ggx/schlick", "variant D_ggx via tan2"
-  std::string group;  // "term", "brdf", "variant"
+  std::string name;   // "D ggx", "G1 smith_ggx", "BRDF ggx/smith_ggx/schlick", "MODEL ward_004", "variant D_ggx via tan2"
+  std::string group;  // "term", "brdf", "model", "variant"
   std::string family; // variants: the quantity ("D_ggx", "Lambda_ggx", ...); terms: kind
   std::string formula;
   bool stable = false;     // terms, BRDFs: the catalog's flag; variants: false

@@ -105,14 +105,10 @@ double width_of(const Term& d, double native) {
   }
 }
 
+}  // namespace
+
 // ---- expectations --------------------------------------------------------
 // Which models must fail which check, and why, from catalog properties.
-
-struct Expectation {
-  Expect expect = Expect::Hold;
-  std::string reason;
-  double tolerance = 0;
-};
 
 // The catalog's prediction for one point. alpha is the shared width, f0 the
 // first F parameter, kd the diffuse albedo.
@@ -152,6 +148,8 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
   return {Expect::Hold, "", fit ? fit->tol : 0.0};
 }
 
+namespace {
+
 // ---- running ---------------------------------------------------------------
 
 bool check_wanted(const SuiteOptions& opt, const std::string& check) { return suite_check_wanted(opt, check); }
@@ -160,19 +158,7 @@ bool wanted(const std::vector<std::string>& filter, const std::string& name) { r
 void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
                double pg, double f0, double f1, double kd, double cos_o, double expected, bool upper,
                std::map<std::string, double> params) {
-  IntegralSpec s;
-  s.check = static_cast<int32_t>(kind);
-  s.d = term_index(*d);
-  s.g = g ? term_index(*g) : 0;
-  s.f = f ? term_index(*f) : 0;
-  s.pd = float(pd);
-  s.pg = float(pg);
-  s.f0 = float(f0);
-  s.f1 = float(f1);
-  s.kd = float(kd);
-  s.width = float(alpha);
-  s.cos_o = float(cos_o);
-  plan.specs.push_back(s);
+  plan.specs.push_back(make_spec(kind, d, g, f, pd, pg, f0, f1, kd, alpha, cos_o));
   PointResult p;
   p.check = plan.check;
   p.d = d;
@@ -190,25 +176,10 @@ void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, cons
 
 // ---- whole models (catalog/models.hpp) ------------------------------------
 
-std::string case_name(const Model& m, const ModelCase& c) { return m.id + "[" + c.label + "]"; }
-
 std::map<std::string, double> case_params(const Model& m, const ModelCase& c) {
   std::map<std::string, double> out;
   for (size_t i = 0; i < m.params.size(); ++i) out[m.params[i].name] = c.p[i];
   return out;
-}
-
-IntegralSpec model_spec(const Model& m, const ModelCase& c) {
-  IntegralSpec s;
-  s.model = m.number();
-  s.pd = float(c.p[0]);
-  s.pg = float(c.p[1]);
-  s.f0 = float(c.p[2]);
-  s.f1 = float(c.p[3]);
-  s.kd = float(c.p[4]);
-  s.p5 = float(c.p[5]);
-  s.width = float(m.proposal_width(c.p.data()));
-  return s;
 }
 
 // energy: E(l) = ∫ f(l, v)(n·v) dv <= 1 at every light direction, with the
@@ -224,15 +195,12 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt, uint64_t
     for (auto& m : models()) {
       bool used = false;
       for (auto& c : m.cases) {
-        const std::string name = case_name(m, c);
+        const std::string name = model_case_name(m, c);
         if (!wanted(opt.models, name)) continue;
         for (double co : view_cosines(10)) {
           const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
           if (exact && std::isnan(closed)) continue;
-          IntegralSpec s = model_spec(m, c);
-          s.check = static_cast<int32_t>(IntegralKind::Albedo);
-          s.cos_o = float(co);
-          p.specs.push_back(s);
+          p.specs.push_back(model_spec(IntegralKind::Albedo, m, c.p, co));
           PointResult r;
           r.check = check;
           r.model = name;
@@ -251,6 +219,8 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt, uint64_t
     plans.push_back(p);
   }
 }
+
+}  // namespace
 
 std::vector<Plan> make_plans(const SuiteOptions& opt) {
   std::vector<Plan> plans;
@@ -317,8 +287,6 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
   return plans;
 }
-
-}  // namespace
 
 std::string model_name(const PointResult& p) {
   if (!p.model.empty()) return p.model;
@@ -429,17 +397,16 @@ void compare_with_reference(Integrator& in, const Plan& plan, const SuiteOptions
   }
 }
 
-void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, double& build_seconds) {
-  auto t0 = std::chrono::steady_clock::now();
-  TermSelection all = TermSelection::all();
-  all.g1 = false;  // the reciprocity kernel shares integrate.cl's program
-  double b0 = rt.build_stats().seconds;
-  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "brdf.cl", "integrate.cl"},
-                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
-                              generate_dispatch(all), "brdf.cl");
-  build_seconds += rt.build_stats().seconds - b0;
-  std::vector<IntegralSpec> specs;
-  std::vector<PointResult> pts;
+}  // namespace
+
+Plan reciprocity_plan(const SuiteOptions& opt) {
+  // every D x G x F (the kernel dispatches on ids) and the models with a case
+  Plan plan{"reciprocity", {}, {}, 0, {}};
+  plan.terms.d = terms_of(Kind::D);
+  plan.terms.g = terms_of(Kind::G);
+  plan.terms.f = terms_of(Kind::F);
+  std::vector<IntegralSpec>& specs = plan.specs;
+  std::vector<PointResult>& pts = plan.points;
   const double alpha = 0.3;
   for (auto* d : terms_of(Kind::D))
     for (auto* g : terms_of(Kind::G))
@@ -467,13 +434,12 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
           pts.push_back(p);
         }
       }
-  for (auto& m : models())
+  for (auto& m : models()) {
+    bool used = false;
     for (auto& c : m.cases) {
-      const std::string name = case_name(m, c);
+      const std::string name = model_case_name(m, c);
       if (!wanted(opt.models, name)) continue;
-      IntegralSpec s = model_spec(m, c);
-      s.stream = uint32_t(specs.size());
-      specs.push_back(s);
+      specs.push_back(model_spec(IntegralKind::DNorm, m, c.p, 1.0));  // the reciprocity kernel ignores the kind
       PointResult p;
       p.check = "reciprocity";
       p.model = name;
@@ -481,11 +447,21 @@ void run_reciprocity(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep, dou
       p.expect = c.reciprocity;
       p.reason = c.reciprocity_why;
       pts.push_back(p);
+      used = true;
     }
-  record_reciprocity(rt, prog, specs, pts, kReciprocityBound, opt.scale, opt.seed, t0, rep);
+    if (used) plan.terms.models.push_back(&m);
+  }
+  return plan;
 }
 
-}  // namespace
+void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
+  if (plan.specs.empty()) return;
+  auto t0 = std::chrono::steady_clock::now();
+  double b0 = rt.build_stats().seconds;
+  cl::Program prog = build_integrate_program(rt, plan.terms);
+  rep.build_seconds += rt.build_stats().seconds - b0;
+  record_reciprocity(rt, prog, plan.specs, plan.points, kReciprocityBound, opt.scale, opt.seed, t0, rep);
+}
 
 void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
                         std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
@@ -542,6 +518,14 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& str
   rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
 }
 
+void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
+  if (plan.specs.empty()) return;
+  double b0 = rt.build_stats().seconds;
+  Integrator in(rt, plan.terms);
+  rep.build_seconds += rt.build_stats().seconds - b0;
+  run_plan(in, plan, opt, stream, rep);
+}
+
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
     if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
@@ -550,7 +534,7 @@ void validate_suite_options(const SuiteOptions& opt) {
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();
   for (auto& m : models())
-    for (auto& c : m.cases) any = any || wanted(opt.models, case_name(m, c));
+    for (auto& c : m.cases) any = any || wanted(opt.models, model_case_name(m, c));
   for (auto* d : terms_of(Kind::D)) {
     any = any || wanted(opt.models, d->id);
     for (auto* g : terms_of(Kind::G)) {
@@ -567,14 +551,11 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   uint32_t stream = 0;
   std::vector<Plan> plans = make_plans(opt);
-  for (auto& plan : plans) {
-    if (plan.specs.empty()) continue;
-    double b0 = rt.build_stats().seconds;
-    Integrator in(rt, plan.terms);
-    rep.build_seconds += rt.build_stats().seconds - b0;
-    run_plan(in, plan, opt, stream, rep);
+  for (auto& plan : plans) run_plan(rt, plan, opt, stream, rep);
+  if (check_wanted(opt, "reciprocity")) {
+    Plan rp = reciprocity_plan(opt);
+    run_reciprocity(rt, rp, opt, rep);
   }
-  if (check_wanted(opt, "reciprocity")) run_reciprocity(rt, opt, rep, rep.build_seconds);
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);
   return rep;

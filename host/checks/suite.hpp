@@ -131,6 +131,23 @@ std::vector<double> view_cosines(int n);
 // estimates, timing and, when opt.reference_samples > 0, the same-sample
 // reference comparison into `rep`.
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+// The same through a program built here with plan.terms (its build time goes to rep.build_seconds).
+void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+
+// ---- Pieces mfv run --scene (host/scene/) shares with mfv run -------------
+
+// The catalog's prediction for one point of a D/G/F model: alpha is the
+// shared width, f0 the first F parameter, kd the diffuse albedo.
+struct Expectation {
+  Expect expect = Expect::Hold;
+  std::string reason;
+  double tolerance = 0;
+};
+Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd);
+std::vector<Plan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog, filtered by opt
+Plan reciprocity_plan(const SuiteOptions& opt);         // every reciprocity batch, filtered by opt.models
+// Builds the plan's program (terms without G1) and records one bounded point per batch.
+void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 
 // The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`, 64 x
 // per_item pairs each (per_item from the scale): one bounded point per spec

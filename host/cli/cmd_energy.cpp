@@ -4,6 +4,7 @@
 #include "report/energy_report.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "scene/scene_filters.hpp"
 
 #include <fmt/format.h>
 
@@ -14,12 +15,14 @@ namespace mfv::cli {
 
 void add_energy(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("energy", "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
-                                           "D x G (F = none): CSV, JSON, C header, report with plots");
+                                           "D x G (F = none), and E(mu), E_avg of every whole model at its catalog "
+                                           "cases: CSV, JSON, C header, report with plots");
   static EnergyOptions opt;
   static std::string out_dir, baseline, grid;
   static double alpha_fw = 1e-3;
-  cmd->add_option("--models", opt.models, "only D/G combinations whose name d/g contains one of these "
-                                          "(default: every D x G of the catalog)");
+  cmd->add_option("--models", opt.models, "only D/G combinations (d/g) and whole-model cases (model[case]) whose name "
+                                          "contains one of these, e.g. ggx/ or '[' for the whole models "
+                                          "(default: every D x G and every whole-model case)");
   cmd->add_option("--grid", grid, "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
   cmd->add_option("--target", opt.target, "standard error per cell to reach (default 1e-4); cells above it get "
                                           "more points, up to the cap");
@@ -31,7 +34,17 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
                                           "standard errors (Bonferroni over all values)");
   cmd->add_option("--alpha-fw", alpha_fw, "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
       ->check(CLI::Range(1e-300, 0.5));
+  static std::string scene_path;
+  cmd->add_option("--scene", scene_path, "only what the materials of this scene use (.gltf, .glb, material .json): "
+                                         "the glTF model at each material's parameters, the D x G tables of the "
+                                         "others; prints each material's energy loss");
   cmd->callback([&g, &rc] {
+    Scene scene;
+    if (!scene_path.empty()) {
+      if (!opt.models.empty()) throw Error("--models and --scene cannot be combined: the scene chooses the models");
+      scene = load_scene(scene_path);
+      scene_energy_options(scene, opt);
+    }
     if (!grid.empty()) {
       int m = 0, a = 0;
       char x = 0, extra = 0;
@@ -53,6 +66,7 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
     Runtime rt(g.device, g.kernel_dir);
     EnergyReport rep = run_energy(rt, opt);
     print_energy_console(rep);
+    if (!scene_path.empty()) print_scene_energy(scene, rep);
     BaselineDiff diff;
     if (!baseline.empty()) {
       diff = compare_energy_baseline(rep, base_text, alpha_fw);

@@ -4,6 +4,7 @@
 #include "report/suite_report.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "scene/scene_checks.hpp"
 
 #include <fmt/format.h>
 
@@ -30,12 +31,34 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--reference-every", opt.reference_every, "compare every k-th integral with the reference (1 = all)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
-  cmd->callback([&g, &rc, samples_opt] {
+  static std::string scene_path;
+  cmd->add_option("--scene", scene_path, "check only the materials this scene uses: glTF 2.0 (.gltf, .glb) or a "
+                                         "material file (.json naming D, G, F and parameters)");
+  static bool compare_full = false;
+  cmd->add_flag("--compare-full", compare_full, "with --scene: also run the full catalog and measure the time the "
+                                                "scene saved");
+  auto* every_opt = cmd->get_option("--reference-every");
+  cmd->callback([&g, &rc, samples_opt, every_opt] {
     if (samples_opt->count() > 0) {
       if (samples <= 0) throw Error(fmt::format("--samples must be a positive count, not {}", samples));
       opt.scale = double(samples) / double(kSuiteBaseSamples);
     }
     validate_suite_options(opt);
+    if (compare_full && scene_path.empty()) throw Error("--compare-full needs --scene");
+    if (!scene_path.empty()) {
+      if (!opt.models.empty()) throw Error("--model and --scene cannot be combined: the scene chooses the models");
+      Scene scene = load_scene(scene_path);  // every input error before any work
+      // a scene has few integrals: compare more of them with the reference
+      if (every_opt->count() == 0) opt.reference_every = 7;
+      if (!out_dir.empty()) prepare_output_dir(out_dir);
+      Runtime rt(g.device, g.kernel_dir);
+      SceneRun run = run_scene(rt, scene, opt, compare_full);
+      print_suite_console(run.rep, rt, opt);
+      print_scene_console(run);
+      if (!out_dir.empty()) write_scene_outputs(run, rt, opt, out_dir);
+      rc = run.rep.gate_ok() ? 0 : 1;
+      return;
+    }
     if (!out_dir.empty()) prepare_output_dir(out_dir);
     Runtime rt(g.device, g.kernel_dir);
     SuiteReport rep = run_suite(rt, opt);

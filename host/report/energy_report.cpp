@@ -48,8 +48,8 @@ std::string file_stem(const EnergyTable& t) { return t.d->id + "__" + t.g->id; }
 void print_energy_console(const EnergyReport& rep) {
   const auto& o = rep.opt;
   const size_t nm = rep.mu.size(), na = rep.alpha.size();
-  fmt::print("mfv energy: {} D x G combinations, {}x{} (mu x alpha) grid, F = none; {}\n", rep.tables.size(), nm, na,
-             "alpha log-spaced 1e-3..1, perceptual r = sqrt(alpha)");
+  fmt::print("mfv energy: {} D x G combinations, {}x{} (mu x alpha) grid, F = none; {}; {} whole-model points\n",
+             rep.tables.size(), nm, na, "alpha log-spaced 1e-3..1, perceptual r = sqrt(alpha)", rep.models.size());
   const std::vector<double> show = {0.01, 0.1, 0.3, 1.0};
   std::vector<size_t> cols;
   for (double s : show) {
@@ -60,11 +60,26 @@ void print_energy_console(const EnergyReport& rep) {
   }
   std::string head = fmt::format("{:<40}", "E_avg(alpha)");
   for (size_t c : cols) head += fmt::format(" {:>18}", fmt::format("alpha={:.3g}", rep.alpha[c]));
-  fmt::print("{}\n", head);
+  if (!rep.tables.empty()) fmt::print("{}\n", head);
   for (auto& t : rep.tables) {
     std::string line = fmt::format("{:<40}", t.name());
     for (size_t c : cols) line += fmt::format(" {:>18}", fmt::format("{:.5f}±{:.1e}", t.eavg[c].mean, t.eavg[c].se));
     fmt::print("{}\n", line);
+  }
+  if (!rep.models.empty()) {
+    fmt::print("whole models: E(mu_l) with mu_l = the light's cosine, F as the model has it; gains = E > 1 beyond "
+               "noise (one-sided t, Bonferroni over {} cells, family-wise {:g})\n",
+               rep.models.size() * nm, o.gain_alpha);
+    fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10} {:>6} {:>9}\n", "model[case]", "E(mu_l=" + fmt::format("{:.3g}", rep.mu.back()) + ")",
+               "max E (at mu_l)", "E_avg", "1 - E_avg", "gains", "catalog");
+    for (auto& me : rep.models) {
+      const Cell& mx = me.E[me.max_at];
+      fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10.5f} {:>6} {:>9}\n", me.point.name,
+                 fmt::format("{:.5f}±{:.1e}", me.E.back().mean, me.E.back().se),
+                 fmt::format("{:.4f}±{:.1e} ({:.3g})", mx.mean, mx.se, rep.mu[me.max_at]),
+                 fmt::format("{:.5f}±{:.1e}", me.eavg.mean, me.eavg.se), me.loss(), me.gains ? "GAINS" : "no",
+                 expect_name(me.point.expect));
+    }
   }
   fmt::print("accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
              "{:.2e} at {}; {} values above target\n",
@@ -157,10 +172,70 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                                  {"E_avg_quadrature", line(t.eavg_quad, false)},
                                  {"E_avg_quadrature_se", line(t.eavg_quad, true)}});
   }
+  j["models"] = json::array();
+  for (auto& me : rep.models) {
+    json params = json::object(), E = json::array(), se = json::array();
+    for (size_t i = 0; i < me.point.model->params.size(); ++i) params[me.point.model->params[i].name] = me.point.p[i];
+    for (auto& c : me.E) E.push_back(c.mean), se.push_back(c.se);
+    j["models"].push_back({{"name", me.point.name},
+                           {"model", me.point.model->id},
+                           {"source", me.point.model->source},
+                           {"params", params},
+                           {"mu_is", "cosine of the light (E(l) = int f(l, v) (n.v) dv)"},
+                           {"E", E},
+                           {"E_se", se},
+                           {"points_per_replicate", me.points},
+                           {"E_avg", me.eavg.mean},
+                           {"E_avg_se", me.eavg.se},
+                           {"E_avg_quadrature", me.eavg_quad.mean},
+                           {"E_avg_quadrature_se", me.eavg_quad.se},
+                           {"energy_loss", me.loss()},
+                           {"max_E", me.E[me.max_at].mean},
+                           {"max_E_se", me.E[me.max_at].se},
+                           {"max_E_mu", rep.mu[me.max_at]},
+                           {"excess_p", me.excess_p},
+                           {"gains", me.gains},
+                           {"catalog_expect", expect_name(me.point.expect)},
+                           {"catalog_why", me.point.why}});
+  }
   return j.dump(1);
 }
 
 namespace {
+
+// Whole models: one row per point and light cosine; E_avg per point.
+std::string models_csv(const EnergyReport& rep) {
+  std::string s = fmt::format("# mfv energy {}: whole models (host/catalog/models.cpp), E(mu_l) with mu_l = cos of the "
+                              "light, F as the model has it; seed {}; commit {}\n# grid: mu_l = (m + 1/2)/N_MU\n# "
+                              "method: {}\n",
+                              MFV_VERSION, rep.opt.seed, MFV_GIT_COMMIT, kMethod);
+  s += "name,model,params,mu_index,mu_l,theta_l_deg,E,E_se,energy_loss,points\n";
+  for (auto& me : rep.models) {
+    std::string ps;
+    for (size_t i = 0; i < me.point.model->params.size(); ++i)
+      ps += fmt::format("{}{}={:.9g}", i ? ";" : "", me.point.model->params[i].name, me.point.p[i]);
+    for (size_t m = 0; m < rep.mu.size(); ++m)
+      s += fmt::format("\"{}\",{},{},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{}\n", me.point.name, me.point.model->id, ps, m,
+                       rep.mu[m], std::acos(rep.mu[m]) * 180 / M_PI, me.E[m].mean, me.E[m].se, 1 - me.E[m].mean,
+                       me.points[m]);
+  }
+  return s;
+}
+
+std::string models_eavg_csv(const EnergyReport& rep) {
+  std::string s = fmt::format("# mfv energy {}: whole models, E_avg = 2 int E(mu_l) mu_l dmu_l (own integral; "
+                              "quadrature: midpoint rule over the mu grid), energy loss 1 - E_avg, largest E and "
+                              "whether it exceeds 1 beyond noise\n",
+                              MFV_VERSION);
+  s += "name,model,E_avg,E_avg_se,E_avg_quadrature,E_avg_quadrature_se,energy_loss,max_E,max_E_se,max_E_mu_l,"
+       "excess_p,gains,catalog_expect\n";
+  for (auto& me : rep.models)
+    s += fmt::format("\"{}\",{},{:.9g},{:.3e},{:.9g},{:.3e},{:.9g},{:.9g},{:.3e},{:.9g},{:.3e},{},{}\n", me.point.name,
+                     me.point.model->id, me.eavg.mean, me.eavg.se, me.eavg_quad.mean, me.eavg_quad.se, me.loss(),
+                     me.E[me.max_at].mean, me.E[me.max_at].se, rep.mu[me.max_at], me.excess_p, me.gains ? 1 : 0,
+                     expect_name(me.point.expect));
+  return s;
+}
 
 std::string csv_of(const EnergyReport& rep, const EnergyTable& t) {
   const size_t nm = rep.mu.size();
@@ -370,23 +445,40 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
     for (auto& n : base->notes) s += "- note: " + n + "\n";
     s += "\n";
   }
-  s += "## E_avg(alpha)\n\n| D / G |";
   std::vector<size_t> cols;
   for (size_t a = 0; a < na; a += std::max<size_t>(1, na / 6)) cols.push_back(a);
   if (cols.back() != na - 1) cols.push_back(na - 1);
-  for (size_t c : cols) s += fmt::format(" alpha={:.3g} |", rep.alpha[c]);
-  s += "\n|---|" + std::string() ;
-  for (size_t i = 0; i < cols.size(); ++i) s += "---|";
-  s += "\n";
+  if (!rep.tables.empty()) {
+    s += "## E_avg(alpha)\n\n| D / G |";
+    for (size_t c : cols) s += fmt::format(" alpha={:.3g} |", rep.alpha[c]);
+    s += "\n|---|";
+    for (size_t i = 0; i < cols.size(); ++i) s += "---|";
+    s += "\n";
+  }
   for (auto& t : rep.tables) {
     s += "| " + t.name() + " |";
     for (size_t c : cols) s += fmt::format(" {:.5f} |", t.eavg[c].mean);
     s += "\n";
   }
+  if (!rep.models.empty()) {
+    s += fmt::format("\n## Whole models\n\nE(mu_l) with mu_l the light's cosine and F as the model has it "
+                     "(`csv/models.csv`, `csv/models_eavg.csv`); *gains*: some E(mu_l) exceeds 1 beyond noise "
+                     "(one-sided t, Bonferroni over {} cells, family-wise {:g}); *catalog*: what `mfv run`'s energy "
+                     "check expects at cos_l from 1e-4 to 1.\n\n",
+                     rep.models.size() * rep.mu.size(), o.gain_alpha);
+    s += fmt::format("| model[case] | E(mu_l={:.3g}) | max E (mu_l) | E_avg | 1 - E_avg | gains | catalog |\n"
+                     "|---|---|---|---|---|---|---|\n",
+                     rep.mu.back());
+    for (auto& me : rep.models)
+      s += fmt::format("| {} | {:.5f} ± {:.1e} | {:.4f} ± {:.1e} ({:.3g}) | {:.5f} ± {:.1e} | {:.5f} | {} | {} |\n",
+                       me.point.name, me.E.back().mean, me.E.back().se, me.E[me.max_at].mean, me.E[me.max_at].se,
+                       rep.mu[me.max_at], me.eavg.mean, me.eavg.se, me.loss(), me.gains ? "**yes**" : "no",
+                       expect_name(me.point.expect));
+  }
   if (!plots.empty()) {
     s += "\n## Plots\n\n";
     for (auto& p : plots) s += fmt::format("![{}](plots/{})\n\n", p, p);
-  } else {
+  } else if (!rep.tables.empty()) {
     s += "\n(No plots: gnuplot was not available.)\n";
   }
   return s;
@@ -399,10 +491,16 @@ std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyRepo
   std::vector<std::pair<std::string, std::string>> files;
   files.push_back({dir + "/energy.json", energy_json(rep, rt)});
   for (auto& t : rep.tables) files.push_back({dir + "/csv/" + file_stem(t) + ".csv", csv_of(rep, t)});
-  files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
-  files.push_back({dir + "/kulla_conty.h", header_of(rep)});
   std::vector<std::string> names;
-  for (auto& [n, png] : make_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
+  if (!rep.tables.empty()) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
+    files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
+    files.push_back({dir + "/kulla_conty.h", header_of(rep)});
+    for (auto& [n, png] : make_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
+  }
+  if (!rep.models.empty()) {
+    files.push_back({dir + "/csv/models.csv", models_csv(rep)});
+    files.push_back({dir + "/csv/models_eavg.csv", models_eavg_csv(rep)});
+  }
   files.push_back({dir + "/report.md", report_md(rep, rt, names, baseline)});
   return files;
 }

@@ -118,6 +118,11 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
 }
 
 void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt, const std::string& dir) {
+  write_files_atomically(suite_output_files(rep, rt, opt, dir));
+}
+
+std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const Runtime& rt,
+                                                                    const SuiteOptions& opt, const std::string& dir) {
   // report.md
   std::string md = rep.title == "mfv run" ? "# microfacet-verify conformance report\n\n"
                                           : fmt::format("# microfacet-verify: {}\n\n", rep.title);
@@ -167,8 +172,7 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
     xml += "</testcase>\n";
   }
   xml += "</testsuite></testsuites>\n";
-  write_files_atomically({{dir + "/results.json", suite_json(rep, rt, opt)}, {dir + "/report.md", md},
-                          {dir + "/junit.xml", xml}});
+  return {{dir + "/results.json", suite_json(rep, rt, opt)}, {dir + "/report.md", md}, {dir + "/junit.xml", xml}};
 }
 
 }  // namespace mfv

@@ -1,0 +1,310 @@
+#include "scene/scene_checks.hpp"
+
+#include "catalog/roughness.hpp"
+#include "catalog/models.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace mfv {
+namespace {
+
+const Term& term(const char* id, Kind k) { return *try_find_term(id, k); }
+
+// One check's plan with the distinct sets already in it (by key).
+struct SetPlan {
+  Plan plan;
+  std::map<std::string, bool> keys;  // set keys present
+  std::set<std::string> models;      // D/G/F names or "gltf"
+  void add_terms(const Term* d, const Term* g, const Term* f) {
+    auto add = [](std::vector<const Term*>& v, const Term* t) {
+      if (t && std::find(v.begin(), v.end(), t) == v.end()) v.push_back(t);
+    };
+    add(plan.terms.d, d);
+    add(plan.terms.g, g);
+    add(plan.terms.f, f);
+  }
+  void add_model(const Model& m) {
+    if (std::find(plan.terms.models.begin(), plan.terms.models.end(), &m) == plan.terms.models.end())
+      plan.terms.models.push_back(&m);
+  }
+};
+
+std::string dgf(const Term* d, const Term* g, const Term* f) {
+  return d->id + (g ? "/" + g->id : "") + (f ? "/" + f->id : "");
+}
+
+// One point of a set: a spec and its expectation.
+void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term* d, const Term* g, const Term* f,
+         std::map<std::string, double> params, const Expectation& e, bool upper) {
+  sp.plan.specs.push_back(s);
+  PointResult p;
+  p.check = sp.plan.check;
+  p.d = d;
+  p.g = g;
+  p.f = f;
+  p.model = key;
+  p.params = std::move(params);
+  p.expected = sp.plan.check == "reciprocity" ? 0.0 : 1.0;
+  p.upper_only = upper;
+  p.expect = e.expect;
+  p.reason = e.reason;
+  p.tolerance = e.tolerance;
+  sp.plan.points.push_back(p);
+}
+
+
+// The catalog's glTF model at one channel's parameters.
+IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
+  return model_spec(IntegralKind::Albedo, gltf_model(), c.params(), cos_l);
+}
+
+std::string gltf_key(const GltfChannelParams& c) {
+  return fmt::format("gltf alpha={:.9g} metallic={:.9g} base={:.9g} f0={:.9g} f0_max={:.9g} specular={:.9g}", c.alpha,
+                     c.metallic, c.base, c.f0, c.f0_max, c.weight);
+}
+
+std::map<std::string, double> gltf_params(const GltfChannelParams& c) {
+  std::map<std::string, double> out;
+  const ModelParams p = c.params();
+  for (size_t i = 0; i < gltf_model().params.size(); ++i) out[gltf_model().params[i].name] = p[i];
+  return out;
+}
+
+Expectation gltf_energy_expectation(const GltfChannelParams& c) {
+  const Expect e = gltf_energy_expect(c);
+  return {e, e == Expect::Hold ? "" : kGltfFresnelMixGain, 0};
+}
+
+struct SceneSets {
+  std::map<std::string, SetPlan> plans;  // by check
+  std::vector<std::set<std::string>> material_keys;  // per material: "check|key"
+};
+
+SetPlan& plan_for(SceneSets& s, const std::string& check, uint64_t samples) {
+  auto it = s.plans.find(check);
+  if (it == s.plans.end()) {
+    SetPlan sp;
+    sp.plan.check = check;
+    sp.plan.samples = samples;
+    it = s.plans.emplace(check, sp).first;
+  }
+  return it->second;
+}
+
+bool wants(const SuiteOptions& opt, const std::string& check) {
+  return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
+}
+
+SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
+  SceneSets s;
+  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  const std::vector<double> views = view_cosines(32);
+  const Term* ggx = &term("ggx", Kind::D);
+  const Term* smith = &term("smith_ggx_correlated", Kind::G);
+  const Term* none = &term("none", Kind::F);
+  s.material_keys.resize(scene.materials.size());
+  for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+    const SceneMaterial& m = scene.materials[mi];
+    auto& mine = s.material_keys[mi];
+    // Registers `key` under `check` for this material; true when the set is new.
+    auto claim = [&](SetPlan& sp, const std::string& key, const std::string& model) {
+      mine.insert(sp.plan.check + "|" + key);
+      sp.models.insert(model);
+      return sp.keys.emplace(key, true).second;
+    };
+    const Term* d = m.gltf ? ggx : m.d;
+    const Term* g = m.gltf ? smith : m.g;
+    const double pd = m.gltf ? m.alpha : m.pd, pg = m.gltf ? m.alpha : m.pg;
+    if (wants(opt, "d_norm")) {
+      SetPlan& sp = plan_for(s, "d_norm", scaled(256 * kSuiteBaseSamples));
+      std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, pd);
+      if (claim(sp, key, d->id)) {
+        IntegralSpec is = make_spec(IntegralKind::DNorm, d, nullptr, nullptr, pd, 0, 0, 0, 0, m.alpha, 1.0);
+        add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, pd}}, expect("d_norm", d, nullptr, m.alpha, 0, 0),
+            false);
+        sp.add_terms(d, nullptr, nullptr);
+      }
+    }
+    if (wants(opt, "masking")) {
+      SetPlan& sp = plan_for(s, "masking", scaled(kSuiteBaseSamples));
+      std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, m.alpha, pd, pg);
+      if (claim(sp, key, dgf(d, g, nullptr))) {
+        for (double co : views) {
+          IntegralSpec is = make_spec(IntegralKind::Masking, d, g, nullptr, pd, pg, 0, 0, 0, m.alpha, co);
+          add(sp, key, is, d, g, nullptr, {{"alpha", m.alpha}, {"cos_o", co}},
+              expect("masking", d, g, m.alpha, 0, 0), false);
+        }
+        sp.add_terms(d, g, nullptr);
+      }
+    }
+    if (wants(opt, "furnace")) {
+      // F = 1: for glTF the model itself as a white metal (base colour 1 makes
+      // conductor_fresnel 1), so the energy loss 1 - E is the material's
+      // specular lobe at its roughness.
+      SetPlan& sp = plan_for(s, "furnace", scaled(kSuiteBaseSamples));
+      if (m.gltf) {
+        GltfChannelParams white{m.alpha, 1.0, 1.0, 1.0, 1.0, 1.0};
+        std::string key = fmt::format("gltf alpha={:.9g} (white metal: F = 1)", m.alpha);
+        if (claim(sp, key, "gltf")) {
+          for (double co : views)
+            add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", m.alpha}, {"cos_l", co}}, {},
+                true);
+          sp.add_model(gltf_model());
+        }
+      } else {
+        std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
+        if (claim(sp, key, dgf(d, g, none))) {
+          for (double co : views) {
+            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, none, pd, pg, 0, 0, 0, m.alpha, co);
+            add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect("furnace", d, g, m.alpha, 1, 0),
+                true);
+          }
+          sp.add_terms(d, g, none);
+        }
+      }
+    }
+    // the material's own BRDF: "energy", or "energy_diffuse" for a D/G/F with a Lambert kd
+    const std::string energy_check = !m.gltf && m.kd > 0 ? "energy_diffuse" : "energy";
+    if (wants(opt, energy_check)) {
+      SetPlan& sp = plan_for(s, energy_check, scaled(kSuiteBaseSamples));
+      if (m.gltf) {
+        for (auto& c : m.channels()) {
+          std::string key = gltf_key(c);
+          if (!claim(sp, key, "gltf")) continue;
+          for (double co : views) {
+            std::map<std::string, double> ps = gltf_params(c);
+            ps["cos_l"] = co;
+            add(sp, key, gltf_spec(c, co), nullptr, nullptr, nullptr, ps, gltf_energy_expectation(c), true);
+          }
+          sp.add_model(gltf_model());
+        }
+      } else if (m.f != none || m.kd > 0) {
+        const bool diffuse = m.kd > 0;
+        SetPlan& dp = sp;
+        std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
+                                      m.f1, m.kd);
+        if (claim(dp, key, m.model())) {
+          for (double co : views) {
+            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, co);
+            std::map<std::string, double> ps{{"alpha", m.alpha}, {"cos_o", co}};
+            for (size_t i = 0; i < m.f->params.size(); ++i) ps[m.f->params[i].name] = i ? m.f1 : m.f0;
+            if (diffuse) ps["kd"] = m.kd;
+            add(dp, key, is, d, g, m.f, ps, expect(dp.plan.check, d, g, m.alpha, m.f0, m.kd), true);
+          }
+          dp.add_terms(d, g, m.f);
+        }
+      }
+    }
+    if (wants(opt, "reciprocity")) {
+      SetPlan& sp = plan_for(s, "reciprocity", 0);
+      if (m.gltf) {
+        for (auto& c : m.channels()) {
+          std::string key = gltf_key(c);
+          if (!claim(sp, key, "gltf")) continue;
+          add(sp, key, gltf_spec(c, 1.0), nullptr, nullptr, nullptr, gltf_params(c), {}, false);
+          sp.add_model(gltf_model());
+        }
+      } else {
+        std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
+                                      m.f1, m.kd);
+        if (claim(sp, key, m.model())) {
+          IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, 1.0);
+          add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
+          sp.add_terms(d, g, m.f);
+        }
+      }
+    }
+  }
+  return s;
+}
+
+// A combination of the full catalog: D/G/F ids, or a whole model's id (without its case).
+std::string full_model_name(const PointResult& p) {
+  return p.d ? dgf(p.d, p.g, p.f) : p.model.substr(0, p.model.find('['));
+}
+
+}  // namespace
+
+SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, bool compare_full) {
+  validate_suite_options(opt);
+  if (!opt.models.empty()) throw Error("--model and --scene cannot be combined: the scene chooses the models");
+  const auto t0 = std::chrono::steady_clock::now();
+  SceneRun run;
+  run.scene = scene;
+  SceneSets sets = make_sets(scene, opt);
+  uint32_t stream = 0;
+  const int builds0 = rt.build_stats().builds;
+  std::map<std::string, size_t> stat_of;  // check -> index in rep.stats
+  for (const std::string& check : suite_checks()) {
+    auto it = sets.plans.find(check);
+    if (it == sets.plans.end() || it->second.plan.specs.empty()) continue;
+    Plan& plan = it->second.plan;
+    if (check == "reciprocity") run_reciprocity(rt, plan, opt, run.rep);
+    else run_plan(rt, plan, opt, stream, run.rep);
+    stat_of[check] = run.rep.stats.size() - 1;
+  }
+  if (run.rep.points.empty()) throw Error("the scene's materials need none of the chosen checks");
+  judge(run.rep, opt);
+  run.scene_builds = rt.build_stats().builds - builds0;
+  // groups of each material, in check order
+  for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+    std::vector<size_t> gs;
+    for (size_t gi = 0; gi < run.rep.groups.size(); ++gi)
+      if (sets.material_keys[mi].count(run.rep.groups[gi].check + "|" + run.rep.groups[gi].model)) gs.push_back(gi);
+    run.material_groups.push_back(gs);
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // What the full catalog would have run with the same options.
+  SuiteOptions full = opt;
+  full.models.clear();
+  std::vector<Plan> full_plans = make_plans(full);
+  if (wants(opt, "reciprocity")) full_plans.push_back(reciprocity_plan(full));
+  SuiteReport full_rep;
+  if (compare_full) {
+    const auto f0 = std::chrono::steady_clock::now();
+    full_rep = run_suite(rt, full);
+    run.full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
+    run.full_measured = true;
+  }
+  // One row per check: the full run has two energy plans (D x G x F, whole models).
+  run.full_builds = 0;
+  std::map<std::string, std::set<std::string>> full_models;
+  for (auto& fp : full_plans) {
+    if (fp.specs.empty()) continue;
+    ++run.full_builds;
+    auto row = std::find_if(run.left_out.begin(), run.left_out.end(), [&](auto& l) { return l.check == fp.check; });
+    if (row == run.left_out.end()) {
+      LeftOut lo;
+      lo.check = fp.check;
+      for (auto& st : full_rep.stats)
+        if (st.check == fp.check) lo.full_samples += st.samples, lo.full_seconds += st.seconds;
+      if (auto s = stat_of.find(fp.check); s != stat_of.end()) {
+        const CheckStats& st = run.rep.stats[s->second];
+        lo.scene_integrals = st.integrals;
+        lo.scene_samples = st.samples;
+        lo.scene_seconds = st.seconds;
+        lo.scene_combinations = sets.plans[fp.check].models.size();
+      }
+      run.left_out.push_back(lo);
+      row = run.left_out.end() - 1;
+    }
+    for (auto& p : fp.points) full_models[fp.check].insert(full_model_name(p));
+    row->full_combinations = full_models[fp.check].size();
+    row->full_integrals += fp.specs.size();
+    // reciprocity: per batch 64 work-items x 64 x scale pairs, two evaluations each (suite.cpp)
+    const uint64_t per = fp.check == "reciprocity" ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2
+                                                   : fp.samples;
+    if (!compare_full) row->full_samples += fp.specs.size() * per;  // requested; a run rounds up to whole work-groups
+  }
+  return run;
+}
+
+}  // namespace mfv

@@ -1,0 +1,37 @@
+// The glTF 2.0 metallic-roughness BRDF, one colour channel, as a whole model
+// of the catalog (host/catalog/models.cpp, id "gltf"; issue 7). The generated
+// eval_model calls it where a program selects it. Needs terms_d.cl,
+// terms_g.cl and models.cl. Reference twin: host/reference/model_gltf.cpp.
+//
+// Sources: glTF 2.0 specification, Appendix B (B.3.2 specular_brdf = D·Vis
+// with the GGX D and the height-correlated Smith G; B.3.3 diffuse_brdf;
+// B.3.4 conductor_fresnel and fresnel_mix; B.3.5 material = mix(dielectric,
+// metal, metallic)), with KHR_materials_specular's fresnel_mix(f0_color, ior,
+// weight, base, layer) = (1 - weight·max(fr)) base + weight·fr·layer and
+// KHR_materials_ior's f0 = ((ior - 1)/(ior + 1))².
+//
+// Parameters p[0..5]:
+//   alpha    = roughness²
+//   metallic
+//   base     = baseColor of this channel
+//   f0       = min(f0_ior · specularColor, 1) of this channel (dielectric F0)
+//   f0_max   = the largest f0 over the three channels: Schlick's fr grows with
+//              f0, so max over channels of fr is fr at f0_max
+//   weight   = specularFactor
+static inline real model_gltf(real3 l, real3 v, const real* p) {
+  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5];
+  real NoL = l.z, NoV = v.z;
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  real s2, VoH;
+  real3 h = half_vector(l, v, &s2, &VoH);  // v·h = |l + v|/2: symmetric, no cancellation
+  real x = R(1.0) - VoH;
+  real fw = x * x * x * x * x;  // (1 - |v·h|)^5
+  // specular_brdf(alpha) = D G / (4 (n·l)(n·v)) with the catalog's stable GGX D
+  // and height-correlated Smith G (Heitz 2014 eq. 99), one cosine at a time.
+  real spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha), NoL, NoV);
+  real fr = f0 + (R(1.0) - f0) * fw;
+  real fr_max = f0_max + (R(1.0) - f0_max) * fw;
+  real dielectric = (R(1.0) - weight * fr_max) * base * MFV_INV_PI + weight * fr * spec;
+  real metal = (base + (R(1.0) - base) * fw) * spec;  // conductor_fresnel(f0 = baseColor)
+  return (R(1.0) - metallic) * dielectric + metallic * metal;
+}
