@@ -2,9 +2,9 @@
 // Philox-generated inputs and writes the inputs it used beside the value, so
 // the reference evaluates the identical (float-rounded) inputs.
 //
-// Record layout (16 floats): [0..5] geometry, [6..11] parameters (a whole model's p[0..5]),
+// Record layout (16 floats): [0..5] geometry, [6..11] parameters (a whole model's p[0..5], its p[6] in [14]),
 // [12] value (float part), [13] value - float part (double builds), [14] the second
-// width of the anisotropic modes (alpha_y of D and G), [15] unused.
+// width of the anisotropic modes (alpha_y of D and G; a whole model's p[6]), [15] unused.
 // Geometry: modes D, G, F, G1 store NoL, NoV, NoH, VoH; modes BRDF and MODEL store wi.xyz, wo.xyz;
 // D_ANISO adds h.x, h.y in [4], [5] and G1_ANISO wo.x, wo.y (tangent frame t = +x, b = +y).
 
@@ -19,7 +19,7 @@
 #define AGREE_BRDF_ANISO 8
 #define AGREE_RECORD 16
 
-// ranges: 6 slots (D param, G param, F p0, F p1, kd, p5) x (lo, hi, log flag)
+// ranges: 7 slots (D param, G param, F p0, F p1, kd, p5, a whole model's p[6]) x (lo, hi, log flag)
 static inline real draw_param(__global const float* ranges, int slot, real u) {
   real lo = ranges[3 * slot], hi = ranges[3 * slot + 1];
   if (ranges[3 * slot + 2] != 0.0f) return exp(log(lo) + u * (log(hi) - log(lo)));
@@ -38,7 +38,7 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
     wi = normalize(wi);
     wo = normalize(wo);
 #endif
-    real p[6] = {r[6], r[7], r[8], r[9], r[10], r[11]};
+    real p[7] = {r[6], r[7], r[8], r[9], r[10], r[11], r[14]};
     return eval_model(d, wi, wo, p);
   }
   if (mode == AGREE_D_ANISO || mode == AGREE_G1_ANISO) {
@@ -123,9 +123,12 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
   }
   for (int k = 0; k < 6; ++k) r[6 + k] = p[k];
   // the anisotropic modes' alpha_y, drawn from the range of alpha_x (the D's, or the G's)
+  // a whole model's p[6] from its own range, and 0 for every other record
+  // (models read p[6] = 0 as their isotropic default: both paths are drawn)
   r[14] = mode == AGREE_G1_ANISO ? draw_param(ranges, 1, u01_open(rk.z))
           : mode == AGREE_D_ANISO || mode == AGREE_BRDF_ANISO ? draw_param(ranges, 0, u01_open(rk.z))
-                                                              : 0.0f;
+          : mode == AGREE_MODEL && (rk.w & 1u) ? draw_param(ranges, 6, u01_open(rk.z))
+                                               : 0.0f;
   r[15] = 0.0f;
   store_value(r, eval_record(mode, d, g, f, r));
 }

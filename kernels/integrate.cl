@@ -58,7 +58,8 @@ static inline bool spec_aniso(__global const IntegralSpec* s) { return s->pd2 > 
 
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
-// parameters p[0..5] from pd, pg, f0, f1, kd, p5.
+// parameters p[0..6] from pd, pg, f0, f1, kd, p5, pd2 (pd2 > 0 also stretches
+// the proposals to (width, pd2), as for an anisotropic D).
 #define MFV_MODEL_CATALOG_END 1000u  // models 1..999: the catalog's whole models (kernels/models.cl)
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
 #ifdef MFV_USER_BRDF
@@ -69,7 +70,7 @@ static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
     // the estimator's fixed direction o is the light, the sampled i the
     // view, and the integral is E(l) = ∫ f(l, v) (n·v) dv, the energy a beam
     // from l reflects (twin: spec_brdf in host/reference/estimators.cpp).
-    real p[6] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5};
+    real p[7] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5, s->pd2};  // p[6]: a second width (0: isotropic)
     return eval_model((int)s->model, o, i, p);
   }
   if (spec_aniso(s)) return brdf_eval_aniso(s->d, s->g, s->f, i, o, s->pd, s->pd2, s->pg, s->pd2, s->f0, s->f1, s->kd);

@@ -18,17 +18,39 @@
 //   f0_max   = the largest f0 over the three channels: Schlick's fr grows with
 //              f0, so max over channels of fr is fr at f0_max
 //   weight   = specularFactor
+//   alpha_b  = KHR_materials_anisotropy: the width along b = +y, alpha along
+//              t = +x being then alpha_t = mix(roughness², 1, strength²) and
+//              alpha_b = roughness²; 0 = isotropic (the path of glTF 2.0 as is)
+// The tangent frame is the anisotropy direction's: anisotropyRotation turns
+// that direction about n, i.e. the whole (l, v) plane, so the BRDF in its own
+// frame does not depend on it (see host/scene/scene.cpp).
 static inline real model_gltf(real3 l, real3 v, const real* p) {
-  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5];
+  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5], alpha_b = p[6];
   real NoL = l.z, NoV = v.z;
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);  // v·h = |l + v|/2: symmetric, no cancellation
+  // l = -v (both at the horizon; in float32 also where l + v underflows):
+  // no half vector, h = 0/0. The Smith G's χ⁺(v·h) is 0 there (Heitz 2014
+  // eq. 99, G_smith_ggx_correlated), so f is 0, not NaN.
+  if (!(VoH > R(0.0))) return R(0.0);
   real x = R(1.0) - VoH;
   real fw = x * x * x * x * x;  // (1 - |v·h|)^5
   // specular_brdf(alpha) = D G / (4 (n·l)(n·v)) with the catalog's stable GGX D
   // and height-correlated Smith G (Heitz 2014 eq. 99), one cosine at a time.
-  real spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha), NoL, NoV);
+  real spec;
+  if (alpha_b > R(0.0)) {
+    // KHR_materials_anisotropy: anisotropic GGX D (Burley 2012 app. B; Heitz
+    // 2014) with alpha_t along t = +x, and the height-correlated Smith
+    // G2 = 1 / (1 + Λ(l) + Λ(v)) (Heitz 2014 eq. 99) with the anisotropic Λ at
+    // each direction's projected width; the extension's V_GGX_anisotropic is
+    // this G2 / (4 (n·l)(n·v)).
+    real G = R(1.0) / (R(1.0) + Lambda_ggx_aniso(NoL, l.x, l.y, alpha, alpha_b) +
+                       Lambda_ggx_aniso(NoV, v.x, v.y, alpha, alpha_b));
+    spec = over_4_cosines(D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b) * G, NoL, NoV);
+  } else {
+    spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha), NoL, NoV);
+  }
   real fr = f0 + (R(1.0) - f0) * fw;
   real fr_max = f0_max + (R(1.0) - f0_max) * fw;
   real dielectric = (R(1.0) - weight * fr_max) * base * MFV_INV_PI + weight * fr * spec;

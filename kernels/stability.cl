@@ -4,7 +4,7 @@
 // grid to that precision first, so the reference sees the identical numbers.
 //
 // Record layout (STAB_IN reals): [0..5] geometry, [6..10] parameters
-// (D param, G param, F p0, F p1, kd), [11] unused (MODEL: [6..11] = p[0..5]). Geometry by mode:
+// (D param, G param, F p0, F p1, kd), [11..12] unused (MODEL: [6..12] = p[0..6]). Geometry by mode:
 //   D:  [2] NoH, [4] sin2H = |n×h|² (formed by the host beside NoH)
 //   G:  [0..3] NoL, NoV, NoH, VoH      G1: [1] NoV      F: [3] VoH
 //   BRDF, MODEL: [0..2] wi (light), [3..5] wo (view), taken as they are (not renormalised)
@@ -16,8 +16,8 @@
 #define STAB_G1 3
 #define STAB_BRDF 4
 #define STAB_VARIANT 5
-#define STAB_MODEL 6  // a whole model: `d` carries its number, [6..11] its p[0..5]
-#define STAB_IN 12
+#define STAB_MODEL 6  // a whole model: `d` carries its number, [6..12] its p[0..6]
+#define STAB_IN 13
 
 __kernel void stability_eval(int mode, int d, int g, int f, int variant, __global const real* in,
                              __global real* out) {
@@ -34,7 +34,7 @@ __kernel void stability_eval(int mode, int d, int g, int f, int variant, __globa
       break;
     case STAB_VARIANT: v = stability_variant(variant, r); break;
     case STAB_MODEL: {
-      real p[6] = {r[6], r[7], r[8], r[9], r[10], r[11]};
+      real p[7] = {r[6], r[7], r[8], r[9], r[10], r[11], r[12]};
       v = eval_model(d, (real3)(r[0], r[1], r[2]), (real3)(r[3], r[4], r[5]), p);
       break;
     }

@@ -131,6 +131,43 @@ TEST_CASE("Whole models: reference edge cases (horizon, normal incidence, grazin
   CHECK(model("radiance_002").ref(l, v, metal.data()) == Approx(model("radiance_002_fixed").ref(l, v, metal.data())));
 }
 
+TEST_CASE("glTF KHR_materials_anisotropy: the anisotropic path's isotropic limit and reciprocity", "[models][reference]") {
+  const Model& m = model("gltf");
+  REQUIRE(m.params.size() == 7);
+  // p[6] = 0: today's isotropic glTF BRDF; p[6] = alpha: the anisotropic
+  // formulas at equal widths, which must give the same values
+  const ModelParams iso{0.3, 0.6, 0.8, 0.04, 0.06, 0.9, 0.0};
+  ModelParams same = iso;
+  same[6] = iso[0];
+  ModelParams aniso = iso;
+  aniso[0] = 0.8;
+  aniso[6] = 0.3;
+  ModelParams turned = aniso;  // the widths swapped: the lobe turned by 90 degrees about n
+  std::swap(turned[0], turned[6]);
+  int n = 0;
+  for (double tl : {0.05, 0.7, 1.3}) {
+    for (double tv : {0.0, 0.4, 1.5}) {
+      for (double pv : {0.0, 1.0, 2.5, 4.0}) {
+        const glm::dvec3 l(std::sin(tl), 0.0, std::cos(tl));
+        const glm::dvec3 v(std::sin(tv) * std::cos(pv), std::sin(tv) * std::sin(pv), std::cos(tv));
+        INFO("l=" << l.x << "," << l.z << " v=" << v.x << "," << v.y << "," << v.z);
+        const double f = m.ref(l, v, iso.data());
+        CHECK(m.ref(l, v, same.data()) == Approx(f).epsilon(1e-12));
+        // reciprocity of the anisotropic lobe, and its 90-degree turn
+        const double fa = m.ref(l, v, aniso.data());
+        CHECK(m.ref(v, l, aniso.data()) == Approx(fa).epsilon(1e-12));
+        const glm::dvec3 l90(-l.y, l.x, l.z), v90(-v.y, v.x, v.z);
+        CHECK(m.ref(l90, v90, turned.data()) == Approx(fa).epsilon(1e-12));
+        ++n;
+      }
+    }
+  }
+  CHECK(n == 36);
+  // a rougher alpha_t spreads the lobe: lower at the mirror direction than isotropic alpha_b
+  const glm::dvec3 l(std::sin(0.6), 0.0, std::cos(0.6)), mirror(-l.x, 0.0, l.z);
+  CHECK(m.ref(l, mirror, aniso.data()) < m.ref(l, mirror, iso.data()));
+}
+
 TEST_CASE("mfv run: every whole-model case gets the verdicts its catalog entry expects", "[device][suite][models]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
@@ -164,7 +201,7 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   if (!rt) return;
   SuiteOptions opt;
   opt.checks = {"energy", "closed_form"};
-  opt.models = {"eon[rho=1,r=1]", "phong_normalized[n=10]"};
+  opt.models = {"eon[rho=1,r=1]", "phong_normalized[n=10]", "gltf[aniso chrome,r=0.5,s=0.8]"};
   opt.seed = 5;
   opt.scale = 0.5;
   opt.reference_samples = 0;  // the plants are in the kernel only: test the statistics alone
@@ -174,6 +211,9 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   // Phong "normalised" by (n+2)/π: twice the energy
   REQUIRE(dir.replace("models.cl", "return (p[1] + R(2.0)) * (R(0.5) * MFV_INV_PI) * model_phong(l, v, p);",
                       "return (p[1] + R(2.0)) * MFV_INV_PI * model_phong(l, v, p);"));
+  // KHR_materials_anisotropy: the anisotropic D normalised by alpha_b² instead of alpha_t alpha_b (x2.9)
+  REQUIRE(dir.replace("model_gltf.cl", "D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b) * G",
+                      "D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b) * (alpha / alpha_b) * G"));
   Runtime planted("", dir.path());
   SuiteReport rep = run_suite(planted, opt);
   auto verdict = [&](const std::string& check, const std::string& model) {
@@ -186,6 +226,7 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   CHECK(verdict("energy", "eon[rho=1,r=1]") == Verdict::Pass);  // losing energy is allowed; only the closed form sees it
   CHECK(verdict("closed_form", "phong_normalized[n=10]") == Verdict::Fail);
   CHECK(verdict("energy", "phong_normalized[n=10]") == Verdict::Fail);
+  CHECK(verdict("energy", "gltf[aniso chrome,r=0.5,s=0.8]") == Verdict::Fail);
   CHECK_FALSE(rep.gate_ok());
   // and the reference, evaluating the true models, disagrees on the same samples
   opt.reference_samples = 64;

@@ -113,6 +113,33 @@ TEST_CASE("glTF materials map to the glTF BRDF's parameters", "[scene]") {
   CHECK(def.factors.metallic == 1.0);
 }
 
+TEST_CASE("KHR_materials_anisotropy maps to alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha", "[scene]") {
+  Scene s = load_scene(kData + "/aniso.gltf");
+  REQUIRE(s.materials.size() == 4);  // a material library: every material
+  const SceneMaterial& brushed = named(s, "brushed steel");  // roughness 0.5, strength 0.8, rotation 0.5
+  auto ch = brushed.channels();
+  REQUIRE(ch.size() == 1);
+  CHECK(ch[0].alpha == Approx(0.25 + 0.75 * 0.64));  // alpha_t = 0.73
+  CHECK(ch[0].alpha_b == Approx(0.25));
+  CHECK(ch[0].params()[6] == Approx(0.25));  // the model's p[6]
+  REQUIRE(brushed.warnings.size() == 1);
+  CHECK(brushed.warnings[0].find("anisotropyRotation 0.5") != std::string::npos);
+
+  const SceneMaterial& textured = named(s, "textured brushed");  // strength 1: alpha_t = 1
+  CHECK(textured.channels()[0].alpha == Approx(1.0));
+  CHECK(textured.channels()[0].alpha_b == Approx(0.04));
+  REQUIRE(textured.warnings.size() == 1);
+  CHECK(textured.warnings[0].find("anisotropyTexture is not sampled: checked at anisotropyStrength 1") !=
+        std::string::npos);
+
+  // strength 0 is today's isotropic material, parameter for parameter (p[6] = 0)
+  auto iso = named(s, "isotropic steel").channels(), plain = named(s, "plain steel").channels();
+  REQUIRE(iso.size() == 1);
+  CHECK(iso == plain);
+  CHECK(iso[0].alpha_b == 0.0);
+  CHECK(iso[0].alpha == Approx(0.25));
+}
+
 TEST_CASE("a .glb container reads as its .gltf does; roughness 0 is checked at the floor with a warning", "[scene]") {
   TempDir t;
   nlohmann::json j = nlohmann::json::parse(slurp(kData + "/scene.gltf"));
@@ -164,9 +191,9 @@ TEST_CASE("bad scenes: one line, exit 2, earlier results untouched", "[scene][cl
        "requires extension KHR_materials_transmission"},
       {edited_gltf(t, "aniso.gltf",
                    [](nlohmann::json& j) {
-                     j["materials"][0]["extensions"]["KHR_materials_anisotropy"] = {{"anisotropyStrength", 0.5}};
+                     j["materials"][0]["extensions"]["KHR_materials_anisotropy"] = {{"anisotropyStrength", 1.5}};
                    }),
-       "KHR_materials_anisotropy"},
+       "KHR_materials_anisotropy anisotropyStrength = 1.5 is out of range"},
       {edited_gltf(t, "rough.gltf",
                    [](nlohmann::json& j) { j["materials"][2]["pbrMetallicRoughness"]["roughnessFactor"] = 1.5; }),
        "roughnessFactor = 1.5 is out of range"},
@@ -205,12 +232,18 @@ TEST_CASE("the glTF model's kernel agrees with its reference and a planted Fresn
   auto ok = run_mfv("agree --only 'MODEL gltf' --samples 50000");
   INFO(ok.out);
   CHECK(ok.code == 0);
-  test::PlantedKernelDir planted;
+  // mfv agree on the glTF model with `from` replaced by `to` in its kernel only
+  auto planted_agree = [](const std::string& from, const std::string& to) {
+    test::PlantedKernelDir planted;
+    REQUIRE(planted.replace("model_gltf.cl", from, to));
+    auto bad = run_mfv("--kernel-dir " + planted.path() + " agree --only 'MODEL gltf' --samples 50000");
+    INFO(bad.out);
+    return bad.code;
+  };
   // the diffuse base weighted by this channel's Fresnel instead of the largest channel's
-  REQUIRE(planted.replace("model_gltf.cl", "(R(1.0) - weight * fr_max)", "(R(1.0) - weight * fr)"));
-  auto bad = run_mfv("--kernel-dir " + planted.path() + " agree --only 'MODEL gltf' --samples 50000");
-  INFO(bad.out);
-  CHECK(bad.code == 1);
+  CHECK(planted_agree("(R(1.0) - weight * fr_max)", "(R(1.0) - weight * fr)") == 1);
+  // KHR_materials_anisotropy: alpha_t and alpha_b swapped in the kernel's D only
+  CHECK(planted_agree("D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b)", "D_ggx_aniso(h.z, h.x, h.y, alpha_b, alpha)") == 1);
 }
 
 TEST_CASE("mfv run --scene runs only the scene's sets and reports per material", "[device][scene]") {
@@ -252,8 +285,8 @@ TEST_CASE("mfv run --scene runs only the scene's sets and reports per material",
 TEST_CASE("scene checks fail on a planted glTF model: energy gain and asymmetry", "[device][scene][planted]") {
   test::PlantedKernelDir planted;
   // the specular lobe 30 % too bright, and f(i, o) != f(o, i)
-  REQUIRE(planted.replace("model_gltf.cl", "real spec = over_4_cosines(",
-                          "real spec = R(1.3) * (R(1.0) + R(0.05) * NoL) * over_4_cosines("));
+  REQUIRE(planted.replace("model_gltf.cl", "    spec = over_4_cosines(D_ggx(h.z, s2, alpha)",
+                          "    spec = R(1.3) * (R(1.0) + R(0.05) * NoL) * over_4_cosines(D_ggx(h.z, s2, alpha)"));
   TempDir t;
   auto r = run_mfv("--kernel-dir " + planted.path() + " run --scene " + kData +
                    "/materials.json --check furnace --check reciprocity --seed 3 --out " + (t.dir / "o").string());

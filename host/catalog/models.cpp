@@ -209,7 +209,7 @@ std::vector<Model> build_models() {
     // colour channels to these parameters, host/scene/scene.cpp)
     Model& m = add("gltf", "model_gltf",
                    "glTF 2.0 specification Appendix B (metallic-roughness), with KHR_materials_specular and "
-                   "KHR_materials_ior",
+                   "KHR_materials_ior; KHR_materials_anisotropy (anisotropic GGX D, height-correlated anisotropic Smith, Heitz 2014)",
                    "mix(fresnel_mix(base/pi, D Vis), conductor_fresnel(base, D Vis), metallic), D GGX(alpha), Vis "
                    "height-correlated Smith, F Schlick at v.h; fresnel_mix = (1 - weight F(f0_max)) base + weight F(f0) "
                    "layer",
@@ -218,7 +218,11 @@ std::vector<Model> build_models() {
                     p_unit("base", 1.0, "baseColorFactor of this channel"),
                     p_unit("f0", 0.04, "dielectric F0 of this channel: min(((ior-1)/(ior+1))^2 specularColor, 1)"),
                     p_unit("f0_max", 0.04, "the largest channel's f0 (fresnel_mix weights the base by max_rgb(F))"),
-                    p_unit("weight", 1.0, "specularFactor")},
+                    p_unit("weight", 1.0, "specularFactor"),
+                    // KHR_materials_anisotropy: alpha is then alpha_t = mix(roughness², 1, strength²)
+                    {"alpha_b", 0.0, 1.0, 0.0,
+                     "KHR_materials_anisotropy: width along the bitangent, roughness squared (alpha is then the width "
+                     "along the anisotropy direction); 0 = isotropic"}},
                    r_::model_gltf);
     lobe(m, Width::Alpha, 0);
     m.ref_albedo = r_::albedo_gltf;
@@ -230,7 +234,12 @@ std::vector<Model> build_models() {
                {"white plastic,r=0.2", {0.04, 0.0, 1.0, 0.04, 0.04, 1.0}, Expect::Fail, kGltfFresnelMixGain, Expect::Hold, kReciprocal},
                // base 0.5 leaves room for the Fresnel mix's gain: measured max E 0.61 (grazing light)
                hold("grey plastic,r=0.7", {0.49, 0.0, 0.5, 0.04, 0.04, 1.0}),
-               hold("no specular,base=1", {0.25, 0.0, 1.0, 0.04, 0.04, 0.0})};
+               hold("no specular,base=1", {0.25, 0.0, 1.0, 0.04, 0.04, 0.0}),
+               // KHR_materials_anisotropy metals: roughness 0.5, strength 0.8 gives
+               // alpha_t = mix(0.25, 1, 0.64) = 0.73, alpha_b = 0.25; roughness 0.2,
+               // strength 1 gives alpha_t = 1, alpha_b = 0.04 (the widest spread)
+               hold("aniso chrome,r=0.5,s=0.8", {0.73, 1.0, 1.0, 0.04, 0.04, 1.0, 0.25}),
+               hold("aniso chrome,r=0.2,s=1", {1.0, 1.0, 1.0, 0.04, 0.04, 1.0, 0.04})};
   }
   return c;
 }

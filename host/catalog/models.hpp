@@ -23,7 +23,7 @@ namespace mfv {
 // fail (a deficiency large enough to show at any seed), or it may fail.
 enum class Expect { Hold, Fail, May };
 
-constexpr size_t kModelParams = 6;  // p[0..5] travel in IntegralSpec pd, pg, f0, f1, kd, p5
+constexpr size_t kModelParams = 7;  // p[0..6] travel in IntegralSpec pd, pg, f0, f1, kd, p5, pd2 (0 for most models)
 using ModelParams = std::array<double, kModelParams>;
 
 // f(l, v): l = light, v = view, both unit and pointing away from the surface, n = +z.

@@ -26,6 +26,7 @@ namespace {
 enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kModel = 5, kDAniso = 6, kG1Aniso = 7, kBrdfAniso = 8 };
 constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
 constexpr int kSlots = 6;     // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
+constexpr int kRangeSlots = 7;  // and a whole model's p[6] (record slot 14; kernels/agree.cl)
 
 struct Case {
   std::string name;
@@ -38,7 +39,7 @@ struct Case {
 };
 
 // Sampling range of one parameter: log-uniform where it spans decades.
-void put_range(std::array<float, 3 * kSlots>& r, int slot, const Param* p) {
+void put_range(std::array<float, 3 * kRangeSlots>& r, int slot, const Param* p) {
   double lo = p ? p->lo : 0.0, hi = p ? p->hi : 1.0;
   bool log_scale = hi > 100.0 * std::max(lo, 1e-300);
   if (log_scale && lo <= 0.0) lo = 1e-3 * std::max(1.0, hi * 1e-6);  // an exponent from 0: sample from ~1
@@ -111,7 +112,7 @@ struct Evaluator {
     double in[6 + kSlots + 1];
     for (int k = 0; k < 6; ++k) in[k] = r[k];
     for (int k = 0; k < kSlots; ++k) in[6 + k] = r[6 + k];
-    in[6 + kSlots] = r[14];  // alpha_y of the anisotropic modes
+    in[6 + kSlots] = r[14];  // alpha_y of the anisotropic modes; a whole model's p[6] (in + 6 is its p[0..6])
     if (aniso() && bump_index >= 0 && bump_index < 13) in[bump_index] *= 1.0 + bump;
     // inputs 0..3 are the cosines; for the BRDF they are derived from wi, wo
     // below and bumped there (index 11..14), so float rounding inside the
@@ -120,7 +121,7 @@ struct Evaluator {
     // rounding a unit vector moves each component by ~eps of its length, not
     // of the component (a small z is as uncertain as a large x).
     if (c.mode == kModel && bump_index >= 0 && bump_index < 6) in[bump_index] += bump;
-    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 12 : 11)) in[bump_index] *= 1.0 + bump;
+    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 13 : 11)) in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
       case kDAniso: return c.d->ref_d_aniso(glm::dvec3(in[4], in[5], in[2]), in[6], in[12]);
       case kG1Aniso: return c.g->ref_g1_aniso(glm::dvec3(in[4], in[5], in[1]), in[7], in[12]);
@@ -164,7 +165,7 @@ struct Evaluator {
     return std::numeric_limits<double>::quiet_NaN();
   }
   bool aniso() const { return c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso; }
-  int inputs() const { return aniso() ? 13 : c.mode == kBrdf ? 15 : c.mode == kModel ? 12 : 11; }
+  int inputs() const { return aniso() ? 13 : c.mode == kBrdf ? 15 : c.mode == kModel ? 13 : 11; }
 };
 
 std::string describe(const Case& c, const float* r, double k, double ref) {
@@ -176,6 +177,7 @@ std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string ps;
   const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd", "p5"};
   for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[6 + s]);
+  if (c.mode == kModel && r[14] != 0.0f) ps += fmt::format(" p6={:a}", r[14]);
   if (c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso)
     ps += fmt::format(" h.x|v.x={:a} h.y|v.y={:a} alpha_y={:a}", r[4], r[5], r[14]);
   return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
@@ -262,23 +264,25 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
 
   const size_t chunk = static_cast<size_t>(std::min<uint64_t>(opt.samples, 1u << 18));
   cl::Buffer rec_buf(rt.context(), CL_MEM_WRITE_ONLY, chunk * kRecord * sizeof(float));
-  cl::Buffer range_buf(rt.context(), CL_MEM_READ_ONLY, 3 * kSlots * sizeof(float));
+  cl::Buffer range_buf(rt.context(), CL_MEM_READ_ONLY, 3 * kRangeSlots * sizeof(float));
   std::vector<float> rec(chunk * kRecord);
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
 
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
-    std::array<float, 3 * kSlots> ranges{};
+    std::array<float, 3 * kRangeSlots> ranges{};
     put_range(ranges, 0, param(c.d, 0));
     put_range(ranges, 1, param(c.g, 0));
     put_range(ranges, 2, param(c.f, 0));
     put_range(ranges, 3, param(c.f, 1));
     put_range(ranges, 4, nullptr);  // kd in [0, 1]
     put_range(ranges, 5, nullptr);
+    put_range(ranges, 6, nullptr);
+    ranges[3 * 6 + 1] = 0.0f;  // p[6]: whole models only
     ranges[3 * 5 + 1] = 0.0f;  // p5: whole models only
     if (c.mode != kBrdf && c.mode != kBrdfAniso) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
     if (c.model)  // a whole model: its own parameters in every slot, 0 past its count
-      for (int k = 0; k < kSlots; ++k) {
+      for (int k = 0; k < kRangeSlots; ++k) {
         put_range(ranges, k, size_t(k) < c.model->params.size() ? &c.model->params[size_t(k)] : nullptr);
         if (size_t(k) >= c.model->params.size()) ranges[3 * k + 1] = 0.0f;
       }
@@ -357,6 +361,7 @@ PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   std::array<float, kRecord> rec{};
   for (int k = 0; k < 6; ++k) rec[k] = p.inputs[k];
   for (int k = 0; k < kSlots; ++k) rec[6 + k] = p.params[k];
+  rec[14] = p.params[6];  // a whole model's p[6] (kernels/agree.cl)
   rec[12] = std::numeric_limits<float>::quiet_NaN();  // sentinel
   cl::Buffer buf(rt.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(rec), rec.data());
   kern.setArg(0, static_cast<cl_int>(p.mode));

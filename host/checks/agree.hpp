@@ -39,7 +39,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
 // One point evaluated by the kernel and the reference (mfv eval). A record
 // holds the inputs as kernels/agree.cl lays them out: for a BRDF wi.xyz,
 // wo.xyz; for a term NoL, NoV, NoH, VoH; then D param, G param, F p0, F p1, kd.
-// A whole model (Model) takes wi.xyz, wo.xyz and its p[0..5] in params.
+// A whole model (Model) takes wi.xyz, wo.xyz and its p[0..6] in params.
 struct Term;
 struct Model;
 enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4, Model = 5 };
@@ -50,7 +50,7 @@ struct PointSpec {
   const Term* f = nullptr;
   const Model* model = nullptr;
   float inputs[6] = {0, 0, 1, 0, 0, 1};
-  float params[6] = {0, 0, 0, 0, 0, 0};
+  float params[7] = {0, 0, 0, 0, 0, 0, 0};  // [6]: a whole model's p[6] (record slot 14)
 };
 struct PointResult {
   double kernel = 0, reference = 0, rel = 0, ulps = 0;

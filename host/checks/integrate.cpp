@@ -39,6 +39,7 @@ IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p,
   s.f1 = float(p[3]);
   s.kd = float(p[4]);
   s.p5 = float(p[5]);
+  s.pd2 = float(p[6]);  // a second width (gltf: alpha_b); 0 leaves the integral isotropic
   s.width = float(m.proposal_width(p.data()));
   s.cos_o = float(cos_o);
   return s;

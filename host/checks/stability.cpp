@@ -38,7 +38,7 @@ double StabilityCase::max_ulps() const {
 namespace {
 
 enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kVariant = 5, kModel = 6 };  // = STAB_* in stability.cl
-constexpr int kIn = 12;                                                  // = STAB_IN
+constexpr int kIn = 13;                                                  // = STAB_IN
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -541,7 +541,7 @@ CaseDef model_case(const Model& m, bool fp64) {
     for (auto& p : points) {
       Point pt;
       pt.region = region;
-      pt.in = {wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, p[0], p[1], p[2], p[3], p[4], p[5]};
+      pt.in = {wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, p[0], p[1], p[2], p[3], p[4], p[5], p[6]};
       c.points.push_back(pt);
     }
   };

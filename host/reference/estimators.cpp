@@ -78,7 +78,7 @@ namespace {
 // the fixed direction o as the light and the sampled i as the view.
 double spec_brdf(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o) {
   if (b.model) {
-    const double p[kModelParams] = {b.pd, b.pg, b.f0, b.f1, b.kd, b.p5};
+    const double p[kModelParams] = {b.pd, b.pg, b.f0, b.f1, b.kd, b.p5, b.pd2};
     return b.model->ref(o, i, p);
   }
   return brdf(b, i, o);

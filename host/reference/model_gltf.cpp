@@ -1,5 +1,7 @@
 #include "reference/model_gltf.hpp"
 
+#include "reference/reference.hpp"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -8,13 +10,14 @@
 namespace mfv::ref {
 
 double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
-  const double alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5];
+  const double alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5], alpha_b = p[6];
   if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
   // cosines that rounded above 1 are the normal itself (seed 000)
   const double NoL = std::min(l.z, 1.0), NoV = std::min(v.z, 1.0);
   // h = (l + v)/|l + v|; v·h = |l + v|/2 for unit l, v (no cancellation where l ≈ -v)
   const glm::dvec3 sum = l + v;
   const double len = glm::length(sum);
+  if (!(len > 0.0)) return 0.0;  // l = -v: no half vector; G's χ⁺(v·h) is 0 (twin of the kernel's guard)
   const double NoH = std::min(sum.z / len, 1.0), VoH = std::min(0.5 * len, 1.0);
   const double sin2H = (sum.x * sum.x + sum.y * sum.y) / (len * len);  // 1 − (n·h)², without the cancellation
   const double a2 = alpha * alpha;
@@ -27,7 +30,15 @@ double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
   // = 1 / (2 (|n·v| √(α² + (1 − α²)(n·l)²) + |n·l| √(α² + (1 − α²)(n·v)²)))
   const double vis =
       1.0 / (2.0 * (NoV * std::sqrt(a2 + (1.0 - a2) * NoL * NoL) + NoL * std::sqrt(a2 + (1.0 - a2) * NoV * NoV)));
-  const double specular = D * vis;
+  double specular = D * vis;
+  if (alpha_b > 0.0) {
+    // KHR_materials_anisotropy (twin of the kernel's branch): anisotropic GGX
+    // D (Heitz 2014; Burley 2012 app. B) with alpha along t = +x and alpha_b
+    // along b = +y, height-correlated Smith G2 = 1 / (1 + Λ(l) + Λ(v)) (Heitz
+    // 2014 eq. 99) with the anisotropic Λ at the projected widths; Vis = G2 / (4 (n·l)(n·v))
+    const double G2 = 1.0 / (1.0 + Lambda_ggx_aniso(l, alpha, alpha_b) + Lambda_ggx_aniso(v, alpha, alpha_b));
+    specular = D_ggx_aniso(sum / len, alpha, alpha_b) * G2 / (4.0 * NoL * NoV);
+  }
   const double fw = std::pow(1.0 - VoH, 5.0);
   // KHR_materials_specular fresnel_mix: layer weighted by weight·fr, base by 1 − weight·max_rgb(fr)
   const double fr = f0 + (1.0 - f0) * fw;

@@ -19,7 +19,7 @@ namespace mfv {
 
 bool GltfChannelParams::operator==(const GltfChannelParams& o) const {
   return alpha == o.alpha && metallic == o.metallic && base == o.base && f0 == o.f0 && f0_max == o.f0_max &&
-         weight == o.weight;
+         weight == o.weight && alpha_b == o.alpha_b;
 }
 
 std::vector<GltfChannelParams> SceneMaterial::channels() const {
@@ -30,9 +30,19 @@ std::vector<GltfChannelParams> SceneMaterial::channels() const {
   std::array<double, 3> f0;
   for (int k = 0; k < 3; ++k) f0[k] = std::min(r * r * factors.specular_color[k], 1.0);
   const double f0_max = std::max({f0[0], f0[1], f0[2]});
+  // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength²) along the
+  // anisotropy direction, alpha_b = alpha across it. anisotropyRotation turns
+  // that direction about n within the tangent plane; the model is evaluated
+  // in the anisotropy direction's own frame (t = +x), where the BRDF does not
+  // depend on the rotation: it only changes which mesh azimuth the checks'
+  // light (in the t-n plane, the rougher axis) stands for, so the checks are
+  // run at rotation 0 and the rotation is recorded, not integrated.
+  const double s2 = factors.anisotropy_strength * factors.anisotropy_strength;
+  const double alpha_t = s2 > 0.0 ? alpha + (1.0 - alpha) * s2 : alpha;
+  const double alpha_b = s2 > 0.0 ? alpha : 0.0;
   std::vector<GltfChannelParams> out;
   for (int k = 0; k < 3; ++k) {
-    GltfChannelParams c{alpha, factors.metallic, factors.base[k], f0[k], f0_max, factors.specular};
+    GltfChannelParams c{alpha_t, factors.metallic, factors.base[k], f0[k], f0_max, factors.specular, alpha_b};
     if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
   }
   return out;
@@ -77,6 +87,10 @@ void validate_gltf_factors(const std::string& name, const GltfFactors& f) {
   if (!(f.ior == 0.0 || (f.ior >= 1.0 && std::isfinite(f.ior))))
     throw Error(fmt::format("material '{}': KHR_materials_ior ior = {} is out of range (1 or more, or 0)", name, f.ior));
   check_unit(name, "KHR_materials_specular specularFactor", f.specular);
+  check_unit(name, "KHR_materials_anisotropy anisotropyStrength", f.anisotropy_strength);
+  if (!std::isfinite(f.anisotropy_rotation))
+    throw Error(fmt::format("material '{}': KHR_materials_anisotropy anisotropyRotation = {} is not finite", name,
+                            f.anisotropy_rotation));
   for (int k = 0; k < 3; ++k)
     if (!(f.specular_color[k] >= 0.0 && std::isfinite(f.specular_color[k])))
       throw Error(fmt::format("material '{}': KHR_materials_specular specularColorFactor.{} = {} must be a finite "
@@ -156,13 +170,16 @@ SceneMaterial from_gltf(const tinygltf::Material& gm, size_t index) {
         if (has_texture(v, t))
           m.warnings.push_back(fmt::format("{} is not sampled: checked at the factors", t));
     } else if (ext == "KHR_materials_anisotropy") {
-      const double strength = number(v, "anisotropyStrength", 0.0, m.name);
-      if (strength != 0.0)
-        throw Error(fmt::format("material '{}' uses KHR_materials_anisotropy (anisotropyStrength {:g}): this build has "
-                                "no anisotropic GGX in its catalog, so its check would be wrong",
-                                m.name, strength));
+      m.factors.anisotropy_strength = number(v, "anisotropyStrength", 0.0, m.name);
+      m.factors.anisotropy_rotation = number(v, "anisotropyRotation", 0.0, m.name);
+      if (m.factors.anisotropy_rotation != 0.0)
+        m.warnings.push_back(fmt::format("anisotropyRotation {:g} turns the lobe about n: checked in the anisotropy "
+                                         "direction's own frame, where the BRDF does not depend on it",
+                                         m.factors.anisotropy_rotation));
       if (has_texture(v, "anisotropyTexture"))
-        m.warnings.push_back("anisotropyTexture is not sampled; anisotropyStrength 0 makes the lobe isotropic");
+        m.warnings.push_back(fmt::format("anisotropyTexture is not sampled: checked at anisotropyStrength {:g}, "
+                                         "which the texture's strength channel scales down",
+                                         m.factors.anisotropy_strength));
     } else if (kHarmless.count(ext) == 0) {
       m.warnings.push_back(fmt::format("uses {}, which mfv does not model: checked without it (a viewer that "
                                        "ignores an optional extension is conformant)",
@@ -215,7 +232,7 @@ Scene load_gltf(const std::string& path, bool binary) {
   for (auto& ext : model.extensionsRequired)
     if (kModelled.count(ext) == 0 && kHarmless.count(ext) == 0)
       throw Error(fmt::format("{} requires extension {}, which mfv does not model (it models KHR_materials_ior, "
-                              "KHR_materials_specular; KHR_materials_anisotropy only at strength 0)",
+                              "KHR_materials_specular; KHR_materials_anisotropy)",
                               path, ext));
   // The materials the scene's nodes use; a file without meshes is a material library (all of them).
   std::set<int> used;

@@ -21,6 +21,8 @@ struct GltfFactors {
   double ior = 1.5;                     // KHR_materials_ior
   double specular = 1;                  // KHR_materials_specular specularFactor
   std::array<double, 3> specular_color{1, 1, 1};  // specularColorFactor
+  double anisotropy_strength = 0;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
+  double anisotropy_rotation = 0;       // anisotropyRotation (radians; recorded, see SceneMaterial::channels)
 };
 
 // The smallest width the suite's float32 estimators resolve (its d_norm grid
@@ -31,8 +33,9 @@ constexpr double kSceneMinAlpha = 1e-4;
 // (kernels/model_gltf.cl); channels with identical values are one set.
 struct GltfChannelParams {
   double alpha, metallic, base, f0, f0_max, weight;
+  double alpha_b = 0;  // KHR_materials_anisotropy: width along b (alpha is then alpha_t); 0 = isotropic
   bool operator==(const GltfChannelParams& o) const;
-  ModelParams params() const { return {alpha, metallic, base, f0, f0_max, weight}; }
+  ModelParams params() const { return {alpha, metallic, base, f0, f0_max, weight, alpha_b}; }
 };
 // The catalog's glTF model (host/catalog/models.cpp "gltf").
 const Model& gltf_model();

@@ -66,8 +66,8 @@ IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
 }
 
 std::string gltf_key(const GltfChannelParams& c) {
-  return fmt::format("gltf alpha={:.9g} metallic={:.9g} base={:.9g} f0={:.9g} f0_max={:.9g} specular={:.9g}", c.alpha,
-                     c.metallic, c.base, c.f0, c.f0_max, c.weight);
+  return fmt::format("gltf alpha={:.9g} metallic={:.9g} base={:.9g} f0={:.9g} f0_max={:.9g} specular={:.9g} alpha_b={:.9g}",
+                     c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.weight, c.alpha_b);
 }
 
 std::map<std::string, double> gltf_params(const GltfChannelParams& c) {
@@ -150,8 +150,10 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
       // specular lobe at its roughness.
       SetPlan& sp = plan_for(s, "furnace", scaled(kSuiteBaseSamples));
       if (m.gltf) {
-        GltfChannelParams white{m.alpha, 1.0, 1.0, 1.0, 1.0, 1.0};
-        std::string key = fmt::format("gltf alpha={:.9g} (white metal: F = 1)", m.alpha);
+        // the widths of the material's lobe (alpha_t, alpha_b under KHR_materials_anisotropy)
+        const GltfChannelParams lobe = m.channels().front();
+        GltfChannelParams white{lobe.alpha, 1.0, 1.0, 1.0, 1.0, 1.0, lobe.alpha_b};
+        std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", lobe.alpha, lobe.alpha_b);
         if (claim(sp, key, "gltf")) {
           for (double co : views)
             add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", m.alpha}, {"cos_l", co}}, {},

@@ -60,6 +60,14 @@ CheckLine check_line(const SuiteReport& rep, const GroupResult& g) {
 }
 
 std::string material_params(const SceneMaterial& m) {
+  if (m.gltf && m.factors.anisotropy_strength > 0.0) {
+    const GltfChannelParams lobe = m.channels().front();
+    return fmt::format("gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g}, anisotropyStrength {:g} "
+                       "(alpha_t {:g}, alpha_b {:g}), ior {:g}, specular {:g}, specularColor ({:g}, {:g}, {:g})",
+                       m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness,
+                       m.factors.anisotropy_strength, lobe.alpha, lobe.alpha_b, m.factors.ior, m.factors.specular,
+                       m.factors.specular_color[0], m.factors.specular_color[1], m.factors.specular_color[2]);
+  }
   if (m.gltf)
     return fmt::format("gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g} (alpha {:g}), ior {:g}, "
                        "specular {:g}, specularColor ({:g}, {:g}, {:g})",
