@@ -142,7 +142,7 @@ TEST_CASE("the stability gate fails on a planted whole model that gives NaN near
   CHECK(good.code == 0);
 }
 
-TEST_CASE("Oren-Nayar is gated: tan(beta) formed before its zero factors gives 0 inf = NaN at the horizon",
+TEST_CASE("mfv stability gates Oren-Nayar: tan(beta) formed before its zero factors gives 0 inf = NaN at the horizon",
           "[device][stability][models][planted]") {
   // the form before the fix: sin β / cos β overflows at cos β = 2^-149, and
   // σ = 0 (B = 0) or opposite azimuths (G = 0) times it is NaN
