@@ -46,11 +46,16 @@ static inline real model_oren_nayar(real3 l, real3 v, const real* p) {
   real ci = min(l.z, R(1.0)), cr = min(v.z, R(1.0));
   real si2 = l.x * l.x + l.y * l.y, sr2 = v.x * v.x + v.y * v.y;  // sin² from the components
   real sin_a = sqrt(ci < cr ? si2 : sr2);
-  real tan_b = ci < cr ? sqrt(sr2) / cr : sqrt(si2) / ci;
+  real sin_b = sqrt(ci < cr ? sr2 : si2), cos_b = max(ci, cr);
   // cos(φi - φr) of the projections; 0 where either has no azimuth
   real pp = sqrt(si2 * sr2);
   real G = pp > R(0.0) ? max(R(0.0), (l.x * v.x + l.y * v.y) / pp) : R(0.0);
-  return p[0] * MFV_INV_PI * (A + B * G * min(sin_a, R(1.0)) * tan_b);
+  // tan β = sin β / cos β divided last: with both directions at the horizon
+  // (cos β ~ 2^-149) tan β alone overflows, and kd = 0, B = 0 (σ = 0) or
+  // G = 0 (opposite azimuths) times it was 0·∞ = NaN; this way a zero factor
+  // gives the term's limit 0 and otherwise the true (unbounded) value grows.
+  real kd = p[0] * MFV_INV_PI;
+  return kd * A + kd * B * G * min(sin_a, R(1.0)) * sin_b / cos_b;
 }
 
 // FON directional albedo at ρ = 1 (Portsmouth, Kutz, Hill 2025, Listing 1, E_FON_exact).
@@ -74,9 +79,13 @@ static inline real model_eon(real3 l, real3 v, const real* p) {
   real c1 = R(0.5) - R(2.0) / (R(3.0) * MFV_PI);
   real c2 = R(2.0) / R(3.0) - R(28.0) / (R(15.0) * MFV_PI);
   real s = dot(l, v) - l.z * v.z;
-  real st = s > R(0.0) ? s / max(l.z, v.z) : s;
   real AF = R(1.0) / (R(1.0) + c1 * r);
-  real f_ss = rho * MFV_INV_PI * AF * (R(1.0) + r * st);
+  // ρ A_F/π (1 + r s/t), t = max(n·l, n·v) where s > 0, with s/t formed last:
+  // at l = v along the horizon t ~ 2^-149 and s/t overflows, so ρ = 0 or
+  // r = 0 times it was 0·∞ = NaN; here a zero factor gives 0 and otherwise
+  // the true value. s <= 0 keeps 1 + r s (it cancels as l -> -v at r = 1).
+  real k_ss = rho * MFV_INV_PI * AF;
+  real f_ss = s > R(0.0) ? k_ss + k_ss * r * s / max(l.z, v.z) : k_ss * (R(1.0) + r * s);
   real avg = AF * (R(1.0) + c2 * r);
   real rho_ms = rho * rho * avg / (R(1.0) - rho * (R(1.0) - avg));
   real eps = R(1e-7);
@@ -144,7 +153,13 @@ static inline real model_ward_dur(real3 l, real3 v, const real* p) {
   real s2, voh;
   real3 h = half_vector(l, v, &s2, &voh);
   real c2 = h.z * h.z;
-  return p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (voh * voh) / (c2 * c2);
+  real e = ward_exp(h, p[1], p[2]);
+  // h -> the horizon: the exponential vanishes faster than (n·ĥ)⁴, so f -> 0;
+  // returning here avoids 0/0 once (n·ĥ)² underflows (n·ĥ below ~1e-23 in float).
+  if (e == R(0.0)) return R(0.0);
+  // One factor at a time: (v·ĥ)² and (n·ĥ)⁴ underflow (l ~ -v, or ĥ grazing),
+  // where ks = 0 gave 0/0; dividing by each in turn gives 0 or the true value.
+  return p[0] * e * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / voh / voh / c2 / c2;
 }
 
 static inline real model_cook_torrance_kmix(real3 l, real3 v, const real* p) {
@@ -155,7 +170,10 @@ static inline real model_cook_torrance_kmix(real3 l, real3 v, const real* p) {
   real s2, voh;
   real3 h = half_vector(l, v, &s2, &voh);
   real spec = D_beckmann(h.z, s2, p[4]) * schlick_f(p[3], voh) * G_cook_torrance(l.z, v.z, h.z, voh, R(0.0));
-  return p[0] * p[1] * MFV_INV_PI + (R(1.0) - p[0]) * p[2] * over_4_cosines(spec, l.z, v.z);
+  // (1 - k) ks weights spec before the cosines divide it: with both at the
+  // horizon spec / (4 (n·l)(n·v)) overflows, and k = 1 or ks = 0 times that
+  // was 0·∞ = NaN; a zero weight now gives 0, otherwise the true value.
+  return p[0] * p[1] * MFV_INV_PI + over_4_cosines((R(1.0) - p[0]) * p[2] * spec, l.z, v.z);
 }
 
 static inline real model_torrance_sparrow(real3 l, real3 v, const real* p) {

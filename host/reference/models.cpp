@@ -49,11 +49,14 @@ double model_oren_nayar(const glm::dvec3& l0, const glm::dvec3& v0, const double
   const double s2 = p[1] * p[1];
   const double A = 1.0 - 0.5 * s2 / (s2 + 0.33), B = 0.45 * s2 / (s2 + 0.09);
   const double ti = std::acos(std::min(l.z, 1.0)), tr = std::acos(std::min(v.z, 1.0));
-  const double alpha = std::max(ti, tr), beta = std::min(ti, tr);
+  const double alpha = std::max(ti, tr);
+  // tan β = sin β / cos β with cos β the larger cosine: tan(acos(c)) loses
+  // everything below c ~ 1e-16 (acos rounds to π/2, tan gives 1.6e16, not 1/c)
+  const double cos_b = std::min(std::max(l.z, v.z), 1.0), tan_b = std::sqrt(1.0 - cos_b * cos_b) / cos_b;
   const glm::dvec3 pi(l.x, l.y, 0.0), pr(v.x, v.y, 0.0);  // l - (l·n)n, v - (v·n)n
   const double li = glm::length(pi), lr = glm::length(pr);
   const double G = li > 0.0 && lr > 0.0 ? std::max(0.0, glm::dot(pi, pr) / (li * lr)) : 0.0;
-  return p[0] / kPi * (A + B * G * std::sin(alpha) * std::tan(beta));
+  return p[0] / kPi * (A + B * G * std::sin(alpha) * tan_b);
 }
 
 double E_fon(double mu, double sigma) {
