@@ -1,4 +1,5 @@
 #include "checks/bench.hpp"
+#include "mfv_git_commit.h"
 
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"

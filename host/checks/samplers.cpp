@@ -1,4 +1,5 @@
 #include "checks/samplers.hpp"
+#include "mfv_git_commit.h"
 
 #include "checks/chi_square.hpp"
 #include "numeric/quadrature.hpp"

@@ -2,6 +2,7 @@
 // Markdown, and gnuplot plots of error over θ and α. Files are written whole
 // or not at all (DESIGN.md §7).
 #include "checks/stability.hpp"
+#include "mfv_git_commit.h"
 
 #include "report/files.hpp"
 #include "runtime/error.hpp"

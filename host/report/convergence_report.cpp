@@ -2,6 +2,7 @@
 // mfv-convergence/1), convergence.md (slopes, samples and time to 1e-3,
 // 1e-4, 1e-5) and gnuplot log-log plots of error against samples and time.
 #include "checks/convergence.hpp"
+#include "mfv_git_commit.h"
 #include "report/files.hpp"
 #include "report/gnuplot.hpp"
 

@@ -1,4 +1,5 @@
 #include "report/energy_report.hpp"
+#include "mfv_git_commit.h"
 
 #include "report/files.hpp"
 #include "runtime/error.hpp"

@@ -1,4 +1,5 @@
 #include "report/suite_report.hpp"
+#include "mfv_git_commit.h"
 
 #include "report/files.hpp"
 
