@@ -344,17 +344,17 @@ static inline real conv_shape_D(uint est, real c, real s2, real w) {
 // h with density D_w(h)(h·n): tan²θ = w² u / (1 - u) (GGX, Walter et al. 2007
 // eq. 35) or -w² log(1 - u) (Beckmann, eq. 28); cos and sin² from tan², so
 // nothing cancels near the normal.
+// The unit direction at cos θ = c, sin²θ = s2 and azimuth 2π u_phi.
+static inline real3 conv_direction(real c, real s2, real u_phi) {
+  real st = sqrt(s2), phi = R(2.0) * MFV_PI * u_phi;
+  return (real3)(st * cos(phi), st * sin(phi), c);
+}
+
 static inline real3 conv_sample_shape(uint est, real u_phi, real u_r, real w, real* c, real* s2) {
   real t2 = est == EST_DSAMPLE_BECKMANN ? -w * w * log1p(-u_r) : w * w * u_r / (R(1.0) - u_r);
   *c = rsqrt(R(1.0) + t2);
   *s2 = t2 / (R(1.0) + t2);
-  real st = sqrt(*s2), phi = R(2.0) * MFV_PI * u_phi;
-  return (real3)(st * cos(phi), st * sin(phi), *c);
-}
-
-static inline real3 conv_direction(real c, real s2, real u_phi) {
-  real st = sqrt(s2), phi = R(2.0) * MFV_PI * u_phi;
-  return (real3)(st * cos(phi), st * sin(phi), c);
+  return conv_direction(*c, *s2, u_phi);
 }
 
 // One sample of integral `s` under estimator s->estimator (!= 0).
