@@ -3,23 +3,30 @@
 
 // seed 000: f = kd/π + D(h) F(l,h) G(l,v,h) / (4 (n·l)(n·v)), local frame n = +z,
 // wi = light, wo = view, both pointing away from the surface.
-static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, real pg, real f0, real f1,
-                             real kd) {
-  real NoL = wi.z;
-  real NoV = wo.z;
+// By components (l = (lx, ly, lz), v = (vx, vy, vz)): no float3 value, so
+// PoCL can run work-items in SIMD lanes (integrate.cl albedo_values).
+static inline real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy, real vz, real pd,
+                               real pg, real f0, real f1, real kd) {
+  real NoL = lz;
+  real NoV = vz;
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   // Both above the horizon, so wi + wo != 0 and the half vector is defined.
   // v·h = l·h = |l + v| / 2 for unit l, v: symmetric in l and v (so f is
   // reciprocal to the last bit) and free of the cancellation dot(v, h) has
   // when l and v are nearly opposite and v·h -> 0.
   real hx, hy, NoH;
-  real len = normalize_sum(wi.x + wo.x, wi.y + wo.y, wi.z + wo.z, &hx, &hy, &NoH);
+  real len = normalize_sum(lx + vx, ly + vy, lz + vz, &hx, &hy, &NoH);
   real VoH = min(R(0.5) * len, R(1.0));
   real sin2H = hx * hx + hy * hy;  // |n×h|², exact where 1 - NoH is not
   real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
   // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
   // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
   return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+}
+
+static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, real pg, real f0, real f1,
+                             real kd) {
+  return brdf_eval_c(d, g, f, wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, pd, pg, f0, f1, kd);
 }
 
 // The same BRDF with anisotropic terms (Term::aniso): D of widths (pd, pd2)

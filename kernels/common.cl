@@ -52,12 +52,14 @@ static inline real2 sincos_2pi(real u) {
 
 // The half vector of l and v from their sum (sx, sy, sz), by components (no
 // float3 operations or length() call: see sincos_2pi): h = sum / |sum|;
-// returns |sum| = 2 (v·h). Where every component is below 2^-60 (opposite
-// grazing directions: |l + v| down to ~1e-20) the squares would underflow,
-// so the sum is first scaled by 2^100, exactly, as length() rescales.
+// returns |sum| = 2 (v·h). Where |sum|² is below 2^-120 (opposite grazing
+// directions: |l + v| down to ~1e-20) the squares would lose bits or
+// underflow, so the sum is scaled by 2^100 first, exactly, as length()
+// rescales. (Tested on |sum|², not on max |component|: the two fabs of a max
+// become a 2-lane SLP vector that stops PoCL vectorizing albedo_values.)
 static inline real normalize_sum(real sx, real sy, real sz, real* hx, real* hy, real* hz) {
-  real big = max(max(fabs(sx), fabs(sy)), fabs(sz));
-  real k = big < R(0x1p-60) ? R(0x1p100) : R(1.0);
+  bool tiny = sx * sx + sy * sy + sz * sz < R(0x1p-120);
+  real k = tiny ? R(0x1p100) : R(1.0);
   sx *= k;
   sy *= k;
   sz *= k;
@@ -65,7 +67,7 @@ static inline real normalize_sum(real sx, real sy, real sz, real* hx, real* hy, 
   *hx = sx / len;
   *hy = sy / len;
   *hz = sz / len;
-  return len / k;
+  return len * (tiny ? R(0x1p-100) : R(1.0));  // exactly len / k, without a division
 }
 
 // log(cos θ) from both cos and sin²: ½ log1p(-sin²) near the normal, where

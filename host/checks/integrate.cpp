@@ -84,13 +84,15 @@ cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
                   defines, generate_dispatch(terms), "brdf.cl");
 }
 
-Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {}
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
+  fast_albedo_ = fast_albedo_available_ = true;  // the catalog's program defines albedo_values (a user program does not)
+}
 
 // The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
 Integrator::Integrator(Runtime& rt, cl::Program program)
     : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
-  size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
-  while (local_size_ > max_wg) local_size_ /= 2;
+  max_work_group_ = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  while (local_size_ > max_work_group_) local_size_ /= 2;
 }
 
 void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
@@ -124,17 +126,15 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
                    : 0u;
 }
 
-std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
-                                     uint64_t first_index) {
-  uint32_t per_item, slices;
-  layout(samples, per_item, slices);
-  const uint64_t n = uint64_t(slices) * local_size_ * per_item;
-  std::vector<IntegralSpec> specs = specs_in;
-  stratify(specs, samples);
-  if (first_index > 0)
-    for (auto& s : specs)
-      if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
-  std::vector<Estimate> out(specs.size());
+// kernels/integrate.cl albedo_is_microfacet: the integrals albedo_values takes.
+static bool albedo_fast_path(const IntegralSpec& s) {
+  return s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.estimator == 0 && s.strata == 0 && s.model == 0 &&
+         !(s.pd2 > 0) && s.phi_o == 0 && s.width > 0;
+}
+
+std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                         uint32_t slices, uint64_t seed, uint64_t first_index) {
+  std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
   cl::Kernel k(program_, "integrate");
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
@@ -154,35 +154,115 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     k.setArg(5, cl::Local(2 * local_size_ * acc));
     k.setArg(6, static_cast<cl_ulong>(first_index));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
-    std::vector<double> host(groups * 2);
-    if (acc_double_) {
-      rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * acc, host.data());
-    } else {
-      std::vector<float> f(groups * 2);
-      rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * acc, f.data());
-      std::copy(f.begin(), f.end(), host.begin());
-    }
-    for (size_t i = 0; i < count; ++i) {
-      double s = 0, ss = 0;
+    const std::vector<double> host = read_sums(sums, groups);
+    for (size_t i = 0; i < count; ++i)
       for (uint32_t j = 0; j < slices; ++j) {
-        s += host[2 * (i * slices + j)];
-        ss += host[2 * (i * slices + j) + 1];
+        out[first + i].sum += host[2 * (i * slices + j)];
+        out[first + i].sumsq += host[2 * (i * slices + j) + 1];
       }
-      Estimate& e = out[first + i];
-      e.samples = n;
-      e.mean = s / double(n);
-      if (specs[first + i].check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
-        e.b_mean = ss / double(n);  // the kernel's second accumulator holds B here
-        e.stderr_ = std::numeric_limits<double>::quiet_NaN();
-      } else if (specs[first + i].strata > 0) {
-        // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
-        e.stderr_ = std::sqrt(ss) / double(n);
-      } else {
-        double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
-        e.stderr_ = std::sqrt(var / double(n));
-      }
-      if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
+  }
+  return out;
+}
+
+// The same sums for albedo_fast_path integrals through albedo_values (one
+// sample per work-item, stored) and sum_values (the per-slice sums of
+// `integrate`): the samples of `integrate`, reduced in the same slices.
+std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                      uint32_t slices, uint64_t seed, uint64_t first_index) {
+  std::vector<Sums> out(specs.size());
+  if (specs.empty()) return out;
+  const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
+  const uint64_t kMaxValues = uint64_t(1) << 22;               // 16 MiB of samples a launch
+  // A launch takes `count` integrals over slices [s0, s0 + nslices).
+  const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
+  const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
+  cl::Kernel values_k(program_, "albedo_values"), sum_k(program_, "sum_values");
+  const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice;
+  cl::Buffer values(rt_.context(), CL_MEM_READ_WRITE, capacity * sizeof(float));
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  for (size_t first = 0; first < specs.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, specs.size() - first);
+    cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
+                        const_cast<IntegralSpec*>(specs.data() + first));
+    for (uint32_t s0 = 0; s0 < slices; s0 += nslices) {
+      const uint32_t ns = std::min(nslices, slices - s0);
+      const size_t m = size_t(ns) * per_slice, groups = count * ns;
+      size_t local = local_size_;  // the largest power of two up to 1024 that divides m
+      while (local * 2 <= std::min<size_t>(1024, max_work_group_) && m % (local * 2) == 0) local *= 2;
+      values_k.setArg(0, spec_buf);
+      values_k.setArg(1, static_cast<cl_ulong>(seed));
+      values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
+      values_k.setArg(3, values);
+      rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
+      cl::Buffer sums(rt_.context(), CL_MEM_WRITE_ONLY, groups * 2 * acc);
+      sum_k.setArg(0, values);
+      sum_k.setArg(1, static_cast<cl_uint>(per_slice));
+      sum_k.setArg(2, sums);
+      rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(groups));
+      const std::vector<double> host = read_sums(sums, groups);
+      for (size_t i = 0; i < count; ++i)
+        for (uint32_t j = 0; j < ns; ++j) {
+          out[first + i].sum += host[2 * (i * ns + j)];
+          out[first + i].sumsq += host[2 * (i * ns + j) + 1];
+        }
     }
+  }
+  return out;
+}
+
+std::vector<double> Integrator::read_sums(const cl::Buffer& sums, size_t groups) {
+  std::vector<double> host(groups * 2);
+  if (acc_double_) {
+    rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * sizeof(double), host.data());
+  } else {
+    std::vector<float> f(groups * 2);
+    rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * sizeof(float), f.data());
+    std::copy(f.begin(), f.end(), host.begin());
+  }
+  return host;
+}
+
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
+                                     uint64_t first_index) {
+  uint32_t per_item, slices;
+  layout(samples, per_item, slices);
+  const uint64_t n = uint64_t(slices) * local_size_ * per_item;
+  std::vector<IntegralSpec> specs = specs_in;
+  stratify(specs, samples);
+  if (first_index > 0)
+    for (auto& s : specs)
+      if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
+  // isotropic microfacet albedo integrals take the vectorizable fast path
+  std::vector<IntegralSpec> fast, general;
+  std::vector<size_t> fast_at, general_at;
+  for (size_t j = 0; j < specs.size(); ++j) {
+    // sum_values takes runs of a multiple of 4 (per_item is even)
+    const bool f = fast_albedo_ && local_size_ % 2 == 0 && albedo_fast_path(specs[j]);
+    (f ? fast : general).push_back(specs[j]);
+    (f ? fast_at : general_at).push_back(j);
+  }
+  std::vector<Sums> sums(specs.size());
+  const auto fs = sums_albedo(fast, per_item, slices, seed, first_index);
+  const auto gs = sums_integrate(general, per_item, slices, seed, first_index);
+  for (size_t j = 0; j < fast.size(); ++j) sums[fast_at[j]] = fs[j];
+  for (size_t j = 0; j < general.size(); ++j) sums[general_at[j]] = gs[j];
+  std::vector<Estimate> out(specs.size());
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const double s = sums[i].sum, ss = sums[i].sumsq;
+    Estimate& e = out[i];
+    e.samples = n;
+    e.mean = s / double(n);
+    if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+      e.b_mean = ss / double(n);  // the kernel's second accumulator holds B here
+      e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+    } else if (specs[i].strata > 0) {
+      // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
+      e.stderr_ = std::sqrt(ss) / double(n);
+    } else {
+      double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
+      e.stderr_ = std::sqrt(var / double(n));
+    }
+    if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
   }
   return out;
 }

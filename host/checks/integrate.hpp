@@ -92,13 +92,30 @@ class Integrator {
   std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }
+  // Isotropic microfacet albedo integrals run through albedo_values +
+  // sum_values (kernels/integrate.cl: eight work-items per AVX2 instruction on
+  // PoCL), on the samples `integrate` takes; off: `integrate` takes them too
+  // (tests compare the two).
+  void set_albedo_fast_path(bool on) { fast_albedo_ = on && fast_albedo_available_; }
 
  private:
+  struct Sums {
+    double sum = 0, sumsq = 0;
+  };
   void layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const;
+  // run()'s two paths: the `integrate` kernel, and albedo_values + sum_values
+  // for isotropic microfacet albedo integrals (kernels/integrate.cl)
+  std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
+                                   uint64_t seed, uint64_t first_index);
+  std::vector<Sums> sums_albedo(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
+                                uint64_t seed, uint64_t first_index);
+  std::vector<double> read_sums(const cl::Buffer& sums, size_t groups);
   Runtime& rt_;
   cl::Program program_;
   bool acc_double_;
+  bool fast_albedo_ = false, fast_albedo_available_ = false;
   size_t local_size_ = 64;
+  size_t max_work_group_ = 64;
 };
 
 }  // namespace mfv

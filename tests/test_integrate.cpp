@@ -1,0 +1,79 @@
+// Integrator::run's fast path for isotropic microfacet albedo integrals
+// (kernels/integrate.cl albedo_values + sum_values) takes the samples the
+// general `integrate` kernel takes and gives the same estimates: over
+// several D x G x F, grazing and normal views, tiny widths, diffuse kd,
+// launches split along the sample axis, and later passes (first_index > 0).
+#include "catalog/catalog.hpp"
+#include "catalog/roughness.hpp"
+#include "checks/integrate.hpp"
+#include "device_fixture.hpp"
+#include "runtime/dispatch.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace mfv;
+
+namespace {
+
+IntegralSpec albedo(const std::string& d, const std::string& g, const std::string& f, double alpha, double cos_o,
+                    double f0, double kd, uint32_t stream) {
+  const Term &td = find_term(d), &tg = find_term(g), &tf = find_term(f);
+  IntegralSpec s = make_spec(IntegralKind::Albedo, &td, &tg, &tf, native_from_alpha(td.roughness, alpha),
+                             native_from_alpha(tg.roughness, alpha), f0, 1.0, kd, alpha, cos_o);
+  s.stream = stream;
+  return s;
+}
+
+void require_same(const std::vector<Estimate>& fast, const std::vector<Estimate>& general) {
+  REQUIRE(fast.size() == general.size());
+  for (size_t i = 0; i < fast.size(); ++i) {
+    INFO("integral " << i << ": fast " << fast[i].mean << " +- " << fast[i].stderr_ << ", general "
+                     << general[i].mean << " +- " << general[i].stderr_);
+    CHECK(fast[i].samples == general[i].samples);
+    // the same float samples, summed in double in another order
+    CHECK(std::fabs(fast[i].mean - general[i].mean) <= 1e-12 * std::max(1.0, std::fabs(general[i].mean)));
+    CHECK(std::fabs(fast[i].stderr_ - general[i].stderr_) <= 1e-9 * std::max(1e-6, general[i].stderr_));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integrate][device]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  TermSelection sel;
+  sel.d = {&find_term("ggx"), &find_term("beckmann")};
+  sel.g = {&find_term("smith_ggx_correlated"), &find_term("smith_beckmann")};
+  sel.f = {&find_term("schlick"), &find_term("none")};
+  Integrator in(*rt, sel);
+  std::vector<IntegralSpec> specs = {
+      albedo("ggx", "smith_ggx_correlated", "schlick", 0.3, 0.7, 0.04, 0.0, 0),
+      albedo("ggx", "smith_ggx_correlated", "schlick", 0.01, 1e-3, 0.04, 0.0, 1),  // stiff and grazing
+      albedo("ggx", "smith_ggx_correlated", "none", 1e-4, 1.0, 1.0, 0.0, 2),      // near-specular, normal view
+      albedo("beckmann", "smith_beckmann", "schlick", 0.5, 0.2, 0.5, 0.3, 3),    // another pair, with kd
+      albedo("ggx", "smith_beckmann", "none", 0.8, 0.05, 1.0, 0.0, 4),           // mismatched G
+  };
+  IntegralSpec masking = specs[0];  // not an albedo: always the general kernel
+  masking.check = static_cast<int32_t>(IntegralKind::Masking);
+  specs.push_back(masking);
+
+  SECTION("one launch, and a later pass") {
+    for (uint64_t first : {uint64_t(0), uint64_t(1) << 20}) {
+      in.set_albedo_fast_path(true);
+      const auto fast = in.run(specs, 40000, 7, first);
+      in.set_albedo_fast_path(false);
+      const auto general = in.run(specs, 40000, 7, first);
+      require_same(fast, general);
+    }
+  }
+  SECTION("an integral larger than one launch (split along its samples)") {
+    const std::vector<IntegralSpec> big = {specs[1]};
+    in.set_albedo_fast_path(true);
+    const auto fast = in.run(big, (uint64_t(1) << 22) + 4096, 3);
+    in.set_albedo_fast_path(false);
+    const auto general = in.run(big, (uint64_t(1) << 22) + 4096, 3);
+    require_same(fast, general);
+  }
+}
