@@ -64,9 +64,10 @@ static inline real normalize_sum(real sx, real sy, real sz, real* hx, real* hy, 
   sy *= k;
   sz *= k;
   real len = sqrt(sx * sx + sy * sy + sz * sz);
-  *hx = sx / len;
-  *hy = sy / len;
-  *hz = sz / len;
+  real inv = R(1.0) / len;
+  *hx = sx * inv;
+  *hy = sy * inv;
+  *hz = sz * inv;
   return len * (tiny ? R(0x1p-100) : R(1.0));  // exactly len / k, without a division
 }
 

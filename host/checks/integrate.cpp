@@ -154,12 +154,7 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
     k.setArg(5, cl::Local(2 * local_size_ * acc));
     k.setArg(6, static_cast<cl_ulong>(first_index));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
-    const std::vector<double> host = read_sums(sums, groups);
-    for (size_t i = 0; i < count; ++i)
-      for (uint32_t j = 0; j < slices; ++j) {
-        out[first + i].sum += host[2 * (i * slices + j)];
-        out[first + i].sumsq += host[2 * (i * slices + j) + 1];
-      }
+    add_sums(sums, count, slices, out.data() + first);
   }
   return out;
 }
@@ -199,18 +194,16 @@ std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<Integral
       sum_k.setArg(1, static_cast<cl_uint>(per_slice));
       sum_k.setArg(2, sums);
       rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(groups));
-      const std::vector<double> host = read_sums(sums, groups);
-      for (size_t i = 0; i < count; ++i)
-        for (uint32_t j = 0; j < ns; ++j) {
-          out[first + i].sum += host[2 * (i * ns + j)];
-          out[first + i].sumsq += host[2 * (i * ns + j) + 1];
-        }
+      add_sums(sums, count, ns, out.data() + first);
     }
   }
   return out;
 }
 
-std::vector<double> Integrator::read_sums(const cl::Buffer& sums, size_t groups) {
+// Adds the (sum, sum of squares) pairs of `count` integrals x `slices`
+// work-groups (integral-major, in acc_t) to out[0 .. count).
+void Integrator::add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out) {
+  const size_t groups = count * slices;
   std::vector<double> host(groups * 2);
   if (acc_double_) {
     rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * sizeof(double), host.data());
@@ -219,7 +212,11 @@ std::vector<double> Integrator::read_sums(const cl::Buffer& sums, size_t groups)
     rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * 2 * sizeof(float), f.data());
     std::copy(f.begin(), f.end(), host.begin());
   }
-  return host;
+  for (size_t i = 0; i < count; ++i)
+    for (uint32_t j = 0; j < slices; ++j) {
+      out[i].sum += host[2 * (i * slices + j)];
+      out[i].sumsq += host[2 * (i * slices + j) + 1];
+    }
 }
 
 std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,

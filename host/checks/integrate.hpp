@@ -109,7 +109,7 @@ class Integrator {
                                    uint64_t seed, uint64_t first_index);
   std::vector<Sums> sums_albedo(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
                                 uint64_t seed, uint64_t first_index);
-  std::vector<double> read_sums(const cl::Buffer& sums, size_t groups);
+  void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
   Runtime& rt_;
   cl::Program program_;
   bool acc_double_;
