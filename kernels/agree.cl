@@ -31,13 +31,13 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
   // A record names directions. In double builds the float-rounded record is
   // unit only to ~1e-8, far above double rounding, so it is made unit first
   // (the reference does the same in double); float builds take it as it is.
-  if (mode == AGREE_MODEL) {
-    // as for the BRDF: made unit in double builds (the reference does the same)
-    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
+  // r[0..5]: the light and view of BRDF and model records (unused by the others)
+  real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
 #ifdef MFV_DOUBLE
-    wi = normalize(wi);
-    wo = normalize(wo);
+  wi = normalize(wi);
+  wo = normalize(wo);
 #endif
+  if (mode == AGREE_MODEL) {
     real p[7] = {r[6], r[7], r[8], r[9], r[10], r[11], r[14]};
     return eval_model(d, wi, wo, p);
   }
@@ -50,22 +50,8 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
     if (mode == AGREE_D_ANISO) return eval_D_aniso(d, w.z, sin2_from_cos(w.z), w.x, w.y, r[6], r[14]);
     return eval_G1_aniso(g, w.z, w.x, w.y, r[7], r[14]);
   }
-  if (mode == AGREE_BRDF_ANISO) {
-    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
-#ifdef MFV_DOUBLE
-    wi = normalize(wi);
-    wo = normalize(wo);
-#endif
-    return brdf_eval_aniso(d, g, f, wi, wo, r[6], r[14], r[7], r[14], r[8], r[9], r[10]);
-  }
-  if (mode == AGREE_BRDF) {
-    real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
-#ifdef MFV_DOUBLE
-    wi = normalize(wi);
-    wo = normalize(wo);
-#endif
-    return brdf_eval(d, g, f, wi, wo, r[6], r[7], r[8], r[9], r[10]);
-  }
+  if (mode == AGREE_BRDF_ANISO) return brdf_eval_aniso(d, g, f, wi, wo, r[6], r[14], r[7], r[14], r[8], r[9], r[10]);
+  if (mode == AGREE_BRDF) return brdf_eval(d, g, f, wi, wo, r[6], r[7], r[8], r[9], r[10]);
   if (mode == AGREE_D) return eval_D(d, r[2], sin2_from_cos(r[2]), r[6]);
   if (mode == AGREE_G) return eval_G(g, r[0], r[1], r[2], r[3], r[7]);
   if (mode == AGREE_G1) return eval_G1(g, r[1], r[7]);

@@ -159,27 +159,26 @@ std::vector<Term> build_catalog() {
           "exp(-((t.h/ax)^2 + (b.h/ay)^2)/(n.h)^2) / (pi ax ay (n.h)^4)", p_alpha(), Roughness::Alpha,
           ref_::D_beckmann_aniso_slice),
         ref_::D_beckmann_aniso, nullptr, nullptr);
-  const char* projected = "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)";
-  {
-    auto* t = aniso(G("smith_aniso_ggx", "G_smith_ggx_aniso", projected,
-                      "G1(l)G1(v), G1 = 2/(1+sqrt(1+alpha_o^2 tan^2))", p_alpha(), Roughness::Alpha,
-                      ref_::G_smith_ggx_aniso_slice),
-                    nullptr, ref_::G1_smith_ggx_aniso, ref_::G_smith_ggx_aniso);
-    t->g1_kernel_fn = "G1_smith_ggx_aniso";
-    t->ref_g1 = ref_::G1_smith_ggx_aniso_slice;
+  // Their Smith G: G1(l) G1(v), the isotropic Lambda at the projected width,
+  // exact for the D of the same family.
+  auto aniso_smith = [&](std::string id, std::string fn, std::string g1_fn, std::string formula, RefG slice,
+                         RefG1 g1_slice, RefG1Aniso g1, RefGAniso g, std::string exact_for, std::string note) {
+    auto* t = aniso(G(id, fn, "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)",
+                      formula, p_alpha(), Roughness::Alpha, slice),
+                    nullptr, g1, g);
+    t->g1_kernel_fn = g1_fn;
+    t->ref_g1 = g1_slice;
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
-    t->smith_for = {{"aniso_ggx", 0.0, 1e300, "Heitz 2014, anisotropic GGX (exact)"}};
-  }
-  {
-    auto* t = aniso(G("smith_aniso_beckmann", "G_smith_beckmann_aniso", projected,
-                      "G1(l)G1(v), G1 = 1/(1+Lambda_beckmann(alpha_o))", p_alpha(), Roughness::Alpha,
-                      ref_::G_smith_beckmann_aniso_slice),
-                    nullptr, ref_::G1_smith_beckmann_aniso, ref_::G_smith_beckmann_aniso);
-    t->g1_kernel_fn = "G1_smith_beckmann_aniso";
-    t->ref_g1 = ref_::G1_smith_beckmann_aniso_slice;
-    t->ulp_budget = 16;
-    t->smith_for = {{"aniso_beckmann", 0.0, 1e300, "Heitz 2014, anisotropic Beckmann (exact)"}};
-  }
+    t->smith_for = {{exact_for, 0.0, 1e300, note}};
+  };
+  aniso_smith("smith_aniso_ggx", "G_smith_ggx_aniso", "G1_smith_ggx_aniso",
+              "G1(l)G1(v), G1 = 2/(1+sqrt(1+alpha_o^2 tan^2))", ref_::G_smith_ggx_aniso_slice,
+              ref_::G1_smith_ggx_aniso_slice, ref_::G1_smith_ggx_aniso, ref_::G_smith_ggx_aniso, "aniso_ggx",
+              "Heitz 2014, anisotropic GGX (exact)");
+  aniso_smith("smith_aniso_beckmann", "G_smith_beckmann_aniso", "G1_smith_beckmann_aniso",
+              "G1(l)G1(v), G1 = 1/(1+Lambda_beckmann(alpha_o))", ref_::G_smith_beckmann_aniso_slice,
+              ref_::G1_smith_beckmann_aniso_slice, ref_::G1_smith_beckmann_aniso, ref_::G_smith_beckmann_aniso,
+              "aniso_beckmann", "Heitz 2014, anisotropic Beckmann (exact)");
 
   auto F = [&](std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> p, RefF ref) {
     Term t;

@@ -94,8 +94,8 @@ Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
 
 std::string Runtime::base_options() const {
   // Pinned: no fast-math, denormals kept, so float results are comparable
-  // with the reference; Random123 headers come from the configured folder.
-  return std::string("-cl-std=CL1.2 -I ") + MFV_RANDOM123_INCLUDE_DIR;
+  // with the reference (kernels/rng.cl writes Philox out: no include path).
+  return "-cl-std=CL1.2";
 }
 
 std::string Runtime::kernel_text(const std::string& file) const {
