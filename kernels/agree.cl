@@ -26,6 +26,16 @@ static inline real draw_param(__global const float* ranges, int slot, real u) {
   return lo + u * (hi - lo);
 }
 
+// w / |w| with the double sqrt and division, which OpenCL C requires
+// correctly rounded (0 ulp, unlike normalize(), whose accuracy is
+// implementation-defined), in a fixed order without contraction: the host
+// reference forms the bit-identical unit vector (agree.cpp unit_exact).
+static inline real3 unit_exact(real3 w) {
+#pragma OPENCL FP_CONTRACT OFF
+  real n2 = w.x * w.x + w.y * w.y + w.z * w.z;
+  return w / sqrt(n2);
+}
+
 // Evaluates one record: the value depends only on what the record holds.
 static inline real eval_record(int mode, int d, int g, int f, __global const float* r) {
   // A record names directions. In double builds the float-rounded record is
@@ -34,19 +44,18 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
   // r[0..5]: the light and view of BRDF and model records (unused by the others)
   real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
 #ifdef MFV_DOUBLE
-  wi = normalize(wi);
-  wo = normalize(wo);
+  wi = unit_exact(wi);
+  wo = unit_exact(wo);
 #endif
   if (mode == AGREE_MODEL) {
     real p[7] = {r[6], r[7], r[8], r[9], r[10], r[11], r[14]};
     return eval_model(d, wi, wo, p);
   }
   if (mode == AGREE_D_ANISO || mode == AGREE_G1_ANISO) {
-    // the half vector or view (x, y, z = NoH or NoV), made unit in double builds as the directions are
+    // the half vector or view (x, y, z = NoH or NoV) as recorded, not made
+    // unit: the reference evaluates the kernels' forms at exactly these
+    // numbers (agree.cpp: G1 is homogeneous of degree 0 in w, D of degree -4)
     real3 w = (real3)(r[4], r[5], mode == AGREE_D_ANISO ? r[2] : r[1]);
-#ifdef MFV_DOUBLE
-    w = normalize(w);
-#endif
     if (mode == AGREE_D_ANISO) return eval_D_aniso(d, w.z, sin2_from_cos(w.z), w.x, w.y, r[6], r[14]);
     return eval_G1_aniso(g, w.z, w.x, w.y, r[7], r[14]);
   }

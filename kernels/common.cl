@@ -13,6 +13,18 @@ typedef float2 real2;
 #define R(x) (x##f)
 #endif
 
+// Kernels that evaluate whole models take MFV_NO_IMPLICIT_VECTORIZE: Intel's
+// CPU runtime (2026.2) vectorizes a kernel across work-items unless it
+// carries a vector vec_type_hint, and that vectorizer miscompiles these
+// kernels (issue 19; docs/portability.md): with lambert, eon and gltf in
+// one program the lambert albedo came out 0.18 to 0.42 instead of 1, a
+// different value on each run, while width 1 (CL_CONFIG_CPU_VECTORIZER_MODE=1),
+// PoCL, rusticl and Oclgrind (no invalid access, no race) agree with the
+// reference. The hint is standard OpenCL C (6.7.2), a hint only: other
+// implementations may ignore it. The reference comparison that caught it
+// (mfv run's same-sample comparison) stays.
+#define MFV_NO_IMPLICIT_VECTORIZE __attribute__((vec_type_hint(float4)))
+
 #define MFV_PI R(3.14159265358979323846)
 #define MFV_INV_PI R(0.31830988618379067154)
 #define MFV_SQRT_PI R(1.77245385090551602730)

@@ -550,7 +550,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
 // Work-group g integrates slice (g % slices) of integral (g / slices): each
 // work-item takes per_item consecutive sample indices, counted from `first`
 // (a later pass extends an iid or Kronecker point set; 0 for stratified ones).
-__kernel void integrate(__global const IntegralSpec* specs, uint slices, uint per_item, ulong seed,
+__kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* specs, uint slices, uint per_item, ulong seed,
                         __global acc_t* sums, __local acc_t* scratch, ulong first) {
   size_t group = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);
   __global const IntegralSpec* s = specs + group / slices;
@@ -642,7 +642,7 @@ __kernel void sum_values(__global const float* restrict values, uint per_group, 
 // The per-sample values of n samples of each integral, for the reference's
 // same-sample comparison: the first n, or for a stratified integral n spread
 // over all its strata (so both mixture components are compared).
-__kernel void sample_values(__global const IntegralSpec* specs, uint n, ulong seed, __global float* out) {
+__kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpec* specs, uint n, ulong seed, __global float* out) {
   size_t i = get_global_id(0);
   __global const IntegralSpec* s = specs + i / n;
   ulong stride = s->strata >= n ? (ulong)(s->strata / n) : 1ul;
@@ -652,7 +652,7 @@ __kernel void sample_values(__global const IntegralSpec* specs, uint n, ulong se
 // Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs drawn
 // by kind (index % 4): uniform hemisphere, grazing, near-retro, near-mirror.
 // Each work-item writes its worst asymmetry and the sample index where it was.
-__kernel void reciprocity(__global const IntegralSpec* specs, uint per_item, ulong seed, __global float* worst,
+__kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity(__global const IntegralSpec* specs, uint per_item, ulong seed, __global float* worst,
                           __global uint* worst_index) {
   size_t gid = get_global_id(0), lid = get_local_id(0), lsize = get_local_size(0);
   __global const IntegralSpec* s = specs + get_group_id(0);

@@ -14,16 +14,31 @@ static inline real D_phong(real NoH, real sin2H, real alpha_p) {
   return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
 }
 
+// exp(-x) / s for the Beckmann lobes, without a subnormal intermediate: for
+// x > 64, exp(-x) = exp(64 - x) exp(-64), and exp(-64)/s is formed first
+// (s is small exactly where such a D is large: 1e-44 / 1e-14 = 1e-30), so a
+// device that flushes subnormals (many GPUs) still gets D ~ 1e-30 right
+// (issue 19). x - 64 is exact for x in [32, 128] (Sterbenz), exp(-64) is one
+// rounded constant: a few ulps in all.
+static inline real beckmann_exp_over(real x, real s) {
+  // θ -> π/2: the exponential vanishes faster than cos⁴θ, so D -> 0; returning
+  // here avoids 0/0 once cos⁴θ underflows (n·h below ~1e-10 in float).
+  if (x > R(64.0)) {
+    real e = exp(R(64.0) - x);
+    if (e == R(0.0)) return R(0.0);
+    return e * (R(1.603810890548638e-28) / s);  // exp(-64), rounded
+  }
+  real e = exp(-x);
+  if (e == R(0.0)) return R(0.0);
+  return e / s;
+}
+
 static inline real D_beckmann(real NoH, real sin2H, real alpha) {
   // seed 000 "Beckman": exp(-tan²θ/α²) / (π α² cos⁴θ)
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real a2 = alpha * alpha;
-  real e = exp(-sin2H / (c2 * a2));
-  // θ -> π/2: the exponential vanishes faster than cos⁴θ, so D -> 0; returning
-  // here avoids 0/0 once cos⁴θ underflows (n·h below ~1e-10 in float).
-  if (e == R(0.0)) return R(0.0);
-  return e / (MFV_PI * a2 * c2 * c2);
+  return beckmann_exp_over(sin2H / (c2 * a2), MFV_PI * a2 * c2 * c2);
 }
 
 static inline real D_ggx(real NoH, real sin2H, real alpha) {
@@ -81,7 +96,5 @@ static inline real D_beckmann_aniso(real NoH, real hx, real hy, real ax, real ay
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real tx = hx / ax, ty = hy / ay;
-  real e = exp(-(tx * tx + ty * ty) / c2);
-  if (e == R(0.0)) return R(0.0);  // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
-  return e / (MFV_PI * ax * ay * c2 * c2);
+  return beckmann_exp_over((tx * tx + ty * ty) / c2, MFV_PI * ax * ay * c2 * c2);
 }

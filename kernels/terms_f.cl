@@ -19,7 +19,9 @@ static inline real F_dielectric(real VoH, real eta, real unused) {
   // F = ½ (g-c)²/(g+c)² (1 + ((c(g+c) - 1)/(c(g-c) + 1))²).
   // Seed 001 prints c(g-c) - 1 and g² = η² + c² + 1: typos; this is the physics.
   real c = min(fabs(VoH), R(1.0));
-  real g2 = eta * eta - R(1.0) + c * c;
+  // η² - 1 as (η - 1)(η + 1): exact near η = 1, where η·η - 1 cancels unless
+  // the compiler happens to fuse it into an FMA (issue 19: 807 ulps without).
+  real g2 = (eta - R(1.0)) * (eta + R(1.0)) + c * c;
   if (g2 <= R(0.0) && eta < R(1.0)) return R(1.0);  // sinθt >= 1: total internal reflection
   // η >= 1 has g² >= c² >= 0; it reads 0 only where c² underflowed at η = 1.
   real g = sqrt(max(g2, R(0.0)));

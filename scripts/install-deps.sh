@@ -14,3 +14,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+# The extra OpenCL implementations of the `portability` tests (Intel CPU,
+# Oclgrind, rusticl), in a cache folder, never registered system-wide; optional.
+bash "$(dirname "$0")/install-ocl-extras.sh"

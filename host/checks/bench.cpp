@@ -243,7 +243,7 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
   rep.hardware_threads = std::max(1u, std::thread::hardware_concurrency());
   const auto integrands = opt.integrands.empty() ? kIntegrands : opt.integrands;
   std::vector<DeviceInfo> devices;
-  if (device_selector.empty())
+  if (device_selector.empty() || device_selector == "all")  // every device of every platform, one table
     devices = list_devices();
   else
     devices.push_back(select_device(device_selector));

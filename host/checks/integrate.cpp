@@ -3,6 +3,7 @@
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "runtime/error.hpp"
+#include "runtime/work_group.hpp"
 
 #include <fmt/format.h>
 
@@ -91,8 +92,7 @@ Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt,
 // The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
 Integrator::Integrator(Runtime& rt, cl::Program program)
     : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
-  max_work_group_ = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
-  while (local_size_ > max_work_group_) local_size_ /= 2;
+  local_size_ = fit_local_size(cl::Kernel(program_, "integrate"), rt.device().device, 64);
 }
 
 void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
@@ -182,8 +182,9 @@ std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<Integral
     for (uint32_t s0 = 0; s0 < slices; s0 += nslices) {
       const uint32_t ns = std::min(nslices, slices - s0);
       const size_t m = size_t(ns) * per_slice, groups = count * ns;
-      size_t local = local_size_;  // the largest power of two up to 1024 that divides m
-      while (local * 2 <= std::min<size_t>(1024, max_work_group_) && m % (local * 2) == 0) local *= 2;
+      // the largest power of two up to 1024 that divides m and that the device and kernel allow
+      size_t local = fit_local_size(values_k, rt_.device().device, 1024);
+      while (m % local != 0) local /= 2;
       values_k.setArg(0, spec_buf);
       values_k.setArg(1, static_cast<cl_ulong>(seed));
       values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
@@ -282,25 +283,37 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
 
 std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
                                                 uint64_t seed) {
-  std::vector<float> out(specs.size(), 0.0f);
+  return ::mfv::reciprocity_worst(rt_, program_, specs, uint64_t(64) * per_item, seed).worst;
+}
+
+ReciprocityWorst reciprocity_worst(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                   uint64_t pairs, uint64_t seed) {
+  ReciprocityWorst out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0u)};
   if (specs.empty()) return out;
-  const size_t local = 64;  // the kernel indexes pairs by local id
-  cl::Kernel k(program_, "reciprocity");
-  cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+  cl::Kernel k(program, "reciprocity");
+  // Work-item l of a group takes pairs l * per_item .. (l + 1) * per_item - 1
+  // (kernels/integrate.cl), so a smaller group with proportionally more pairs
+  // per work-item covers the same pairs; local divides 64, which divides pairs.
+  const size_t local = fit_local_size(k, rt.device().device, 64);
+  const uint64_t per_item = pairs / local;
+  if (pairs % 64 != 0 || per_item > UINT32_MAX) throw Error(fmt::format("internal: {} reciprocity pairs", pairs));
+  cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                 const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer wb(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
-  cl::Buffer ib(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
+  cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
+  cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
   k.setArg(0, sb);
   k.setArg(1, static_cast<cl_uint>(per_item));
   k.setArg(2, static_cast<cl_ulong>(seed));
   k.setArg(3, wb);
   k.setArg(4, ib);
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
+  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
   std::vector<float> w(specs.size() * local);
-  rt_.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  std::vector<cl_uint> wi(specs.size() * local);
+  rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
   for (size_t i = 0; i < specs.size(); ++i)
     for (size_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= out[i])) out[i] = w[i * local + l];
+      if (!(w[i * local + l] <= out.worst[i])) out.worst[i] = w[i * local + l], out.at[i] = wi[i * local + l];
   return out;
 }
 

@@ -87,8 +87,8 @@ class Integrator {
   };
   std::vector<Agreement> compare_with_reference(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
-  // The `reciprocity` kernel: 64 work-items per integral, each over per_item
-  // pairs; the worst asymmetry of each integral (mfv bench times it).
+  // The `reciprocity` kernel over 64 * per_item pairs of each integral; the
+  // worst asymmetry of each integral (mfv bench times it).
   std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }
@@ -114,8 +114,17 @@ class Integrator {
   cl::Program program_;
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
-  size_t local_size_ = 64;
-  size_t max_work_group_ = 64;
+  size_t local_size_ = 64;  // of `integrate`: 64, or less where the device or kernel allows less
 };
+
+// The `reciprocity` kernel of `program` over pairs 0 .. pairs-1 of each
+// integral (pairs: a multiple of 64), in work-groups of 64 or of what the
+// device and kernel allow: the same pairs whatever the work-group size.
+struct ReciprocityWorst {
+  std::vector<float> worst;  // per integral: the largest asymmetry (NaN as +inf)
+  std::vector<uint32_t> at;  // and the index of the pair where it was
+};
+ReciprocityWorst reciprocity_worst(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                   uint64_t pairs, uint64_t seed);
 
 }  // namespace mfv

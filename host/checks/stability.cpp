@@ -8,6 +8,7 @@
 #include "reference/reference.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "runtime/work_group.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -765,9 +766,10 @@ void account(RegionResult& R, const CaseDef& c, const In& in, double k, double r
 
 template <class T>
 std::vector<double> run_kernel(Runtime& rt, cl::Kernel& kern, const CaseDef& c, const std::vector<In>& rounded) {
-  // Launched in work-groups of a fixed size (PoCL compiles a work-group
-  // function per local size): the tail is padded with zero records.
-  constexpr size_t kLocal = 64;
+  // Launched in work-groups of one size (PoCL compiles a work-group function
+  // per local size): 64, or what the device and kernel allow; the tail is
+  // padded with zero records.
+  const size_t kLocal = fit_local_size(kern, rt.device().device, 64);
   size_t n = (rounded.size() + kLocal - 1) / kLocal * kLocal;
   std::vector<T> in(n * kIn, T(0)), out(n);
   for (size_t i = 0; i < rounded.size(); ++i)

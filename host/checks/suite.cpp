@@ -467,28 +467,12 @@ void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<Integr
                         std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
                         std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
   if (specs.empty()) return;
-  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * scale));
+  const uint64_t pairs = 64 * uint64_t(std::max<uint32_t>(1, uint32_t(64 * scale)));
   for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
-  cl::Kernel k(prog, "reciprocity");
-  cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
-  cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
-  cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
-  k.setArg(0, sb);
-  k.setArg(1, per_item);
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, wb);
-  k.setArg(4, ib);
-  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
-  std::vector<float> w(specs.size() * local);
-  std::vector<cl_uint> wi(specs.size() * local);
-  rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
-  rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
-  const uint64_t pairs = uint64_t(local) * per_item;
+  const ReciprocityWorst rw = reciprocity_worst(rt, prog, specs, pairs, seed);
   for (size_t i = 0; i < specs.size(); ++i) {
-    float worst = 0;
-    uint32_t at = 0;
-    for (uint32_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= worst)) worst = w[i * local + l], at = wi[i * local + l];
+    const float worst = rw.worst[i];
+    const uint32_t at = rw.at[i];
     pts[i].estimate = worst;
     pts[i].samples = pairs;
     pts[i].bounded = true;

@@ -14,11 +14,12 @@ namespace mfv::cli {
 void add_devices(CLI::App& app, Globals&, int& rc) {
   auto* cmd = app.add_subcommand("devices", "list OpenCL platforms and devices");
   cmd->callback([&rc] {
-    fmt::print("{:>3}  {:<28} {:<40} {:<5} {:>3}  {:<4}  {}\n", "#", "platform", "device", "type", "CUs", "fp64",
-               "driver");
+    // denorm: float subnormals kept (CL_FP_DENORM); "ftz" flushes them to zero
+    fmt::print("{:>3}  {:<28} {:<40} {:<5} {:>3}  {:<4}  {:<6}  {}\n", "#", "platform", "device", "type", "CUs", "fp64",
+               "fp32", "driver");
     for (auto& d : list_devices())
-      fmt::print("{:>3}  {:<28} {:<40} {:<5} {:>3}  {:<4}  {}\n", d.index, d.platform, d.name, d.type,
-                 d.compute_units, d.fp64 ? "yes" : "no", d.driver);
+      fmt::print("{:>3}  {:<28} {:<40} {:<5} {:>3}  {:<4}  {:<6}  {}\n", d.index, d.platform, d.name, d.type,
+                 d.compute_units, d.fp64 ? "yes" : "no", d.fp32_denorms ? "denorm" : "ftz", d.driver);
     rc = 0;
   });
 }

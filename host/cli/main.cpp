@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   CLI::App app{"mfv: verify microfacet BRDFs on OpenCL against a double-precision reference"};
   app.require_subcommand(1);
   mfv::cli::Globals g;
-  app.add_option("--device", g.device, "OpenCL device: index or name substring (default: first GPU, else CPU)");
+  app.add_option("--device", g.device, "OpenCL device: index or name substring (default: first GPU, else CPU); bench: all");
   app.add_option("--kernel-dir", g.kernel_dir, "read kernels from this folder instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   int rc = 0;

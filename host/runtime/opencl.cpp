@@ -2,6 +2,7 @@
 
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
+#include "runtime/work_group.hpp"
 
 #include <fmt/format.h>
 
@@ -60,6 +61,7 @@ std::vector<DeviceInfo> list_devices() {
       i.version = trim(d.getInfo<CL_DEVICE_VERSION>());
       i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       i.fp64 = d.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+      i.fp32_denorms = (d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_DENORM) != 0;
       i.device = d;
       out.push_back(i);
     }
@@ -75,6 +77,7 @@ DeviceInfo select_device(const std::string& selector) {
       if (d.type == "GPU") return d;
     return devs.front();
   }
+  if (selector == "all") throw Error("--device all is for 'mfv bench' only; other commands run on one device");
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     size_t i = std::stoul(selector);
     if (i >= devs.size())
@@ -88,6 +91,7 @@ DeviceInfo select_device(const std::string& selector) {
 
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
     : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
+  local_size_cap_from_env();  // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
 }

@@ -17,6 +17,10 @@ struct DeviceInfo {
   std::string version;
   unsigned compute_units = 0;
   bool fp64 = false;
+  // CL_FP_DENORM in CL_DEVICE_SINGLE_FP_CONFIG: float subnormals kept. Without
+  // it (many GPUs, -cl-denorms-are-zero by default) a float below FLT_MIN may
+  // read as 0. Double subnormals are required by cl_khr_fp64.
+  bool fp32_denorms = true;
   cl::Device device;
 };
 

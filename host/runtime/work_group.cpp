@@ -1,0 +1,37 @@
+#include "runtime/work_group.hpp"
+
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+size_t local_size_cap_from_env() {
+  const char* env = std::getenv("MFV_MAX_LOCAL_SIZE");
+  if (!env) return 0;
+  const std::string s(env);
+  const bool digits = !s.empty() && s.size() <= 9 &&
+                      std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+  if (!digits || std::stoul(s) == 0)
+    throw Error(fmt::format("MFV_MAX_LOCAL_SIZE={}: expected a positive integer (the most work-items a group)", s));
+  return std::stoul(s);
+}
+
+size_t fit_local_size(const cl::Kernel& kernel, const cl::Device& device, size_t preferred) {
+  size_t limit = device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  const std::vector<size_t> per_dim = device.getInfo<CL_DEVICE_MAX_WORK_ITEM_SIZES>();
+  if (!per_dim.empty()) limit = std::min(limit, per_dim[0]);
+  limit = std::min(limit, kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device));
+  if (size_t cap = local_size_cap_from_env()) limit = std::min(limit, cap);
+  size_t local = 1;
+  while (local * 2 <= std::min(preferred, limit)) local *= 2;
+  return local;
+}
+
+}  // namespace mfv

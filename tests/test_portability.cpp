@@ -1,0 +1,110 @@
+// The `portability` CTest label: small workloads of every command on each
+// extra OpenCL implementation that scripts/install-ocl-extras.sh installed
+// (Intel's CPU runtime, Mesa rusticl on llvmpipe), and Oclgrind's checks
+// (API errors, invalid accesses, data races) on every kernel, at a
+// work-group limit of 32. An implementation that is absent is skipped with
+// a message. Each runs the mfv binary with OCL_ICD_VENDORS pointing at that
+// implementation's own ICD folder, so nothing is registered system-wide.
+#include "run_mfv.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using mfv::test::run_mfv;
+
+namespace {
+
+const std::string kExamples = std::string(MFV_TEST_DATA_DIR) + "/../../examples/brdf/";
+
+// The ICD folder of `name` under $MFV_OCL_CACHE (default ~/.cache/mfv/ocl),
+// or "" (with a message) when it or the library it names is missing.
+std::string vendor_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  const char* cache = std::getenv("MFV_OCL_CACHE");
+  const char* home = std::getenv("HOME");
+  fs::path root = cache ? fs::path(cache) : fs::path(home ? home : "/root") / ".cache/mfv/ocl";
+  fs::path dir = root / "vendors" / name, icd = dir / (name + ".icd");
+  std::string lib;
+  if (std::ifstream in(icd); in) std::getline(in, lib);
+  if (lib.empty() || !fs::exists(lib)) {
+    WARN(name << " OpenCL implementation not installed (" << icd.string()
+              << "); run scripts/install-ocl-extras.sh; its portability tests are skipped");
+    return "";
+  }
+  return dir.string();
+}
+
+std::string env_for(const std::string& name, const std::string& dir) {
+  std::string env = "OCL_ICD_VENDORS=" + dir;
+  if (name == "rusticl") env += " RUSTICL_ENABLE=llvmpipe";
+  return env;
+}
+
+// Small workloads of every command; each must exit 0 (verdicts as expected).
+void conforms(const std::string& name) {
+  std::string dir = vendor_dir(name);
+  if (dir.empty()) return;
+  const std::string env = env_for(name, dir);
+  auto devs = run_mfv("devices", env);
+  REQUIRE(devs.code == 0);
+  const bool fp64 = devs.out.find(" yes ") != std::string::npos;
+  for (std::string args : {
+           // the smallest case Intel's vectorizer got wrong (docs/portability.md), and a D x G x F family
+           std::string("run --scale 0.05 --model 'lambert[' --model 'eon[' --model 'gltf[' --model ggx/smith_ggx"),
+           std::string("agree --samples 2000"),
+           std::string("samplers --samples 65536"),
+           std::string("stability --terms-only --only 'D ggx' --only 'D beckmann' --only 'F dielectric'"),
+           "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512",
+       }) {
+    auto r = run_mfv(args, env);
+    CAPTURE(name, args, r.out);
+    CHECK(r.code == 0);
+  }
+  if (fp64) {
+    auto r = run_mfv("agree --fp64 --samples 2000", env);
+    CAPTURE(name, r.out);
+    CHECK(r.code == 0);
+  } else {
+    WARN(name << " has no cl_khr_fp64: agree --fp64 skipped");
+  }
+}
+
+}  // namespace
+
+TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel"); }
+
+TEST_CASE("The suite conforms on Mesa rusticl (llvmpipe)", "[portability][rusticl]") { conforms("rusticl"); }
+
+TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kernel at a work-group limit of 32",
+          "[portability][oclgrind]") {
+  std::string dir = vendor_dir("oclgrind");
+  if (dir.empty()) return;
+  // Oclgrind prints each finding on stderr (run_mfv captures it); one
+  // finding stops nothing, so every command's output is searched.
+  const std::string env = "OCL_ICD_VENDORS=" + dir +
+                          " OCLGRIND_CHECK_API=1 OCLGRIND_DATA_RACES=1 OCLGRIND_MAX_WGSIZE=32";
+  for (std::string args : {
+           // integrate, albedo_values, sum_values, sample_values, reciprocity
+           std::string("run --scale 0.002 --model ggx/smith_ggx/schlick --model 'lambert['"),
+           std::string("agree --samples 64 --only 'D ggx' --only 'MODEL gltf'"),  // agree_eval
+           std::string("eval ggx --NoH 0.9"),                                     // eval_records
+           std::string("stability --terms-only --only 'D ggx'"),                  // stability_eval
+           std::string("samplers --samples 4096 --device-only"),                  // draw_samples
+           "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64",  // user_eval
+       }) {
+    auto r = run_mfv(args, env);
+    CAPTURE(args, r.out);
+    CHECK(r.code == 0);
+    // Oclgrind's findings: "Invalid read of size 4 at global memory address
+    // ...", "Read-write data race at ...", "Oclgrind - OpenCL runtime error
+    // detected" (API misuse), "OCLGRIND FATAL ERROR"
+    for (const char* finding : {"Invalid ", "data race", "runtime error detected", "OCLGRIND FATAL"}) {
+      CAPTURE(finding);
+      CHECK(r.out.find(finding) == std::string::npos);
+    }
+  }
+}
