@@ -58,7 +58,9 @@ namespace {
 // ---- grids ---------------------------------------------------------------
 
 // Widths from extreme to rough, for d_norm; each D keeps those in its range.
-const std::vector<double> kNormAlphas = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0};
+// Down to 1e-7 (near-mirror, issue 16): d_norm's stratified radius keeps
+// sin²θ to full precision, so the narrowest lobes still integrate to 1.
+const std::vector<double> kNormAlphas = {1e-7, 1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0};
 const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 1e5, 1e6};
 // Shared widths and view cosines for the combination checks.
 const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
