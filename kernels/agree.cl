@@ -95,6 +95,10 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
   // Keep the half vector on the view's side (v·h >= 0), the terms' domain:
   // turning it by π about the normal makes v·h >= 2 (n·v)(n·h).
   if (dot(wo, h) < R(0.0)) h = (real3)(-h.x, -h.y, h.z);
+  // One D record in eight takes its half vector below the horizon (n.h < 0),
+  // where every D is 0 (the χ+(m·n) of Walter et al. 2007 eq. 33): a D that
+  // drops its horizon test disagrees with the reference there.
+  if ((mode == AGREE_D || mode == AGREE_D_ANISO) && (rk.w & 14u) == 0u) h.z = -h.z;
   real3 wi = R(2.0) * dot(wo, h) * h - wo;
 
   // Inputs are written to the float record first and evaluated from there,

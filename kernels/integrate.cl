@@ -641,12 +641,14 @@ __kernel void sum_values(__global const float* restrict values, uint per_group, 
 
 // The per-sample values of n samples of each integral, for the reference's
 // same-sample comparison: the first n, or for a stratified integral n spread
-// over all its strata (so both mixture components are compared).
-__kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpec* specs, uint n, ulong seed, __global float* out) {
+// over all its strata (so both mixture components are compared). In a
+// MFV_DOUBLE program (the double twin, host/checks/reference_compare.cpp)
+// the values are doubles.
+__kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpec* specs, uint n, ulong seed, __global real* out) {
   size_t i = get_global_id(0);
   __global const IntegralSpec* s = specs + i / n;
   ulong stride = s->strata >= n ? (ulong)(s->strata / n) : 1ul;
-  out[i] = (float)sample_value(s, seed, (ulong)(i % n) * stride);
+  out[i] = sample_value(s, seed, (ulong)(i % n) * stride);
 }
 
 // Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs drawn

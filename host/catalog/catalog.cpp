@@ -64,6 +64,13 @@ std::vector<Term> build_catalog() {
   D("beckmann_ct82", "D_beckmann_ct82", "seed 001 Cook-Torrance, as written", "exp(-(tan/m)^2) / (4 m^2 cos^4)",
     Param{"m", 1e-7, 10.0, 0.3, "RMS slope m (= alpha)"}, Roughness::BeckmannM, ref_::D_beckmann_ct82)
       ->known_bad = "4 m^2 in place of pi m^2: integrates to pi/4, not 1";
+  for (auto& t : c) {  // the (cos², sin²) forms of the D with tan²θ or (n·h)^e
+    if (t.id == "ggx") t.ref_d_cs = ref_::D_ggx_cs;
+    if (t.id == "beckmann") t.ref_d_cs = ref_::D_beckmann_cs;
+    if (t.id == "beckmann_ct82") t.ref_d_cs = ref_::D_beckmann_ct82_cs;
+    if (t.id == "phong") t.ref_d_cs = ref_::D_phong_cs;
+    if (t.id == "blinn_rho") t.ref_d_cs = ref_::D_blinn_rho_cs;
+  }
 
   auto G = [&](std::string id, std::string fn, std::string src, std::string formula, std::optional<Param> p,
                Roughness r, RefG ref) {

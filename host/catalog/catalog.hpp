@@ -37,6 +37,7 @@ struct SmithFit {
 };
 
 using RefD = double (*)(double NoH, double p);
+using RefDcs = double (*)(double cos2, double sin2, double p);  // D from cos²θ and sin²θ given apart
 using RefG = double (*)(double NoL, double NoV, double NoH, double VoH, double p);
 using RefG1 = double (*)(double NoV, double p);
 using RefF = double (*)(double VoH, double p0, double p1);
@@ -56,6 +57,10 @@ struct Term {
   Roughness roughness = Roughness::None;
 
   RefD ref_d = nullptr;  // exactly one of these is set, by kind
+  // D: the same from cos²θ and sin²θ (where the form has tan²θ or (n·h)^e), which the
+  // reference estimators take: a cosine alone leaves 1 − cosθ to u/θ² near a
+  // narrow peak, less precise than the float kernels, which keep sin²θ.
+  RefDcs ref_d_cs = nullptr;
   RefG ref_g = nullptr;
   RefF ref_f = nullptr;
   // Smith G terms: the G1 they are built from (kernel and reference), used by

@@ -176,6 +176,7 @@ struct Evaluator {
         glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
         if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
         ref::Shading sh = ref::shading_from(wi, wo);
+        sh.sin2H = -1;  // D from NoH alone, so that bumping NoH (the conditioning allowance) moves it
         double* cs[4] = {&sh.NoL, &sh.NoV, &sh.NoH, &sh.VoH};
         if (bump_index >= 11 && bump_index < 15) *cs[bump_index - 11] *= 1.0 + bump;
         return ref::brdf(s, sh);

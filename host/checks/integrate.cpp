@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace mfv {
 
@@ -46,12 +47,29 @@ IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p,
   return s;
 }
 
+namespace {
+std::map<const Term*, const Term*>& planted_terms() {
+  static std::map<const Term*, const Term*> m;
+  return m;
+}
+const Term* reference_term(int32_t index) {
+  const Term* t = &catalog()[size_t(index)];
+  auto it = planted_terms().find(t);
+  return it == planted_terms().end() ? t : it->second;
+}
+}  // namespace
+
+void plant_reference_term(const Term* original, const Term* planted) {
+  if (planted) planted_terms()[original] = planted;
+  else planted_terms().erase(original);
+}
+
 ref::IntegralRef reference_of(const IntegralSpec& s) {
   ref::IntegralRef r;
   r.kind = static_cast<ref::Integral>(s.check);
-  r.brdf.d = &catalog()[size_t(s.d)];
-  r.brdf.g = &catalog()[size_t(s.g)];
-  r.brdf.f = &catalog()[size_t(s.f)];
+  r.brdf.d = reference_term(s.d);
+  r.brdf.g = reference_term(s.g);
+  r.brdf.f = reference_term(s.f);
   r.brdf.pd = s.pd;
   r.brdf.pg = s.pg;
   r.brdf.f0 = s.f0;

@@ -55,6 +55,10 @@ IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p,
 
 // The same integral for the double reference twin (host/reference/estimators).
 ref::IntegralRef reference_of(const IntegralSpec& s);
+// A test hook (tests/test_trust_reference.cpp plants reference defects with
+// it): while set, reference_of() takes `planted` wherever an integral has the
+// catalog term `original`; nullptr removes the plant. Unset in every run of mfv.
+void plant_reference_term(const Term* original, const Term* planted);
 
 class Integrator {
  public:
@@ -92,6 +96,7 @@ class Integrator {
   std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }
+  Runtime& runtime() { return rt_; }
   // Isotropic microfacet albedo integrals run through albedo_values +
   // sum_values (kernels/integrate.cl: eight work-items per AVX2 instruction on
   // PoCL), on the samples `integrate` takes; off: `integrate` takes them too

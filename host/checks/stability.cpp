@@ -752,10 +752,22 @@ void account(RegionResult& R, const CaseDef& c, const In& in, double k, double r
   } else if (std::isinf(ref) && !nan && k != ref) {
     inaccurate = true;  // the limit is infinite and the kernel is not
   }
+  bool wrong_value = false;
   if (!R.expect.empty()) {
     double e = R.expect == "1" ? 1.0 : 0.0;
     R.violations += !(k == e);
     R.ref_violations += !(ref == e);
+    wrong_value = !(k == e) && ref == e;
+  }
+  const bool is_g = c.mode == kG || c.mode == kG1;
+  const bool above_one = is_g && k > 1 + kGOvershoot && !(ref > 1 + kGOvershoot);
+  if (!nan && (wrong_value || neg || above_one)) {
+    R.out_of_domain++;
+    if (R.first_out_of_domain.empty())
+      R.first_out_of_domain = fmt::format("{} kernel={} reference={}{}", c.describe(in), hx(k), hx(ref),
+                                          wrong_value ? " (expected " + R.expect + ")"
+                                          : neg       ? " (negative)"
+                                                      : " (G above 1)");
   }
   if (nan || inf || neg || inaccurate) {
     R.breaks++;
@@ -898,10 +910,15 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
     rep.reference_seconds += std::chrono::duration<double>(t2 - t1).count();
     rep.points += c.points.size();
     if (sc.stable)
-      for (auto& r : sc.regions)
+      for (auto& r : sc.regions) {
         if (r.in_domain && (r.nan || r.inf))
           rep.gate_failures.push_back(fmt::format("{} is marked stable but gives {} NaN and {} Inf in region '{}'; first: {}",
                                                   sc.name, r.nan, r.inf, r.region, r.first_break));
+        if (r.in_domain && r.out_of_domain)
+          rep.gate_failures.push_back(fmt::format("{} is marked stable but gives {} of {} values outside the domain in "
+                                                  "region '{}' where the reference stays inside; first: {}",
+                                                  sc.name, r.out_of_domain, r.points, r.region, r.first_out_of_domain));
+      }
     if (!scan.points.empty()) rep.scans.push_back(std::move(scan));
     rep.cases.push_back(std::move(sc));
   }

@@ -46,6 +46,13 @@ struct PointResult {
   // names it and `detail` gives the input where it was worst.
   bool bounded = false;
   std::string measure, detail;
+  // The same-sample reference comparison (host/checks/reference_compare.hpp),
+  // where this integral was compared: an upper bound on the float
+  // estimator's rounding bias (0 where not measured), and a failure of the
+  // double twin against the reference, which fails the group's verdict.
+  double rounding_bound = 0;
+  bool reference_compared = false, reference_failed = false;
+  std::string reference_detail;  // the comparison, its worst sample and its bound
 };
 
 // All points of one model under one check, with its expectation.
@@ -78,7 +85,10 @@ struct SuiteOptions {
   std::vector<std::string> checks;   // empty: all
   std::vector<std::string> models;   // substrings of model names; empty: all
   uint32_t reference_samples = 256;  // same-sample comparison, first N samples
-  uint32_t reference_every = 97;     // compare every k-th integral (1 = all)
+  // Compare every k-th integral of each model x check (its first, the
+  // narrowest and most grazing, always); whole-model and d_norm integrals
+  // are all compared (1 = all).
+  uint32_t reference_every = 97;
 };
 
 struct SuiteReport {
@@ -95,12 +105,18 @@ struct SuiteReport {
   // Float rounding of ill-conditioned samples (Kelemen's 1/(v.m)^2 at grazing
   // view, where v.m ~ 1e-3) reached 1.5e-3 over 40 seeds; a term off by 1 %
   // shows as 1e-2.
+  // Where the device has fp64 the comparison is the double twin's
+  // (reference_compare.hpp): reference_worst is then the worst ratio of a
+  // formula gap to its derived bound, and reference_bound 1.
   double reference_bound = 5e-3;
+  bool reference_twin = false;
   std::string reference_note;  // replaces the reference line where no double twin runs (mfv check)
   std::string title = "mfv run";  // report heading and JUnit suite name
   bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
   bool reference_ok() const;
   bool gate_ok() const;  // every verdict as expected and the reference agrees
+  // One line per reason the gate failed: the comparison, its worst case and its bound.
+  std::vector<std::string> gate_failures() const;
 };
 
 const std::vector<std::string>& suite_checks();

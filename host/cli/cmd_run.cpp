@@ -48,8 +48,8 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
     if (!scene_path.empty()) {
       if (!opt.models.empty()) throw Error("--model and --scene cannot be combined: the scene chooses the models");
       Scene scene = load_scene(scene_path);  // every input error before any work
-      // a scene has few integrals: compare more of them with the reference
-      if (every_opt->count() == 0) opt.reference_every = 7;
+      // a scene has few integrals: compare every one with the reference
+      if (every_opt->count() == 0) opt.reference_every = 1;
       if (!out_dir.empty()) prepare_output_dir(out_dir);
       Runtime rt(g.device, g.kernel_dir);
       SceneRun run = run_scene(rt, scene, opt, compare_full);

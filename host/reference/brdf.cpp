@@ -18,13 +18,13 @@ Shading shading_from(const glm::dvec3& wi_in, const glm::dvec3& wo_in) {
   const glm::dvec3 sum = wi + wo;
   const double len = glm::length(sum);
   const glm::dvec3 h = sum / len;
-  return {wi.z, wo.z, h.z, std::min(0.5 * len, 1.0)};  // n = +z
+  return {wi.z, wo.z, h.z, std::min(0.5 * len, 1.0), h.x * h.x + h.y * h.y};  // n = +z
 }
 
 double brdf(const BrdfSpec& s, const Shading& c) {
   // seed 000: BRDF = Kd/π + D(H) F(L,H) G(L,V,H) / (4 (L·N)(V·N))
   if (c.NoL <= 0.0 || c.NoV <= 0.0) return 0.0;
-  const double D = s.d->ref_d(c.NoH, s.pd);
+  const double D = c.sin2H >= 0.0 ? eval_d_cs(s, c.NoH, c.sin2H) : s.d->ref_d(c.NoH, s.pd);
   const double F = s.f->ref_f(c.VoH, s.f0, s.f1);
   const double G = s.g->ref_g(c.NoL, c.NoV, c.NoH, c.VoH, s.pg);
   return s.kd / M_PI + D * F * G / (4.0 * c.NoL * c.NoV);
@@ -32,7 +32,13 @@ double brdf(const BrdfSpec& s, const Shading& c) {
 
 double eval_d(const BrdfSpec& s, const glm::dvec3& m) {
   if (s.aniso() && s.d->aniso) return s.d->ref_d_aniso(m, s.pd, s.pd2);
-  return s.d->ref_d(m.z / glm::length(m), s.pd);
+  const double len2 = glm::dot(m, m);
+  return eval_d_cs(s, m.z / std::sqrt(len2), (m.x * m.x + m.y * m.y) / len2);
+}
+
+double eval_d_cs(const BrdfSpec& s, double c, double s2) {
+  if (s.d->ref_d_cs && c > 0.0) return s.d->ref_d_cs(c * c, s2, s.pd);
+  return s.d->ref_d(c, s.pd);
 }
 
 double eval_g(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo, const Shading& c) {

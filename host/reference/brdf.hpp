@@ -27,6 +27,7 @@ struct BrdfSpec {
 // The cosines a microfacet BRDF depends on, formed from the directions.
 struct Shading {
   double NoL, NoV, NoH, VoH;
+  double sin2H = -1;  // |n × h|² from h's components; < 0: not given (derived from NoH)
 };
 
 Shading shading_from(const glm::dvec3& wi, const glm::dvec3& wo);  // n = +z
@@ -36,6 +37,8 @@ double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo);  // 
 // The directions' D and G, anisotropic terms with two widths, isotropic ones
 // as brdf() evaluates them (twins of eval_D_aniso, eval_G_aniso, eval_G1_aniso).
 double eval_d(const BrdfSpec& s, const glm::dvec3& m);
+// An isotropic D at cos θ = c with sin²θ = s2 given apart (Term::ref_d_cs where the D has one).
+double eval_d_cs(const BrdfSpec& s, double c, double s2);
 double eval_g(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo, const Shading& c);
 double eval_g1(const BrdfSpec& s, const glm::dvec3& v);
 

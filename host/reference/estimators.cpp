@@ -218,7 +218,7 @@ double convergence_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     if (est == Estimator::Rqmc) {
       double c, s2;
       sample_m(1.0, u_phi, u_r, w, c, s2);
-      return b.d->ref_d(c, b.pd) * c / pdf_slope(c, s2, w);
+      return eval_d_cs(b, c, s2) * c / pdf_slope(c, s2, w);
     }
     return std::nan("");
   }
@@ -284,7 +284,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     }
     double c, s2;
     sample_m(u_pick, u_phi, u_r, w, c, s2);
-    return b.d->ref_d(c, b.pd) * c / pdf_m(c, s2, w);
+    return eval_d_cs(b, c, s2) * c / pdf_m(c, s2, w);
   }
   const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
   const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
@@ -302,7 +302,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     const double om = glm::dot(o, m);
     if (om <= 0.0) return 0.0;
     const double g1 = b.g->ref_g(1.0, s.cos_o, c, om, b.pg);
-    return g1 * b.d->ref_d(c, b.pd) * om / (pdf_m(c, s2, w) * s.cos_o);
+    return g1 * eval_d_cs(b, c, s2) * om / (pdf_m(c, s2, w) * s.cos_o);
   }
   glm::dvec3 i;
   if (u_branch < kMixICos) {

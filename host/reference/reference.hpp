@@ -23,6 +23,12 @@ double D_beckmann_ct82(double NoH, double m);       // seed 001, as written (kno
 // GGX from cos²θ and sin²θ given apart (e.g. from a half vector's components),
 // for θ below ~1e-8 where a double cosine no longer resolves 1 − cosθ.
 double D_ggx_cs(double cos2, double sin2, double alpha);
+// Beckmann and seed 001's form likewise: tan²θ = sin²θ / cos²θ without 1 − cos²θ.
+double D_beckmann_cs(double cos2, double sin2, double alpha);
+double D_beckmann_ct82_cs(double cos2, double sin2, double m);
+// Phong and seed 004's rho form: (n·h)^e = exp((e/2) log1p(−sin²θ)) near the peak.
+double D_phong_cs(double cos2, double sin2, double alpha_p);
+double D_blinn_rho_cs(double cos2, double sin2, double rho);
 
 // ---- Anisotropic D, tangent frame t = +x, b = +y, n = +z ------------------
 // m: the microfacet normal (need not be unit: it is made unit first); ax, ay:

@@ -71,6 +71,46 @@ double D_ggx_cs(double cos2, double sin2, double alpha) {
     return 1.0 / ((kPi * (alpha * alpha)) * (k * k));
 }
 
+double D_beckmann_cs(double cos2, double sin2, double alpha) {
+    // Walter et al. 2007, eq. 25, as D_beckmann above with tan²θ = sin²θ/cos²θ
+    // from sin²θ given to full relative precision: near the peak of a narrow
+    // lobe (alpha 1e-4 and below) tan²θ/alpha² from (1 − c)(1 + c) carries
+    // a relative error of u/(1 − c), which the exponent turns into an error
+    // of D ~ u/alpha².
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    const double e = std::exp(-(sin2 / cos2) / (alpha * alpha));
+    if (e == 0.0) return 0.0;  // θ→π/2: the exponential wins, D→0 (no 0/0)
+    return e / ((kPi * (alpha * alpha)) * (cos2 * cos2));
+}
+
+double D_beckmann_ct82_cs(double cos2, double sin2, double m) {
+    // seed 001 as written (known bad, see D_beckmann_ct82), from cos²θ and sin²θ given apart
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    const double e = std::exp(-(sin2 / cos2) / (m * m));
+    if (e == 0.0) return 0.0;
+    return e / ((4.0 * (m * m)) * (cos2 * cos2));
+}
+
+namespace {
+// log cos θ from cos² and sin²: ½ log1p(−sin²) near the normal, where 1 − cos
+// has lost the small angle (pow(c, e) there carries a relative error e·u),
+// ½ log(cos²) elsewhere.
+double log_cos_cs(double cos2, double sin2) { return sin2 < 0.5 ? 0.5 * std::log1p(-sin2) : 0.5 * std::log(cos2); }
+}  // namespace
+
+double D_phong_cs(double cos2, double sin2, double alpha_p) {
+    // seed 000, "Phong", as D_phong with (N·H)^alpha_p = exp(alpha_p log cos θ)
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    return (alpha_p + 2.0) / (2.0 * kPi) * std::exp(alpha_p * log_cos_cs(std::min(cos2, 1.0), sin2));
+}
+
+double D_blinn_rho_cs(double cos2, double sin2, double rho) {
+    // seed 004 "blinn version", as D_blinn_rho with (h·n)^e = exp(e log cos θ)
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    const double exponent = 2.0 / (rho * rho) - 2.0;
+    return std::exp(exponent * log_cos_cs(std::min(cos2, 1.0), sin2)) / (kPi * (rho * rho));
+}
+
 double D_blinn_rho(double NoH, double rho) {
     // seed 004, Cook-Torrance "blinn version":
     //   D = (h·n)^(2/rho² − 2) / (π rho²)

@@ -34,6 +34,19 @@ std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
                      params_text(p));
 }
 
+// The same-sample comparison in one line: the double twin's derived bounds
+// (reference_compare.hpp) or, without fp64, the float kernel's fixed bound.
+std::string reference_line(const SuiteReport& rep) {
+  const std::string at = rep.reference_worst_at.empty() ? "" : " at " + rep.reference_worst_at;
+  if (rep.reference_twin)
+    return fmt::format("reference on the same samples (float kernel, its double twin, double reference): {} integrals "
+                       "compared, worst formula gap {:.2g} x its derived bound ({}){}",
+                       rep.reference_compared, rep.reference_worst, rep.reference_ok() ? "ok" : "FAILED", at);
+  return fmt::format("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}",
+                     rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
+                     at);
+}
+
 double total_seconds(const SuiteReport& rep) {
   double s = 0;
   for (auto& c : rep.stats) s += c.seconds;
@@ -54,9 +67,7 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   if (!rep.reference_note.empty())
     fmt::print("{}\n", rep.reference_note);
   else
-    fmt::print("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}{}\n",
-               rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
-               rep.reference_worst_at.empty() ? "" : " at ", rep.reference_worst_at);
+    fmt::print("{}\n", reference_line(rep));
   size_t counts[4] = {0, 0, 0, 0};
   for (auto& g : rep.groups) counts[int(g.verdict)]++;
   for (auto& g : rep.groups) {
@@ -68,6 +79,7 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   fmt::print("{} model x check verdicts: {} pass, {} xfail, {} FAIL, {} XPASS; {:.1f} s of integration\n",
              rep.groups.size(), counts[0], counts[2], counts[1], counts[3], total_seconds(rep));
   fmt::print("gate: {}\n", rep.gate_ok() ? "ok (every verdict matches expectation)" : "FAILED");
+  for (auto& line : rep.gate_failures()) fmt::print("  because {}\n", line);
 }
 
 std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
@@ -87,6 +99,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
     j["timings"].push_back({{"check", c.check}, {"integrals", c.integrals}, {"samples", c.samples}, {"seconds", c.seconds}});
   j["reference"] = {{"compared", rep.reference_compared}, {"samples_each", opt.reference_samples},
                     {"worst_relative", rep.reference_worst}, {"bound", rep.reference_bound},
+                    {"derived_bounds", rep.reference_twin},
                     {"ok", rep.reference_ok()}, {"worst_at", rep.reference_worst_at}};
   j["groups"] = json::array();
   for (auto& g : rep.groups)
@@ -108,7 +121,10 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
            {"expected", p.expected},
            {"bound", sig(p.bound, 4)},
            {"samples", p.samples},
-           {"verdict", p.failed ? "fail" : "pass"}};
+           {"verdict", p.failed ? "fail" : "pass"},
+           // upper bound on the float estimator's rounding bias (the double twin's), 0 where not measured
+           {"rounding_bound", sig(p.rounding_bound, 3)}};
+    if (p.reference_failed) r["reference"] = p.reference_detail;
     // the catalog's prediction where it is not "holds"; the reason is in the group
     if (p.expect != Expect::Hold) r["expect"] = p.expect == Expect::Fail ? "fail" : "may_fail";
     if (!p.model.empty()) r["model"] = p.model;
@@ -137,17 +153,14 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
                       c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
   md += fmt::format("\nKernel builds: {:.2f} s. ", rep.build_seconds);
-  md += !rep.reference_note.empty()
-            ? rep.reference_note + "\n\n"
-            : fmt::format("Reference on the same samples: {} integrals, worst disagreement {:.2e} (bound {:g}: {}){}{}.\n\n",
-                          rep.reference_compared, rep.reference_worst, rep.reference_bound,
-                          rep.reference_ok() ? "ok" : "FAILED", rep.reference_worst_at.empty() ? "" : " at ",
-                          rep.reference_worst_at);
+  md += (!rep.reference_note.empty() ? rep.reference_note : reference_line(rep)) + "\n\n";
   md += "| verdict | check | model | worst case | expected failure because |\n|---|---|---|---|---|\n";
   for (auto& g : rep.groups)
     md += fmt::format("| {} | {} | {} | {} | {} |\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g),
                       g.reason);
   md += fmt::format("\nGate: **{}**\n", rep.gate_ok() ? "ok" : "FAILED");
+  for (auto& line : rep.gate_failures()) md += fmt::format("\n- because {}", line);
+  if (!rep.gate_ok()) md += "\n";
 
   // junit.xml: one testcase per model x check
   size_t failures = 0;
@@ -161,11 +174,18 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
                                         : fmt::format("<failure message=\"disagreement {:.3g} above {:g}\">{}</failure>",
                                                       rep.reference_worst, rep.reference_bound,
                                                       xml_escape(rep.reference_worst_at)));
+  const std::vector<std::string> reasons = rep.gate_failures();
   for (auto& g : rep.groups) {
     xml += fmt::format("  <testcase classname=\"{}\" name=\"{}\">", xml_escape(g.check), xml_escape(g.model));
     std::string w = xml_escape(worst_text(rep, g));
-    if (g.verdict == Verdict::Fail)
-      xml += fmt::format("<failure message=\"deviation beyond noise and tolerance\">{}</failure>", w);
+    if (g.verdict == Verdict::Fail) {
+      std::string why;  // the gate's reasons for this group, one a line
+      const std::string who = fmt::format("FAIL {} {}:", g.check, g.model);
+      for (auto& line : reasons)
+        if (line.rfind(who, 0) == 0) why += line + "\n";
+      xml += fmt::format("<failure message=\"deviation beyond noise and tolerance, or the reference disagrees\">{}</failure>",
+                         xml_escape(why));
+    }
     else if (g.verdict == Verdict::XPass)
       xml += fmt::format("<failure message=\"expected to fail ({}) but passed\">{}</failure>", xml_escape(g.reason), w);
     else if (g.verdict == Verdict::XFail)
