@@ -1,59 +1,28 @@
 // The verdict statistics (host/stats/, docs/statistics.md): quantiles,
 // the pooled test's power and false-alarm rate, total uncertainty; the
-// planted 1 % energy gains the default gate must fail; calibration of the
+// planted 1 % energy gain the default suite must fail (mfv check's is in
+// tests/test_check.cpp); calibration of the
 // total uncertainty over cells whose truth is known.
 #include "checks/energy.hpp"
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
-#include "run_mfv.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "suite_verdicts.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <random>
-#include <regex>
-#include <sstream>
 #include <string>
 
 using namespace mfv;
-using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
 namespace {
 
-const std::string kExamples = std::string(MFV_KERNEL_SOURCE_DIR) + "/../examples/brdf/";
-
-std::string slurp(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A copy of an example with `from` replaced by `to`, removed afterwards.
-struct PlantedExample {
-  std::string path;
-  PlantedExample(const std::string& example, const std::string& from, const std::string& to)
-      : path((std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_planted_" + example)).string()) {
-    std::string text = slurp(kExamples + example);
-    auto pos = text.find(from);
-    found = pos != std::string::npos;
-    if (found) text.replace(pos, from.size(), to);
-    std::ofstream(path) << text;
-  }
-  ~PlantedExample() { std::filesystem::remove(path); }
-  bool found = false;
-};
-
-// P(|z| > 3) and P(|z| > 1.1) under the normal law.
+// P(|z| > 3) under the normal law.
 const double kBeyond3 = stats::normal_two_sided_tail(3.0);
 
 }  // namespace
@@ -150,21 +119,6 @@ TEST_CASE("A D x G x F BRDF with 1 % more energy fails the default suite", "[dev
   CHECK_FALSE(bad.gate_ok());
 }
 
-TEST_CASE("mfv check passes a Lambert and fails one with 1 % more energy at default samples",
-          "[device][check][cli][planted]") {
-  if (!test::device_runtime()) return;
-  auto r = test::run_mfv("check --brdf " + kExamples + "lambert.cl --check furnace energy");
-  INFO(r.out);
-  CHECK(r.code == 0);
-  PlantedExample bright("lambert.cl", "params[0] * M_1_PI_F", "1.01f * params[0] * M_1_PI_F");
-  REQUIRE(bright.found);
-  auto b = test::run_mfv("check --brdf " + bright.path + " --check furnace energy");
-  INFO(b.out);
-  CHECK(b.code == 1);
-  CHECK(std::regex_search(b.out, std::regex("FAIL +furnace ")));
-  CHECK(b.out.find("pooled over") != std::string::npos);
-}
-
 TEST_CASE("Over cells of known truth the share beyond 3 total uncertainties is what the normal law allows",
           "[device][suite][calibration]") {
   Runtime* rt = test::device_runtime();
@@ -173,9 +127,10 @@ TEST_CASE("Over cells of known truth the share beyond 3 total uncertainties is w
   // exact Smith G1 (= 1), closed-form albedos of whole models (Lambert,
   // Oren-Nayar, EON, ...), at tolerance 0. z = dev / (SE + bias bound).
   uint64_t n = 0, beyond3 = 0, sharp = 0, beyond1_sharp = 0;
-  for (uint64_t seed : {1, 2}) {
+  for (uint64_t seed : {3}) {
     SuiteOptions opt;
     opt.seed = seed;
+    opt.scale = 0.5;  // half the samples: the CI budget; the share beyond 3 does not depend on it
     opt.checks = {"d_norm", "masking", "closed_form"};
     opt.reference_samples = 0;
     SuiteReport rep = run_suite(*rt, opt);
@@ -190,6 +145,8 @@ TEST_CASE("Over cells of known truth the share beyond 3 total uncertainties is w
     }
   }
   CAPTURE(n, beyond3, sharp, beyond1_sharp);
+  WARN("calibration: " << beyond3 << " of " << n << " known-truth cells beyond 3 total SE; " << beyond1_sharp << " of "
+                       << sharp << " SE-dominated cells beyond 1");
   REQUIRE(n > 1000);
   // A count of events of probability <= P(|Z| > 3) exceeds this bound with chance 1e-4.
   CHECK(beyond3 <= stats::binomial_upper_bound(n, kBeyond3, 1e-4));
