@@ -180,3 +180,21 @@ TEST_CASE("mfv check: a BRDF returning NaN is a check failure naming the input, 
   CHECK(has_line(r.out, "FAIL", "finite"));
   CHECK(r.out.find("= nan at alpha=") != std::string::npos);
 }
+
+TEST_CASE("mfv check passes a Lambert and fails one with 1 % more energy at default samples",
+          "[device][check][cli][planted]") {
+  Run r = run_mfv("check --brdf " + kExamples + "lambert.cl --check furnace energy");
+  INFO(r.out);
+  CHECK(r.code == 0);
+  // the per-integral tests cannot see 1 %; the pooled furnace test does (docs/statistics.md)
+  std::string text = slurp(kExamples + "lambert.cl");
+  const std::string from = "params[0] * M_1_PI_F";
+  REQUIRE(text.find(from) != std::string::npos);
+  text.replace(text.find(from), from.size(), "1.01f * params[0] * M_1_PI_F");
+  TempFile bright("lambert_bright.cl", text);
+  Run b = run_mfv("check --brdf " + bright.path + " --check furnace energy");
+  INFO(b.out);
+  CHECK(b.code == 1);
+  CHECK(has_line(b.out, "FAIL", "furnace"));
+  CHECK(b.out.find("pooled over") != std::string::npos);
+}

@@ -1,5 +1,6 @@
 #include "checks/chi_square.hpp"
 
+#include <boost/math/special_functions/gamma.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,45 +8,12 @@
 #include <numeric>
 
 namespace mfv {
-namespace {
-
-// P(a, x) by its series, for x < a + 1 (Numerical Recipes eq. 6.2.5).
-double gamma_p_series(double a, double x) {
-  double term = 1.0 / a, sum = term;
-  for (int n = 1; n < 1000000; ++n) {
-    term *= x / (a + n);
-    sum += term;
-    if (std::fabs(term) < std::fabs(sum) * 1e-15) break;
-  }
-  return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
-}
-
-// Q(a, x) by Lentz's continued fraction, for x >= a + 1 (NR eq. 6.2.7).
-double gamma_q_fraction(double a, double x) {
-  const double tiny = 1e-300;
-  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-  for (int i = 1; i < 1000000; ++i) {
-    const double an = -i * (i - a);
-    b += 2.0;
-    d = an * d + b;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::fabs(del - 1.0) < 1e-15) break;
-  }
-  return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
-}
-
-}  // namespace
-
 double chi_square_upper_tail(double x, int dof) {
   if (dof <= 0) return 1.0;
   if (!(x > 0)) return x == 0 ? 1.0 : 0.0;  // NaN statistic: no fit
-  const double a = 0.5 * dof, hx = 0.5 * x;
-  return hx < a + 1.0 ? 1.0 - gamma_p_series(a, hx) : gamma_q_fraction(a, hx);
+  if (std::isinf(x)) return 0.0;
+  // P(chi²_k > x) = Q(k/2, x/2), the regularized upper incomplete gamma (Boost.Math)
+  return boost::math::gamma_q(0.5 * dof, 0.5 * x);
 }
 
 double sidak_level(double alpha, int tests) { return -std::expm1(std::log1p(-alpha) / std::max(tests, 1)); }

@@ -5,7 +5,9 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "stats/verdict.hpp"
 
+#include <boost/math/special_functions/beta.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -84,7 +86,15 @@ Cell replicate_stats(const std::vector<double>& v) {
   return {mean, std::sqrt(ss / (n - 1) / n)};
 }
 
-// E_avg = 2 ∫ E(mu) mu dmu by the midpoint rule over the mu grid (cells E[0..n-1]).
+// E_avg = 2 ∫ E(mu) mu dmu by the midpoint rule over the mu grid (cells
+// E[0..n-1]), with its total uncertainty: the propagated standard error of
+// the cells plus the rule's own error. Every third node is the midpoint of a
+// cell three times wider, so the same values give the midpoint rule of width
+// 3h over the first 3 floor(n/3) cells (the rest keep width h). The midpoint
+// rule's error falls as width² (Davis & Rabinowitz 1984, §2.1.4), so
+// |Q_3h - I| ~ 9 |Q_h - I| and |Q_3h - Q_h| bounds |Q_h - I| wherever the
+// coarse rule is at least twice as wrong as the fine one. The noise-only SE
+// left this out and read 9 SE off on the 32-point grid.
 Cell eavg_by_midpoints(const std::vector<double>& mu, const Cell* E) {
   const size_t nm = mu.size();
   double s = 0, v = 0;
@@ -93,7 +103,12 @@ Cell eavg_by_midpoints(const std::vector<double>& mu, const Cell* E) {
     s += w * E[m].mean;
     v += w * w * E[m].se * E[m].se;
   }
-  return {s, std::sqrt(v)};
+  double coarse = 0;
+  const size_t n3 = nm / 3 * 3;
+  for (size_t m = 1; m < n3; m += 3) coarse += 3.0 * 2.0 * mu[m] / double(nm) * E[m].mean;
+  for (size_t m = n3; m < nm; ++m) coarse += 2.0 * mu[m] / double(nm) * E[m].mean;
+  const double rule_error = n3 > 0 ? std::fabs(coarse - s) : 0.0;
+  return {s, stats::total_uncertainty(std::sqrt(v), rule_error)};
 }
 
 // A whole model gains energy where some E(mu) exceeds 1 beyond its noise:
@@ -131,6 +146,36 @@ struct Unit {
   bool model = false;   // `table` indexes rep.models
 };
 
+
+// Records a unit's cells from its per-replicate sums over `done` points;
+// returns the largest standard error among them.
+double record_unit(EnergyReport& rep, const Unit& u, const std::vector<double>& sum, const std::vector<double>& b_sum,
+                   uint64_t done) {
+  const size_t R = sum.size();
+  std::vector<double> e, a, b;
+  for (size_t r = 0; r < R; ++r) e.push_back(sum[r] / double(done));
+  if (u.model) {
+    ModelEnergy& me = rep.models[u.table];
+    Cell& c = u.eavg ? me.eavg : me.E[u.index];
+    c = replicate_stats(e);
+    if (!u.eavg) me.points[u.index] = done;
+    return c.se;
+  }
+  EnergyTable& t = rep.tables[u.table];
+  if (u.eavg) {
+    t.eavg[u.index] = replicate_stats(e);
+    return t.eavg[u.index].se;
+  }
+  for (size_t r = 0; r < R; ++r) {
+    b.push_back(b_sum[r] / double(done));
+    a.push_back(e[r] - b[r]);  // same shifted points: A and B share their noise
+  }
+  t.E[u.index] = replicate_stats(e);
+  t.A[u.index] = replicate_stats(a);
+  t.B[u.index] = replicate_stats(b);
+  t.points[u.index] = done;
+  return std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
+}
 
 }  // namespace
 
@@ -230,89 +275,64 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     return v;
   };
 
-  // Adaptive passes: every unit at min_points; a unit above target then gets
-  // the power-of-two multiple of its points that its error predicts (RQMC
-  // error falls as 1/N here: measured N^-1 at normal and grazing view), at
-  // least 2x. E/A/B cells extend their point sets (the Kronecker points are
-  // nested), so no point is computed twice; E_avg's stratified view cosines
-  // depend on the count, so it restarts.
+  // Pilot, then fresh samples: a pilot of min_points / 4 points per
+  // replicate on streams of its own sizes each unit; the unit's estimate is
+  // then a fresh run of the power-of-two multiple of min_points its pilot
+  // error predicts (RQMC error falls as 1/N here: measured N^-1 at normal and
+  // grazing view), up to max_points. Stopping on the estimate's own standard
+  // error (the former adaptive passes) keeps the runs whose error happened to
+  // come out small: 5 of 96 EON cells were beyond 3 SE, worst 5.4. With the
+  // count fixed before the fresh samples are drawn, mean and replicate SE are
+  // those of a fixed-size RQMC estimate, so the SE is unbiased.
   struct Progress {
     uint64_t done = 0, want = 0;
-    std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values so far
+    std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values
   };
   std::vector<Progress> prog(units.size());
-  for (auto& p : prog) p.want = opt.min_points;
-  std::vector<size_t> pending(units.size());
-  for (size_t i = 0; i < units.size(); ++i) pending[i] = i;
-  while (!pending.empty()) {
-    // one pass per distinct (points to add, first index) among pending units
-    std::map<std::pair<uint64_t, uint64_t>, std::vector<size_t>> passes;
-    for (size_t ui : pending) {
-      const Progress& p = prog[ui];
-      const uint64_t first = units[ui].eavg ? 0 : p.done;
-      passes[{p.want - first, first}].push_back(ui);
-    }
-    std::vector<size_t> next;
-    for (auto& [key, group] : passes) {
-      const auto [add, first] = key;
+  // Runs every unit at its `want` points on streams first_stream + shift + r
+  // and records its cells; returns each unit's largest standard error.
+  auto run_units = [&](uint32_t shift) {
+    std::vector<double> worst(units.size(), 0.0);
+    std::map<uint64_t, std::vector<size_t>> passes;  // one pass per point count
+    for (size_t ui = 0; ui < units.size(); ++ui) passes[prog[ui].want].push_back(ui);
+    for (auto& [want, group] : passes) {
       std::vector<IntegralSpec> specs;
       std::vector<size_t> offset;
       for (size_t ui : group) {
         offset.push_back(specs.size());
-        auto v = specs_of(units[ui]);
-        specs.insert(specs.end(), v.begin(), v.end());
+        for (auto& s : specs_of(units[ui])) {
+          s.stream += shift;
+          specs.push_back(s);
+        }
       }
-      std::vector<Estimate> est = in.run(specs, add, opt.seed, first);
-      const uint64_t used = in.samples_used(add);
+      std::vector<Estimate> est = in.run(specs, want, opt.seed);
+      const uint64_t used = in.samples_used(want);
       rep.samples += used * specs.size();
       for (size_t k = 0; k < group.size(); ++k) {
-        const Unit& u = units[group[k]];
         Progress& p = prog[group[k]];
-        if (first == 0) p.sum.assign(R, 0.0), p.b_sum.assign(R, 0.0);
+        p.sum.assign(R, 0.0);
+        p.b_sum.assign(R, 0.0);
         for (size_t r = 0; r < R; ++r) {
-          p.sum[r] += est[offset[k] + r].mean * double(used);
-          p.b_sum[r] += est[offset[k] + r].b_mean * double(used);
+          p.sum[r] = est[offset[k] + r].mean * double(used);
+          p.b_sum[r] = est[offset[k] + r].b_mean * double(used);
         }
-        p.done = first + used;
-        double worst;
-        if (u.model) {
-          ModelEnergy& me = rep.models[u.table];
-          std::vector<double> e;
-          for (size_t r = 0; r < R; ++r) e.push_back(p.sum[r] / double(p.done));
-          Cell& c = u.eavg ? me.eavg : me.E[u.index];
-          c = replicate_stats(e);
-          if (!u.eavg) me.points[u.index] = p.done;
-          worst = c.se;
-        } else if (u.eavg) {
-          EnergyTable& t = rep.tables[u.table];
-          std::vector<double> e;
-          for (size_t r = 0; r < R; ++r) e.push_back(p.sum[r] / double(p.done));
-          t.eavg[u.index] = replicate_stats(e);
-          worst = t.eavg[u.index].se;
-        } else {
-          EnergyTable& t = rep.tables[u.table];
-          std::vector<double> e, a, b;
-          for (size_t r = 0; r < R; ++r) {
-            const double er = p.sum[r] / double(p.done), br = p.b_sum[r] / double(p.done);
-            e.push_back(er);
-            b.push_back(br);
-            a.push_back(er - br);  // same shifted points: A and B share their noise
-          }
-          t.E[u.index] = replicate_stats(e);
-          t.A[u.index] = replicate_stats(a);
-          t.B[u.index] = replicate_stats(b);
-          t.points[u.index] = p.done;
-          worst = std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
-        }
-        if (worst <= opt.target || !std::isfinite(worst) || p.done >= opt.max_points) continue;
-        uint64_t want = p.done * 2;
-        while (want < opt.max_points && double(want) < 1.25 * double(p.done) * worst / opt.target) want *= 2;
-        p.want = std::min<uint64_t>(want, opt.max_points);
-        next.push_back(group[k]);
+        p.done = used;
+        worst[group[k]] = record_unit(rep, units[group[k]], p.sum, p.b_sum, p.done);
       }
     }
-    pending.swap(next);
+    return worst;
+  };
+  const uint64_t pilot = std::max<uint64_t>(64, opt.min_points / 4);
+  for (auto& p : prog) p.want = pilot;
+  const std::vector<double> pilot_se = run_units(stream);  // streams past every unit's own
+  for (size_t ui = 0; ui < units.size(); ++ui) {
+    Progress& p = prog[ui];
+    const double need = std::isfinite(pilot_se[ui]) ? 1.25 * double(p.done) * pilot_se[ui] / opt.target : 0.0;
+    uint64_t want = opt.min_points;
+    while (want < opt.max_points && double(want) < need) want *= 2;
+    p.want = std::min<uint64_t>(want, opt.max_points);
   }
+  run_units(0);
 
   // E_avg by the midpoint rule over the mu grid, as a cross-check of the
   // dedicated integral (its error is the quadrature's O(1/n^2) plus noise).
@@ -380,51 +400,11 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
 
 // ---- baseline --------------------------------------------------------------
 
-namespace {
-
-// Regularized incomplete beta I_x(a, b) by Lentz's continued fraction
-// (Numerical Recipes 3rd ed. §6.4).
-double betacf(double a, double b, double x) {
-  const double tiny = 1e-300;
-  double c = 1, d = 1 - (a + b) * x / (a + 1);
-  if (std::fabs(d) < tiny) d = tiny;
-  d = 1 / d;
-  double h = d;
-  for (int m = 1; m < 10000; ++m) {
-    const double m2 = 2.0 * m;
-    double aa = m * (b - m) * x / ((a - 1 + m2) * (a + m2));
-    d = 1 + aa * d;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = 1 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    h *= d * c;
-    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1 + m2));
-    d = 1 + aa * d;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = 1 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::fabs(del - 1) < 1e-15) break;
-  }
-  return h;
-}
-
-double incbeta(double a, double b, double x) {
-  if (x <= 0) return 0;
-  if (x >= 1) return 1;
-  const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
-  if (x < (a + 1) / (a + b + 2)) return std::exp(lbt) * betacf(a, b, x) / a;
-  return 1 - std::exp(lbt) * betacf(b, a, 1 - x) / b;
-}
-
-}  // namespace
-
 double student_t_two_sided_p(double t, double df) {
   if (std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
-  return incbeta(df / 2, 0.5, df / (df + t * t));
+  if (std::isinf(t)) return 0.0;
+  // P(|T_df| > |t|) = I_{df/(df+t²)}(df/2, 1/2), the regularized incomplete beta (Boost.Math)
+  return boost::math::ibeta(df / 2, 0.5, df / (df + t * t));
 }
 
 BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string& text, double alpha_fw) {

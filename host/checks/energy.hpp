@@ -9,8 +9,9 @@
 // Cauchy slopes of width alpha; independent of the D/G under test) fed with
 // randomized QMC points (kernels/integrate.cl, CHECK_ALBEDO_RQMC): R
 // independently shifted Kronecker point sets per quantity; the standard error
-// is the spread of the R replicate means / sqrt(R). Adaptive: cells whose
-// standard error is above the target get 4x the points, up to a cap.
+// is the spread of the R replicate means / sqrt(R). Each quantity's point
+// count is sized by a pilot run on streams of its own, then its estimate is
+// a fresh run of that count (so the standard error is unbiased).
 //
 // Whole models (catalog/models.hpp) get the same treatment at parameter
 // points (their catalog cases, or points a caller gives): E(mu) with mu the
@@ -65,7 +66,7 @@ struct EnergyTable {
   std::vector<Cell> E, A, B;    // index a * n_mu + m
   std::vector<uint64_t> points;  // points per replicate used, per cell
   std::vector<Cell> eavg;       // per alpha, its own integral (mu drawn with density 2mu)
-  std::vector<Cell> eavg_quad;  // per alpha, midpoint rule over the mu grid (cross-check)
+  std::vector<Cell> eavg_quad;  // per alpha, midpoint rule over the mu grid (cross-check); se: noise + rule error
   std::string name() const { return d->id + "/" + g->id; }
 };
 

@@ -8,6 +8,7 @@
 #include "runtime/dispatch.hpp"
 #include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
+#include "stats/verdict.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -32,7 +33,15 @@ struct PointResult {
   std::string model;  // a whole model ("phong_004[n=1]") or user code (mfv check); empty: the D/G/F ids
   std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
   double estimate = 0, stderr_ = 0;
+  double rounding_bound = 0;  // bias bound from float rounding where measured (0: judge derives one)
+  double bias = 0;            // judge: the bias bound tested with (rounding + tolerance x |expected|)
+  double z = 0;               // judge: deviation / total uncertainty (stderr_ + bias), stats/verdict.hpp
   double expected = 0;  // the value a correct model gives (d_norm, masking)
+  // The integral's value where the catalog knows it though the test is an
+  // upper limit (furnace: quadrature of the double reference,
+  // checks/furnace_truth.hpp): the group's pooled test is then two-sided.
+  bool known = false;
+  double known_value = 0, known_error = 0;
   double bound = 0;     // the threshold the estimate was tested against
   bool upper_only = false;  // test is estimate <= expected (albedo) rather than ==
   uint64_t samples = 0;
@@ -65,6 +74,8 @@ struct GroupResult {
   std::vector<size_t> points;  // indices into SuiteReport::points
   size_t worst = 0;            // the point with the largest |deviation| / (noise + tolerance)
   size_t failures = 0;
+  // The pooled test of the points that must hold (stats/verdict.hpp); n = 0: none.
+  stats::Pooled pooled;
   Verdict verdict = Verdict::Pass;
 };
 
@@ -97,6 +108,8 @@ struct SuiteReport {
   std::vector<CheckStats> stats;
   double z_threshold = 0;  // noise multiple a deviation must exceed
   size_t tests = 0;        // statistical tests in the run (Bonferroni count)
+  size_t pooled_tests = 0;         // pooled tests, one per group with points that must hold
+  bool double_accumulation = true;  // every plan summed its samples in double (the rounding bound)
   double build_seconds = 0;
   double reference_worst = 0;  // worst relative kernel/reference disagreement
   std::string reference_worst_at;
@@ -123,7 +136,7 @@ const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
-// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
+// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold (stats/normal.hpp).
 double normal_two_sided_quantile(double p);
 
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
@@ -183,7 +196,8 @@ bool suite_model_wanted(const std::vector<std::string>& filter, const std::strin
 void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt);
 std::vector<std::string> aniso_model_names();
 
-// z-test verdicts for every point, then one verdict per model x check.
+// z-test verdicts for every point, then one verdict per model x check: a
+// group fails on a point that must hold or on its pooled test (stats/).
 void judge(SuiteReport& rep, const SuiteOptions& opt);
 std::string model_name(const PointResult& p);
 

@@ -58,6 +58,11 @@ std::vector<std::string> SuiteReport::gate_failures() const {
     if (ref_failed > 3) out.push_back(fmt::format("{}: and {} more points disagree with the reference", who, ref_failed - 3));
     if (worst)
       out.push_back(fmt::format("{}: {} of {} points fail; worst: {}", who, failed, g.points.size(), comparison(*worst)));
+    if (g.pooled.failed)
+      out.push_back(fmt::format("{}: pooled over {} integrals, mean deviation {:+.3g} ± {:.2g} (bias bound {:.2g}) beyond "
+                                "{} {:.2f}",
+                                who, g.pooled.n, g.pooled.mean, g.pooled.se, g.pooled.bias,
+                                g.pooled.upper_only ? "one-sided z" : "|z|", g.pooled.threshold));
   }
   if (!reference_ok()) {
     if (reference_twin)

@@ -11,8 +11,8 @@ namespace mfv {
 namespace {
 
 // Panel edges on [0, 1], geometric towards 0 and towards 1 (mirrored at 1/2).
-std::vector<double> two_sided_edges(int per_decade) {
-  const std::vector<double> g = geometric_panels(1e-12, per_decade);  // 0, 1e-12, ..., 1
+std::vector<double> two_sided_edges(int per_decade, double t_min) {
+  const std::vector<double> g = geometric_panels(t_min, per_decade);  // 0, t_min, ..., 1
   std::vector<double> e;
   for (double x : g) e.push_back(0.5 * x);
   for (size_t k = g.size() - 1; k-- > 0;) e.push_back(1.0 - 0.5 * g[k]);
@@ -23,7 +23,7 @@ std::vector<double> two_sided_edges(int per_decade) {
 template <class G, class Tc>
 QuadratureResult product(const G& g, const Tc& t_c, const ProductRule& rule) {
   const GaussRule gl = gauss_legendre(rule.order);
-  const std::vector<double> edges = two_sided_edges(rule.per_decade);
+  const std::vector<double> edges = two_sided_edges(rule.per_decade, rule.t_min);
   QuadratureResult r;
   const double hp = 0.5 * M_PI / rule.phi_panels;
   for (int b = 0; b < rule.phi_panels; ++b)

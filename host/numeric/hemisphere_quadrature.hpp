@@ -18,6 +18,7 @@ struct ProductRule {
   int order = 16;
   int per_decade = 4;
   int phi_panels = 8;
+  double t_min = 1e-12;  // the geometric panels stop at t_min of the range (a lobe of alpha >= 0.01 needs 1e-7)
 };
 
 struct QuadratureResult {

@@ -30,8 +30,16 @@ std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
   if (p.bounded)
     return fmt::format("{} {:.3g} (bound {:.0e}){}{}{}{}", p.measure, p.estimate, p.bound, p.params.empty() ? "" : " at ",
                        params_text(p), p.detail.empty() ? "" : ": ", p.detail);
-  return fmt::format("{:.6f} ± {:.1e} vs {:g}{} at {}", p.estimate, p.stderr_, p.expected, p.upper_only ? " (max)" : "",
-                     params_text(p));
+  return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {:.1f}) vs {:g}{} at {}", p.estimate, p.stderr_, p.bias, p.z,
+                     p.expected, p.upper_only ? " (max)" : "", params_text(p));
+}
+
+// The pooled test of a group, one line (stats/verdict.hpp).
+std::string pooled_text(const GroupResult& g) {
+  const stats::Pooled& p = g.pooled;
+  return fmt::format("pooled over {} integrals: mean deviation {:+.2e} ± {:.1e} (bias bound {:.1e}), {} {:.2f} -> {}", p.n,
+                     p.mean, p.se, p.bias, p.upper_only ? "one-sided z >" : "|z| >", p.threshold,
+                     p.failed ? "FAIL" : "pass");
 }
 
 // The same-sample comparison in one line: the double twin's derived bounds
@@ -61,9 +69,9 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   for (auto& c : rep.stats)
     fmt::print("{:<16} {:>10} {:>14} {:>8.2f} {:>14.3g}\n", c.check, c.integrals, c.samples, c.seconds,
                c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
-  fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests, family-wise false-alarm {:g} -> "
-             "|z| > {:.2f}\n",
-             rep.build_seconds, rep.tests, opt.family_alpha, rep.z_threshold);
+  fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests and {} pooled, family-wise false-alarm "
+             "{:g} (half each) -> |z| > {:.2f} per integral\n",
+             rep.build_seconds, rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
   if (!rep.reference_note.empty())
     fmt::print("{}\n", rep.reference_note);
   else
@@ -75,6 +83,7 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
     if (g.verdict == Verdict::Pass && !rep.list_passes) continue;
     fmt::print("{:<6} {:<15} {:<42} {}\n", verdict_name(g.verdict), g.check, g.model, worst_text(rep, g));
     if (!g.reason.empty() && g.verdict != Verdict::Fail) fmt::print("       {:<15} reason: {}\n", "", g.reason);
+    if (g.pooled.failed) fmt::print("       {:<15} {}\n", "", pooled_text(g));
   }
   fmt::print("{} model x check verdicts: {} pass, {} xfail, {} FAIL, {} XPASS; {:.1f} s of integration\n",
              rep.groups.size(), counts[0], counts[2], counts[1], counts[3], total_seconds(rep));
@@ -89,7 +98,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}, {"command", rep.title}};
   j["run"] = {{"seed", opt.seed},       {"scale", opt.scale},
               {"family_alpha", opt.family_alpha}, {"z_threshold", rep.z_threshold},
-              {"tests", rep.tests},     {"date", utc_timestamp()},
+              {"tests", rep.tests},     {"pooled_tests", rep.pooled_tests}, {"date", utc_timestamp()},
               {"checks", opt.checks},   {"models", opt.models}};
   j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
                  {"version", rt.device().version}, {"fp64", rt.device().fp64}};
@@ -105,7 +114,11 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   for (auto& g : rep.groups)
     j["groups"].push_back({{"check", g.check}, {"model", g.model}, {"verdict", verdict_name(g.verdict)},
                            {"expected_fail", g.expect_fail}, {"reason", g.reason}, {"tolerance", g.tolerance},
-                           {"points", g.points.size()}, {"failures", g.failures}, {"worst", worst_text(rep, g)}});
+                           {"points", g.points.size()}, {"failures", g.failures}, {"worst", worst_text(rep, g)},
+                           {"pooled", {{"integrals", g.pooled.n}, {"mean_deviation", sig(g.pooled.mean, 4)},
+                                       {"stderr", sig(g.pooled.se, 3)}, {"bias_bound", sig(g.pooled.bias, 3)},
+                                       {"z", sig(g.pooled.z, 3)}, {"threshold", sig(g.pooled.threshold, 4)},
+                                       {"upper_only", g.pooled.upper_only}, {"failed", g.pooled.failed}}}});
   j["results"] = json::array();
   for (auto& p : rep.points) {
     json params = json::object();
@@ -118,6 +131,9 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
            {"params", params},
            {"estimate", std::isfinite(p.estimate) ? json(sig(p.estimate, 9)) : json(nullptr)},
            {"stderr", sig(p.stderr_, 3)},
+           {"rounding_bound", sig(p.rounding_bound, 3)},  // measured (0: the derived bound is in "bias")
+           {"bias", sig(p.bias, 3)},
+           {"z", std::isfinite(p.z) ? json(sig(p.z, 3)) : json(nullptr)},  // deviation / (stderr + bias)
            {"expected", p.expected},
            {"bound", sig(p.bound, 4)},
            {"samples", p.samples},
@@ -129,6 +145,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
     if (p.expect != Expect::Hold) r["expect"] = p.expect == Expect::Fail ? "fail" : "may_fail";
     if (!p.model.empty()) r["model"] = p.model;
     if (!p.detail.empty()) r["at"] = p.detail;
+    if (p.known) r["known"] = {{"value", sig(p.known_value, 9)}, {"error", sig(p.known_error, 3)}};
     j["results"].push_back(r);
   }
   return j.dump();  // compact: one record per integral, over 10^5 of them
@@ -145,9 +162,10 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
                                           : fmt::format("# microfacet-verify: {}\n\n", rep.title);
   md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, commit {}.\n\n", rt.device().name,
                     rt.device().platform, rt.device().driver, opt.seed, opt.scale, MFV_GIT_COMMIT);
-  md += fmt::format("{} statistical tests; family-wise false-alarm rate {:g}, so a deviation must exceed {:.2f} "
-                    "standard errors plus the model's documented tolerance to fail.\n\n",
-                    rep.tests, opt.family_alpha, rep.z_threshold);
+  md += fmt::format("{} statistical tests and {} pooled ones (docs/statistics.md); family-wise false-alarm rate {:g}, "
+                    "half to each family, so a deviation must exceed {:.2f} standard errors plus its bias bound "
+                    "(float rounding and the model's documented tolerance) to fail.\n\n",
+                    rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
   md += "| check | integrals | samples | seconds | samples/s |\n|---|---:|---:|---:|---:|\n";
   for (auto& c : rep.stats)
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
@@ -182,7 +200,10 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
       std::string why;  // the gate's reasons for this group, one a line
       const std::string who = fmt::format("FAIL {} {}:", g.check, g.model);
       for (auto& line : reasons)
-        if (line.rfind(who, 0) == 0) why += line + "\n";
+        if (line.rfind(who, 0) == 0) why += line + "
+";
+      if (g.pooled.failed) why += pooled_text(g) + "
+";
       xml += fmt::format("<failure message=\"deviation beyond noise and tolerance, or the reference disagrees\">{}</failure>",
                          xml_escape(why));
     }

@@ -1,0 +1,23 @@
+// What the catalog knows about a white furnace integral: its value by
+// deterministic quadrature of the double reference, so that the furnace's
+// pooled test (host/stats/verdict.hpp) is two-sided where the per-integral
+// test can only say E <= 1.
+#pragma once
+
+#include "checks/suite.hpp"
+
+namespace mfv {
+
+struct KnownValue {
+  double value = 0, error = 0;  // error: |fine - coarse rule|, a bound on the fine rule's error
+};
+
+// E(o) = ∫ f(i, o) (n·i) di of the integral's BRDF (ref::brdf on the float
+// parameters the device sees) by product Gauss-Legendre over half vectors
+// (host/numeric/hemisphere_quadrature.hpp).
+KnownValue albedo_by_quadrature(const IntegralSpec& s);
+
+// Sets PointResult::known on the furnace plan's points that must hold.
+void attach_furnace_truth(Plan& plan);
+
+}  // namespace mfv
