@@ -1,6 +1,7 @@
 #include "checks/suite.hpp"
 
 #include "catalog/roughness.hpp"
+#include "checks/energy.hpp"
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
@@ -50,6 +51,16 @@ double normal_two_sided_quantile(double p) {
     (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
+}
+
+double student_t_two_sided_quantile(double p, double dof) {
+  // Solve student_t_two_sided_p(t, dof) = p by bisection on log t (monotone in t).
+  double lo = std::log(1e-6), hi = std::log(1e12);
+  for (int i = 0; i < 200; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (student_t_two_sided_p(std::exp(mid), dof) > p ? lo : hi) = mid;
+  }
+  return std::exp(0.5 * (lo + hi));
 }
 
 namespace {
@@ -281,9 +292,11 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   for (auto* f : Fs)
     if (f->id != "none") real_fs.push_back(f);
   combos("masking", IntegralKind::Masking, kSuiteBaseSamples, 12, 32, {none}, {0.0});
-  combos("furnace", IntegralKind::Albedo, kSuiteBaseSamples, 12, 32, {none}, {0.0});
-  combos("energy", IntegralKind::Albedo, kSuiteBaseSamples / 2, 6, 24, real_fs, {0.0});
-  combos("energy_diffuse", IntegralKind::Albedo, kSuiteBaseSamples / 2, 3, 8, {try_find_term("schlick", Kind::F)}, {0.5, 1.0});
+  // furnace and energy: the albedo by mfv run's MIS estimator on RQMC
+  // replicates (IntegralKind::AlbedoMis, kernels/integrate.cl albedo_mis)
+  combos("furnace", IntegralKind::AlbedoMis, kSuiteBaseSamples, 12, 32, {none}, {0.0});
+  combos("energy", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 6, 24, real_fs, {0.0});
+  combos("energy_diffuse", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 3, 8, {try_find_term("schlick", Kind::F)}, {0.5, 1.0});
   add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
   return plans;
 }
@@ -307,8 +320,18 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
   // the stratified d_norm integrals resolve; kRoundingFloor keeps that from
   // reading as a failure while a D off by 1e-4 still fails.
   constexpr double kRoundingFloor = 1e-5;
+  // Points whose standard error comes from R replicates (AlbedoMis) take
+  // the Student t quantile of R - 1 degrees of freedom at the same level.
+  std::map<uint32_t, double> t_threshold;
+  auto threshold = [&](uint32_t dof) {
+    if (dof == 0) return rep.z_threshold;
+    auto it = t_threshold.find(dof);
+    if (it == t_threshold.end())
+      it = t_threshold.emplace(dof, student_t_two_sided_quantile(opt.family_alpha / double(std::max<size_t>(rep.tests, 1)), dof)).first;
+    return it->second;
+  };
   auto noise = [&](const PointResult& q) {
-    return rep.z_threshold * q.stderr_ + (q.tolerance + kRoundingFloor) * std::fabs(q.expected);
+    return threshold(q.dof) * q.stderr_ + (q.tolerance + kRoundingFloor) * std::fabs(q.expected);
   };
   for (size_t i = 0; i < rep.points.size(); ++i) {
     PointResult& p = rep.points[i];
@@ -511,6 +534,7 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& str
   for (size_t i = 0; i < est.size(); ++i) {
     plan.points[i].estimate = est[i].mean;
     plan.points[i].stderr_ = est[i].stderr_;
+    plan.points[i].dof = est[i].dof;
     plan.points[i].samples = est[i].samples;
   }
   rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});

@@ -32,6 +32,7 @@ struct PointResult {
   std::string model;  // a whole model ("phong_004[n=1]") or user code (mfv check); empty: the D/G/F ids
   std::map<std::string, double> params;  // alpha, native params, cos_o, kd...
   double estimate = 0, stderr_ = 0;
+  uint32_t dof = 0;     // stderr_ from replicates: Student t with dof degrees of freedom (0: normal)
   double expected = 0;  // the value a correct model gives (d_norm, masking)
   double bound = 0;     // the threshold the estimate was tested against
   bool upper_only = false;  // test is estimate <= expected (albedo) rather than ==
@@ -109,6 +110,8 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
 // z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold.
 double normal_two_sided_quantile(double p);
+// The t with P(|T| > t) = p for Student's t with `dof` degrees of freedom.
+double student_t_two_sided_quantile(double p, double dof);
 
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
 
