@@ -585,7 +585,7 @@ static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint inde
   u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
   real mx, my, c, s2;
   sample_m_c(cosine, u_phi, u_r, w, &mx, &my, &c, &s2);
-  return eval_D(d, c, s2, pd) * c / pdf_m(c, s2, w);
+  return eval_D(d, c, s2, pd) * c / pdf_mix(c, pdf_slope(c, s2, w));  // pdf_m at w > 0, without its loop
 }
 
 static inline real masking_value_c(int d, int g, real pd, real pg, real w, real co, real u_pick, real u_phi,
@@ -595,7 +595,7 @@ static inline real masking_value_c(int d, int g, real pd, real pg, real w, real 
   sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
   real om = ox * mx + co * c;
   if (om <= R(0.0)) return R(0.0);
-  return eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_m(c, s2, w) * co);
+  return eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_mix(c, pdf_slope(c, s2, w)) * co);
 }
 
 // One sample of the estimator of integral `s`.
