@@ -26,6 +26,7 @@ typedef float acc_t;
 #define CHECK_ALBEDO_RQMC 3  // E(o) at cos_o, as CHECK_ALBEDO
 #define CHECK_EAVG_RQMC 4    // E_avg = ∫ E(μ) 2μ dμ: μ with density 2μ, stratified
 #define CHECK_ALBEDO_RQMC_B 5  // sample_values only: the B of CHECK_ALBEDO_RQMC, for the reference
+#define CHECK_ALBEDO_MIS 6     // mfv run's albedo: three proposals by multi-sample MIS on RQMC replicates (albedo_mis)
 
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
@@ -260,9 +261,10 @@ static inline real vis_pdf_i(real hc, real hs2, real co, real so2, real w) {
 
 // A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
 // Listing 3, isotropic). Returns 0 where the sample degenerates (h = 0).
-static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
+static inline void sample_vis_c(real vx, real vy, real vz, real u_phi, real u_r, real w, real* mx, real* my,
+                                real* mz) {
   // component arithmetic and sincos_2pi, as albedo_value
-  real ox = w * o.x, oy = w * o.y, oz = o.z;  // o in the stretched (w = 1) configuration
+  real ox = w * vx, oy = w * vy, oz = vz;  // o in the stretched (w = 1) configuration
   real inv = rsqrt(ox * ox + oy * oy + oz * oz);
   ox *= inv;
   oy *= inv;
@@ -273,7 +275,15 @@ static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
   real hx = w * (st * sc.y + ox), hy = w * (st * sc.x + oy), hz = z + oz;
   real len2 = hx * hx + hy * hy + hz * hz;
   real r = len2 > R(0.0) ? rsqrt(len2) : R(0.0);
-  return (real3)(hx * r, hy * r, hz * r);
+  *mx = hx * r;
+  *my = hy * r;
+  *mz = hz * r;
+}
+
+static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
+  real mx, my, mz;
+  sample_vis_c(o.x, o.y, o.z, u_phi, u_r, w, &mx, &my, &mz);
+  return (real3)(mx, my, mz);
 }
 
 // f(i,o) (n·i) / pdf(i) for i = reflect(o, m), m a visible normal of D_w;
@@ -356,6 +366,71 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
   real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);
   real pm = pdf_mix(hz, pdf_slope(hz, hx * hx + hy * hy, w));
   return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / albedo_pdf(iz, oh, pm);
+}
+
+// ---- mfv run's albedo (CHECK_ALBEDO_MIS; host: IntegralKind::AlbedoMis) --
+// Three proposals of the light direction i, none of which calls a term under
+// test (DESIGN.md §3): (a) o reflected about a visible normal of the GGX
+// *shape* of width w (sample_vis_c, vis_pdf_i: Heitz 2018, written here, never
+// D_*/G1_*), the low-variance one; (b) o reflected about Cauchy slopes of
+// width w and (c) the cosine lobe, the defensive pair whose tails cover every
+// catalog D (see the top of this file). Combined by the multi-sample model of
+// MIS with the balance heuristic (Veach 1997 §9.2.2, eq. 9.13): with shares
+// c = (1/2, 1/4, 1/4) of the points, every point contributes
+// f(i,o) (n·i) / (Σ_t c_t p_t(i)), whichever proposal drew it, and the mean
+// is unbiased. A wrong D or G under test only enters the numerator, so it
+// cannot cancel (tests/test_suite.cpp plants three).
+// Points: index = r n + k with n = strata points per replicate; replicate r
+// has its own Cranley-Patterson shift (Philox draw 3, counter r); k < n/2
+// takes proposal (a), k < 3n/4 (b), the rest (c), each on its own run
+// j = 0, 1, ... of the 2D Kronecker sequence (RQMC_G1, RQMC_G2). Replicates
+// are independent, so their spread gives an honest standard error (host:
+// Integrator::run, Student t with R - 1 degrees of freedom).
+// Reference twin: albedo_mis in host/reference/estimators.cpp.
+#define MIS_C_VIS R(0.5)
+#define MIS_C_SLOPE R(0.25)
+#define MIS_C_COS R(0.25)
+#define MIS_DRAW 3u  // the Philox draw of the replicates' shifts
+
+static inline uint4 mis_shift(uint stream, ulong seed, uint replicate) { return mfv_philox(seed, stream, MIS_DRAW, replicate); }
+
+// Point k of n of a replicate with shift `shift`, by components and with
+// selects (no branch, no float3: albedo_mis_values vectorizes, see
+// albedo_values); the three candidates share one (u_phi, u_r).
+static inline real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                         real co, uint4 shift, uint k, uint n) {
+  uint n_vis = n / 2u, n_slope = n / 4u;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_slope;
+  uint j = vis ? k : cosine ? k - n_vis - n_slope : k - n_vis;
+  real u_phi = u01_open(shift.x + j * RQMC_G1), u_r = u01_open(shift.y + j * RQMC_G2);
+  real so2 = sin2_from_cos(co), ox = sqrt(so2), oz = co;  // the view in the xz-plane
+  real vx, vy, vz, sx, sy, sz, s2;
+  sample_vis_c(ox, R(0.0), oz, u_phi, u_r, w, &vx, &vy, &vz);
+  sample_m_c(false, u_phi, u_r, w, &sx, &sy, &sz, &s2);
+  real mx = vis ? vx : sx, my = vis ? vy : sy, mz = vis ? vz : sz;
+  real om2 = R(2.0) * (ox * mx + oz * mz);  // o reflected about m (m = 0, a degenerate visible normal: i = -o)
+  real cx, cy, cz;
+  cosine_direction(u_phi, u_r, &cx, &cy, &cz);
+  real ix = cosine ? cx : om2 * mx - ox, iy = cosine ? cy : om2 * my, iz = cosine ? cz : om2 * mz - oz;
+  if (iz <= R(0.0)) return R(0.0);
+  real hx, hy, hz;
+  real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);  // as brdf_eval_c forms it
+  real hs2 = hx * hx + hy * hy;
+  // the pdfs of i under each proposal: (a) vis_pdf_i; (b) the slope density
+  // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
+  real q = MIS_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + MIS_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
+           MIS_C_COS * iz * MFV_INV_PI;
+  return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
+}
+
+static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+#ifdef MFV_USER_BRDF
+  return NAN;  // the host sends no AlbedoMis integral to user code (mfv check)
+#else
+  uint n = s->strata;
+  return albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o,
+                               mis_shift(s->stream, seed, (uint)(index / n)), (uint)(index % n), n);
+#endif
 }
 
 static inline real albedo_value(__global const IntegralSpec* s, real u_branch, real u_pick, real u_phi, real u_r) {
@@ -489,9 +564,44 @@ static inline real convergence_value(__global const IntegralSpec* s, ulong seed,
   return NAN;
 }
 
+// d_norm and masking samples of an isotropic microfacet integral (model 0,
+// pd2 = 0, one width w > 0, no user code), by components and with selects
+// as albedo_value_microfacet, so that d_norm_values and masking_values
+// vectorize; sample_value takes the same functions, so the general kernel and
+// the fast path give the same samples to the bit.
+static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
+#ifdef MFV_USER_BRDF
+  return false;
+#else
+  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
+#endif
+}
+
+// d_norm, stratified: sample `index` of `strata` (see sample_value).
+static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint index, real u_phi, real u_r) {
+  uint n_cos = strata / 4u;
+  bool cosine = index < n_cos;
+  uint k = cosine ? index : index - n_cos, n = cosine ? n_cos : strata - n_cos;
+  u_r = min(((real)k + u_r) / (real)n, R(0x1.fffffep-1));
+  real mx, my, c, s2;
+  sample_m_c(cosine, u_phi, u_r, w, &mx, &my, &c, &s2);
+  return eval_D(d, c, s2, pd) * c / pdf_mix(c, pdf_slope(c, s2, w));  // pdf_m at w > 0, without its loop
+}
+
+static inline real masking_value_c(int d, int g, real pd, real pg, real w, real co, real u_pick, real u_phi,
+                                   real u_r) {
+  real ox = sqrt(sin2_from_cos(co));  // spec_view at phi_o = 0
+  real mx, my, c, s2;
+  sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
+  real om = ox * mx + co * c;
+  if (om <= R(0.0)) return R(0.0);
+  return eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_mix(c, pdf_slope(c, s2, w)) * co);
+}
+
 // One sample of the estimator of integral `s`.
 static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulong index) {
   if (s->estimator != 0u) return convergence_value(s, seed, index);
+  if (s->check == CHECK_ALBEDO_MIS) return albedo_mis_value(s, seed, index);
   if (s->check >= CHECK_ALBEDO_RQMC) {
     real2 v = albedo_rqmc_value(s, rqmc_shift(s, seed), index);
     return s->check == CHECK_ALBEDO_RQMC_B ? v.y : v.x;
@@ -509,6 +619,8 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     // pairs of neighbouring strata.
     real c, s2;
     const bool aniso = spec_aniso(s);
+    if (s->strata > 0u && spec_is_microfacet(s))
+      return d_norm_value_c(s->d, s->pd, w, s->strata, (uint)index, u_phi, u_r);
     if (s->strata > 0u) {
       ulong n_cos = (ulong)s->strata / 4u;
       bool cosine = index < n_cos;
@@ -532,6 +644,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
   if (s->check == CHECK_MASKING) {
     // weak white furnace (Heitz 2014 eq. 19): ∫ G1(o,m) D(m) max(0, o·m) dm / (o·n) = 1,
     // with G1(o,m) = G2(light at the normal, o, m), the Smith G1 for Smith G2s
+    if (spec_is_microfacet(s)) return masking_value_c(s->d, s->g, s->pd, s->pg, w, co, u_pick, u_phi, u_r);
     real c, s2;
     if (spec_aniso(s)) {
       real3 m = sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2);
@@ -618,6 +731,66 @@ __kernel void albedo_values(__global const IntegralSpec* restrict specs, ulong s
                                      u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w));
 }
 #endif
+
+#ifndef MFV_USER_BRDF
+// mfv run's albedo (CHECK_ALBEDO_MIS) with one point per work-item, as
+// albedo_values: row `row0 + get_global_id(1)` is replicate (row % replicates)
+// of integral (row / replicates); work-item k takes point k of it. The
+// replicate's shift depends on the row only, so it is computed once per
+// work-group loop, not per point. sum_values then reduces each row.
+__kernel void albedo_mis_values(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,
+                                __global float* restrict values) {
+  size_t k = get_global_id(0), row = row0 + get_global_id(1);
+  __global const IntegralSpec* s = specs + row / replicates;
+  uint4 shift = mis_shift(s->stream, seed, (uint)(row % replicates));
+  values[get_global_id(1) * get_global_size(0) + k] =
+      (float)albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift,
+                                   (uint)k, s->strata);
+}
+#endif
+
+#ifndef MFV_USER_BRDF
+// d_norm (stratified) and masking of isotropic microfacet integrals
+// (spec_is_microfacet) with one sample per work-item, as albedo_values:
+// work-item (k, j) takes sample first + k of integral j, the sample
+// `integrate` takes there. sum_pairs / sum_values reduce.
+__kernel void d_norm_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
+                            __global float* restrict values) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  uint4 r = mfv_philox(seed, s->stream, 0, first + k);
+  values[j * get_global_size(0) + k] =
+      (float)d_norm_value_c(s->d, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w));
+}
+
+__kernel void masking_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
+                             __global float* restrict values) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  uint4 r = mfv_philox(seed, s->stream, 0, first + k);
+  values[j * get_global_size(0) + k] = (float)masking_value_c(s->d, s->g, s->pd, s->pg, s->width, s->cos_o,
+                                                              u01_open(r.y), u01_open(r.z), u01_open(r.w));
+}
+#endif
+
+// Sum and the sum of squared differences of neighbouring samples (pairs
+// 2i, 2i + 1: neighbouring strata) of each run of `per_group` values (a
+// multiple of 4), as `integrate` leaves a stratified integral's work-groups.
+__kernel void sum_pairs(__global const float* restrict values, uint per_group, __global acc_t* restrict sums) {
+  size_t g = get_global_id(0);
+  __global const float* v = values + g * per_group;
+  acc_t s[2] = {0, 0}, q[2] = {0, 0};
+  for (uint k = 0; k < per_group; k += 4) {
+#pragma unroll
+    for (uint j = 0; j < 2; ++j) {
+      acc_t a = (acc_t)v[k + 2 * j], b = (acc_t)v[k + 2 * j + 1];
+      s[j] += a + b;
+      q[j] += (a - b) * (a - b);
+    }
+  }
+  sums[2 * g] = s[0] + s[1];
+  sums[2 * g + 1] = q[0] + q[1];
+}
 
 // Sum and sum of squares of each run of `per_group` consecutive values (a
 // multiple of 4) into sums[2g], sums[2g + 1], as `integrate` leaves its

@@ -47,10 +47,37 @@ TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cl
 }
 
 TEST_CASE("mfv bench rejects bad options with one line", "[bench][cli]") {
-  for (const char* args : {"bench --repeats 0", "bench --integrand furnace", "bench --samples 1"}) {
+  for (const char* args : {"bench --repeats 0", "bench --integrand furnace", "bench --samples 1",
+                           "bench --case ggx", "bench --case ggx/smith_ggx_correlated/none:0.5",
+                           "bench --case nope/smith_ggx_correlated/none:0.5:0.5", "bench --case ggx/ggx/none:0.5:0.5",
+                           "bench --case ggx/smith_ggx_correlated/none:x:0.5",
+                           "bench --case ggx/smith_ggx_correlated/none:0.5:0",
+                           "bench --case ggx/smith_ggx_correlated/none:0.5:1.5",
+                           "bench --case ggx/smith_ggx_correlated/none:-1:0.5",
+                           "bench --case ggx/smith_ggx_correlated/none/x:0.5:0.5"}) {
     auto r = run_mfv(args);
     INFO(args << ": " << r.out);
     CHECK(r.code == 2);
     CHECK(r.out.rfind("mfv: error:", 0) == 0);
   }
+}
+
+TEST_CASE("mfv bench --case gives one integral's time to a standard error of 1e-4", "[bench][cli][mis]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("mfv_bench_case_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  auto r = run_mfv("bench --case ggx/smith_ggx_correlated/none:0.5:0.5 --repeats 3 --out " + dir.string());
+  INFO(r.out);
+  REQUIRE(r.code == 0);
+  std::ifstream in(dir / "bench.json");
+  const auto j = nlohmann::json::parse(in);
+  CHECK(j["schema"] == "mfv-bench-case/1");
+  CHECK(j["samples_per_s"].get<double>() > 0);
+  CHECK(j["variance_per_sample"].get<double>() > 0);
+  CHECK(j["seconds_to_se_1e-4"].get<double>() > 0);
+  // the search stops where the error reached 1e-4 (give the 3 timed calls' rms 30 %), and the
+  // estimate is the quadrature's 0.6982507 within 6 of its standard errors
+  CHECK(j["rms_stderr"].get<double>() < 1.3e-4);
+  CHECK(std::fabs(j["estimate"].get<double>() - 0.6982507) < 6 * j["stderr"].get<double>());
+  fs::remove_all(dir);
 }

@@ -55,7 +55,7 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
       albedo("beckmann", "smith_beckmann", "schlick", 0.5, 0.2, 0.5, 0.3, 3),    // another pair, with kd
       albedo("ggx", "smith_beckmann", "none", 0.8, 0.05, 1.0, 0.0, 4),           // mismatched G
   };
-  IntegralSpec masking = specs[0];  // not an albedo: always the general kernel
+  IntegralSpec masking = specs[0];  // masking: masking_values on the fast path
   masking.check = static_cast<int32_t>(IntegralKind::Masking);
   specs.push_back(masking);
 
@@ -67,6 +67,20 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
       const auto general = in.run(specs, 40000, 7, first);
       require_same(fast, general);
     }
+  }
+  SECTION("stratified d_norm (d_norm_values + sum_pairs)") {
+    std::vector<IntegralSpec> norms;
+    for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"ggx", 1.5}}) {
+      const Term& t = find_term(d);
+      norms.push_back(make_spec(IntegralKind::DNorm, &t, nullptr, nullptr, native_from_alpha(t.roughness, a), 0, 0, 0, 0,
+                                a, 1.0));
+      norms.back().stream = uint32_t(norms.size());
+    }
+    in.set_albedo_fast_path(true);
+    const auto fast = in.run(norms, 1 << 18, 5);
+    in.set_albedo_fast_path(false);
+    const auto general = in.run(norms, 1 << 18, 5);
+    require_same(fast, general);
   }
   SECTION("an integral larger than one launch (split along its samples)") {
     const std::vector<IntegralSpec> big = {specs[1]};

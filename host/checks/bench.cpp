@@ -184,12 +184,17 @@ std::string cpu_model() {
   return "unknown";
 }
 
-std::string load_average() {
+
+}  // namespace
+
+std::string bench_load_average() {
   std::ifstream in("/proc/loadavg");
   std::string a, b, c;
   in >> a >> b >> c;
   return in ? a + " " + b + " " + c : "unknown";
 }
+
+namespace {
 
 const BenchRow* find_row(const BenchReport& r, const std::string& integrand, const std::string& engine) {
   for (auto& row : r.rows)
@@ -239,7 +244,7 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
   rep.opt = opt;
   rep.date = utc_timestamp();
   rep.cpu = cpu_model();
-  rep.load_average = load_average();
+  rep.load_average = bench_load_average();
   rep.hardware_threads = std::max(1u, std::thread::hardware_concurrency());
   const auto integrands = opt.integrands.empty() ? kIntegrands : opt.integrands;
   std::vector<DeviceInfo> devices;

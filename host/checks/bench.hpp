@@ -53,5 +53,6 @@ FlopCount flops_per_sample(const std::string& integrand);
 std::string bench_table(const BenchReport& r);  // console and Markdown
 std::string bench_json(const BenchReport& r);
 void validate_bench_options(const BenchOptions& opt);
+std::string bench_load_average();  // /proc/loadavg's first three fields
 
 }  // namespace mfv

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <string>
 
 namespace mfv {
 
@@ -129,6 +130,12 @@ uint64_t Integrator::samples_used(uint64_t requested) const {
   return uint64_t(slices) * local_size_ * per_item;
 }
 
+uint32_t Integrator::mis_points(uint64_t requested) const {
+  const uint64_t n = (samples_used(requested) + kMisReplicates - 1) / kMisReplicates;
+  if (n > (uint64_t(1) << 26)) throw Error(fmt::format("{} samples per integral is too many", requested));
+  return uint32_t(std::max<uint64_t>(4, (n + 3) / 4 * 4));
+}
+
 void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
   const uint64_t n = samples_used(samples);
   if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
@@ -136,18 +143,25 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
   // point count fixes the spacing, see kernels/integrate.cl). A mixture of
   // widths (width <= 0) draws its component from u_pick, which
   // stratification fixes: those d_norm integrals stay iid.
+  const uint32_t mis = mis_points(samples);  // AlbedoMis: points per replicate
   for (auto& s : specs)
-    s.strata = s.estimator != 0 ? 0u  // mfv convergence's estimators are iid or RQMC
+    s.strata = s.check == static_cast<int32_t>(IntegralKind::AlbedoMis) ? mis
+               : s.estimator != 0 ? 0u  // mfv convergence's estimators are iid or RQMC
                : (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
                        s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
                    ? uint32_t(n)
                    : 0u;
 }
 
-// kernels/integrate.cl albedo_is_microfacet: the integrals albedo_values takes.
-static bool albedo_fast_path(const IntegralSpec& s) {
-  return s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.estimator == 0 && s.strata == 0 && s.model == 0 &&
-         !(s.pd2 > 0) && s.phi_o == 0 && s.width > 0;
+// kernels/integrate.cl spec_is_microfacet: the integrals a *_values kernel
+// takes (one sample per work-item, vectorized on PoCL): iid albedo and
+// masking, stratified d_norm. Returns the kernel, or nullptr.
+static const char* values_kernel(const IntegralSpec& s) {
+  if (s.estimator != 0 || s.model != 0 || s.pd2 > 0 || s.phi_o != 0 || !(s.width > 0)) return nullptr;
+  if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_values";
+  return nullptr;
 }
 
 std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item,
@@ -180,8 +194,9 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
 // The same sums for albedo_fast_path integrals through albedo_values (one
 // sample per work-item, stored) and sum_values (the per-slice sums of
 // `integrate`): the samples of `integrate`, reduced in the same slices.
-std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<IntegralSpec>& specs, uint32_t per_item,
-                                                      uint32_t slices, uint64_t seed, uint64_t first_index) {
+std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<IntegralSpec>& specs, const char* kernel,
+                                                      uint32_t per_item, uint32_t slices, uint64_t seed,
+                                                      uint64_t first_index) {
   std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
   const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
@@ -189,7 +204,9 @@ std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<Integral
   // A launch takes `count` integrals over slices [s0, s0 + nslices).
   const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
-  cl::Kernel values_k(program_, "albedo_values"), sum_k(program_, "sum_values");
+  // stratified d_norm: neighbouring strata's squared differences, as `integrate`
+  const bool pairs = std::string(kernel) == "d_norm_values";
+  cl::Kernel values_k(program_, kernel), sum_k(program_, pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice;
   cl::Buffer values(rt_.context(), CL_MEM_READ_WRITE, capacity * sizeof(float));
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
@@ -217,6 +234,66 @@ std::vector<Integrator::Sums> Integrator::sums_albedo(const std::vector<Integral
     }
   }
   return out;
+}
+
+// sum_values over `rows` consecutive runs of per_row values (a multiple of 4).
+void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out) {
+  cl::Kernel sum_k(program_, "sum_values");
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  cl::Buffer sums(rt_.context(), CL_MEM_WRITE_ONLY, rows * 2 * acc);
+  sum_k.setArg(0, values);
+  sum_k.setArg(1, static_cast<cl_uint>(per_row));
+  sum_k.setArg(2, sums);
+  rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(rows));
+  add_sums(sums, rows, 1, out);
+}
+
+// AlbedoMis integrals through albedo_mis_values (one point per work-item,
+// one row per replicate) and sum_values (one sum per row).
+std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
+  const size_t rows = specs.size() * kMisReplicates;
+  std::vector<Sums> out(rows);
+  if (specs.empty()) return out;
+  const uint32_t n = specs.front().strata;  // points per replicate, the same for every spec of a run
+  for (const auto& s : specs)
+    if (s.strata != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
+  const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
+  const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
+  cl::Kernel k(program_, "albedo_mis_values");
+  size_t local = fit_local_size(k, rt_.device().device, 1024);  // the device's and kernel's limits
+  while (n % local != 0) local /= 2;                              // a power of two that divides n
+  cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                      const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer values(rt_.context(), CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
+  for (size_t row0 = 0; row0 < rows; row0 += per_launch) {
+    const size_t count = std::min(per_launch, rows - row0);
+    k.setArg(0, spec_buf);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, static_cast<cl_uint>(kMisReplicates));
+    k.setArg(3, static_cast<cl_uint>(row0));
+    k.setArg(4, values);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, 1));
+    sum_rows(values, count, n, out.data() + row0);
+  }
+  return out;
+}
+
+// Mean and standard error of an AlbedoMis integral from its replicates' sums
+// of n points each: the replicate means are iid, so SE = sd / sqrt(R) with
+// R - 1 degrees of freedom.
+static Estimate replicate_estimate(const double* sums, uint32_t replicates, uint32_t n) {
+  Estimate e;
+  e.samples = uint64_t(replicates) * n;
+  double mean = 0;
+  for (uint32_t r = 0; r < replicates; ++r) mean += sums[r] / n;
+  mean /= replicates;
+  double ss = 0;
+  for (uint32_t r = 0; r < replicates; ++r) ss += (sums[r] / n - mean) * (sums[r] / n - mean);
+  e.mean = mean;
+  e.stderr_ = std::sqrt(ss / double(replicates - 1) / double(replicates));
+  e.dof = replicates - 1;
+  if (!std::isfinite(mean)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+  return e;
 }
 
 // Adds the (sum, sum of squares) pairs of `count` integrals x `slices`
@@ -248,22 +325,45 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   if (first_index > 0)
     for (auto& s : specs)
       if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
-  // isotropic microfacet albedo integrals take the vectorizable fast path
-  std::vector<IntegralSpec> fast, general;
-  std::vector<size_t> fast_at, general_at;
+  // isotropic microfacet integrals take the vectorizable fast paths
+  std::vector<IntegralSpec> general, mis;
+  std::vector<size_t> general_at, mis_at;
+  std::map<std::string, std::vector<size_t>> fast_at;  // by values kernel
   for (size_t j = 0; j < specs.size(); ++j) {
+    if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
+      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) || !fast_albedo_available_)
+        throw Error("internal: AlbedoMis takes isotropic microfacet integrals of the catalog's program only");
+      mis.push_back(specs[j]);
+      mis_at.push_back(j);
+      continue;
+    }
     // sum_values takes runs of a multiple of 4 (per_item is even)
-    const bool f = fast_albedo_ && local_size_ % 2 == 0 && albedo_fast_path(specs[j]);
-    (f ? fast : general).push_back(specs[j]);
-    (f ? fast_at : general_at).push_back(j);
+    const char* fast = fast_albedo_ && local_size_ % 2 == 0 ? values_kernel(specs[j]) : nullptr;
+    if (fast) {
+      fast_at[fast].push_back(j);
+    } else {
+      general.push_back(specs[j]);
+      general_at.push_back(j);
+    }
   }
   std::vector<Sums> sums(specs.size());
-  const auto fs = sums_albedo(fast, per_item, slices, seed, first_index);
+  for (const auto& [kernel, at] : fast_at) {
+    std::vector<IntegralSpec> fast;
+    for (size_t j : at) fast.push_back(specs[j]);
+    const auto fs = sums_values(fast, kernel.c_str(), per_item, slices, seed, first_index);
+    for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
+  }
   const auto gs = sums_integrate(general, per_item, slices, seed, first_index);
-  for (size_t j = 0; j < fast.size(); ++j) sums[fast_at[j]] = fs[j];
   for (size_t j = 0; j < general.size(); ++j) sums[general_at[j]] = gs[j];
   std::vector<Estimate> out(specs.size());
+  const auto ms = sums_mis(mis, seed);
+  for (size_t j = 0; j < mis.size(); ++j) {
+    std::vector<double> rep(kMisReplicates);
+    for (uint32_t r = 0; r < kMisReplicates; ++r) rep[r] = ms[j * kMisReplicates + r].sum;
+    out[mis_at[j]] = replicate_estimate(rep.data(), kMisReplicates, mis[j].strata);
+  }
   for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) continue;
     const double s = sums[i].sum, ss = sums[i].sumsq;
     Estimate& e = out[i];
     e.samples = n;

@@ -17,7 +17,22 @@ struct Term;
 // visible-normal proposal, one randomization per integral (mfv energy;
 // kernels/integrate.cl); AlbedoRqmc also yields the split sum's B on the same
 // points, which AlbedoRqmcB names for sample_values and the reference.
-enum class IntegralKind : int32_t { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoRqmcB = 5 };
+// AlbedoMis: mfv run's isotropic microfacet albedo, three proposals (one
+// of them visible normals of the GGX shape) by multi-sample MIS on
+// kMisReplicates randomized-QMC replicates; its standard error comes from the
+// replicates' spread (Estimate::dof = kMisReplicates - 1).
+enum class IntegralKind : int32_t {
+  DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoRqmcB = 5, AlbedoMis = 6
+};
+
+// Replicates of an AlbedoMis integral. The error allowance is t·SE with the
+// Student t of R - 1 degrees of freedom; in the N^-1 regime of RQMC,
+// SE ~ sqrt(R)/N, so t(R-1)·sqrt(R) is what to minimise. At the default
+// run's per-test level (1e-6 / 123182 tests = 8e-12, two-sided) t is 18.7,
+// 10.6, 8.4, 7.5 for R = 16, 32, 64, 128 (normal: 6.84), t·sqrt(R) 75, 60,
+// 67, 85: R = 32, where an integrand too rough for QMC (SE ~ 1/sqrt(N)
+// whatever R) pays 10.6 / 6.84 = 1.55x in allowance.
+constexpr uint32_t kMisReplicates = 32;
 
 // Twin of IntegralSpec in kernels/integrate.cl: twenty 4-byte fields.
 struct IntegralSpec {
@@ -39,6 +54,7 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
   uint64_t samples = 0;
   double b_mean = 0;  // AlbedoRqmc: the split sum's B on the same points (no stderr: RQMC errors come from replicates)
+  uint32_t dof = 0;   // stderr_ from replicates: Student t with dof degrees of freedom (0: normal, from a sum of squares)
 };
 
 // One microfacet (D x G x F, model 0) integral; g and f may be null.
@@ -76,6 +92,10 @@ class Integrator {
   std::vector<Estimate> run(const std::vector<IntegralSpec>& specs, uint64_t samples, uint64_t seed,
                             uint64_t first_index = 0);
   uint64_t samples_used(uint64_t requested) const;
+  // Points per replicate of an AlbedoMis integral run with `requested`
+  // samples: samples_used / kMisReplicates, rounded up to a multiple of 4
+  // (the kernel's shares 1/2, 1/4, 1/4 and sum_values' runs).
+  uint32_t mis_points(uint64_t requested) const;
   // Sets `strata` as run() does, for callers that need the same samples
   // elsewhere (sample_values, the reference).
   void stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const;
@@ -97,10 +117,11 @@ class Integrator {
 
   bool double_accumulation() const { return acc_double_; }
   Runtime& runtime() { return rt_; }
-  // Isotropic microfacet albedo integrals run through albedo_values +
-  // sum_values (kernels/integrate.cl: eight work-items per AVX2 instruction on
-  // PoCL), on the samples `integrate` takes; off: `integrate` takes them too
-  // (tests compare the two).
+  // Isotropic microfacet albedo and masking integrals (iid) and d_norm
+  // (stratified) run through albedo_values, masking_values, d_norm_values +
+  // sum_values / sum_pairs (kernels/integrate.cl: eight work-items per AVX2
+  // instruction on PoCL where the program holds one term of each kind), on
+  // the samples `integrate` takes; off: `integrate` takes them (tests compare).
   void set_albedo_fast_path(bool on) { fast_albedo_ = on && fast_albedo_available_; }
 
  private:
@@ -108,12 +129,17 @@ class Integrator {
     double sum = 0, sumsq = 0;
   };
   void layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const;
-  // run()'s two paths: the `integrate` kernel, and albedo_values + sum_values
-  // for isotropic microfacet albedo integrals (kernels/integrate.cl)
+  // run()'s paths: the `integrate` kernel; for isotropic microfacet integrals
+  // albedo_values, masking_values or d_norm_values with sum_values or
+  // sum_pairs; albedo_mis_values for AlbedoMis (kernels/integrate.cl)
   std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
                                    uint64_t seed, uint64_t first_index);
-  std::vector<Sums> sums_albedo(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
-                                uint64_t seed, uint64_t first_index);
+  std::vector<Sums> sums_values(const std::vector<IntegralSpec>& specs, const char* kernel, uint32_t per_item,
+                                uint32_t slices, uint64_t seed, uint64_t first_index);
+  // AlbedoMis: the sums of each replicate (kMisReplicates per integral, integral-major)
+  std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed);
+  // sum_values over `rows` runs of `per_row` values in `values`, added to out[0 .. rows)
+  void sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out);
   void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
   Runtime& rt_;
   cl::Program program_;

@@ -36,6 +36,7 @@ struct PointResult {
   double rounding_bound = 0;  // bias bound from float rounding where measured (0: judge derives one)
   double bias = 0;            // judge: the bias bound tested with (rounding + tolerance x |expected|)
   double z = 0;               // judge: deviation / total uncertainty (stderr_ + bias), stats/verdict.hpp
+  uint32_t dof = 0;     // stderr_ from replicates: Student t with dof degrees of freedom (0: normal)
   double expected = 0;  // the value a correct model gives (d_norm, masking)
   // The integral's value where the catalog knows it though the test is an
   // upper limit (furnace: quadrature of the double reference,
@@ -138,6 +139,8 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
 // z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold (stats/normal.hpp).
 double normal_two_sided_quantile(double p);
+// The t with P(|T| > t) = p for Student's t with `dof` degrees of freedom.
+double student_t_two_sided_quantile(double p, double dof);
 
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
 

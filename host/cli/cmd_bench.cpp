@@ -1,5 +1,6 @@
 // mfv bench: samples/s and integrals/s on each OpenCL device and in the reference.
 #include "checks/bench.hpp"
+#include "checks/bench_case.hpp"
 #include "cli/commands.hpp"
 #include "report/files.hpp"
 
@@ -12,7 +13,7 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
                                           "reciprocity on every OpenCL device (or --device) and the double reference "
                                           "with 1 and all threads; medians, ratios, flops/sample");
   static BenchOptions opt;
-  static std::string out_dir;
+  static std::string out_dir, case_text;
   cmd->add_option("--integrals", opt.integrals, "integrals per launch and per reference pass (default 64)");
   cmd->add_option("--samples", opt.samples, "samples per integral on a device (default 65536)");
   cmd->add_option("--ref-samples", opt.ref_samples, "samples per integral in the reference (default 4096)");
@@ -21,8 +22,24 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--integrand", opt.integrands, "only these: d_norm, albedo, reciprocity");
   cmd->add_option("--seed", opt.seed, "Philox key");
   cmd->add_option("--out", out_dir, "write bench.json and bench.md here");
+  cmd->add_option("--case", case_text,
+                  "D/G/F:ALPHA:MU: one albedo integral with the suite's estimator: samples/s, variance per sample, "
+                  "seconds to a standard error of 1e-4 (e.g. ggx/smith_ggx_correlated/none:0.5:0.5)");
   cmd->callback([&g, &rc] {
     validate_bench_options(opt);
+    if (!case_text.empty()) {
+      const BenchCase c = parse_bench_case(case_text);
+      if (!out_dir.empty()) prepare_output_dir(out_dir);
+      const BenchCaseResult r = run_bench_case(g.device, g.kernel_dir, c, opt.repeats, opt.seed);
+      fmt::print("{}", bench_case_text(r));
+      if (!out_dir.empty()) {
+        const std::string json = bench_case_json(r, bench_load_average(), utc_timestamp());
+        write_files_atomically({{out_dir + "/bench.json", json}, {out_dir + "/bench.md", "# mfv bench --case\n\n" + bench_case_text(r)}});
+        fmt::print("wrote {}/bench.json, bench.md\n", out_dir);
+      }
+      rc = 0;
+      return;
+    }
     if (!out_dir.empty()) prepare_output_dir(out_dir);
     BenchReport rep = run_bench(g.device, g.kernel_dir, opt);
     const std::string table = bench_table(rep);

@@ -152,6 +152,36 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
   return m.z > 0.0 ? energy_weight(s.brdf, m, o, s.width) : 0.0;
 }
 
+// mfv run's albedo (twin of albedo_mis_microfacet in kernels/integrate.cl):
+// point k of replicate r (index = r n + k, n = strata) on the 2D Kronecker
+// points of its own run j, shifted by Philox draw 3 at counter r; k < n/2:
+// o reflected about a visible normal of the GGX shape, k < 3n/4: about a
+// Cauchy slope of width w, else the cosine lobe. Balance heuristic over the
+// three (Veach 1997 eq. 9.13): f cos / (½ p_vis + ¼ p_slope + ¼ cos/π).
+double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  const uint32_t n = s.strata, k = uint32_t(index % n), half = n / 2, quarter = n / 4;
+  const auto shift = philox(seed, s.stream, 3, index / n);
+  const bool vis = k < half, cosine = k >= half + quarter;
+  const uint32_t j = vis ? k : cosine ? k - half - quarter : k - half;
+  const double u_phi = u01_open(shift[0] + j * kRqmcG[0]), u_r = u01_open(shift[1] + j * kRqmcG[1]);
+  const double w = s.width;
+  const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
+  glm::dvec3 i;
+  if (cosine) {
+    const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
+    i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
+  } else {
+    double c, s2;
+    const glm::dvec3 m = vis ? sample_vis(o, u_phi, u_r, w) : sample_m(1.0, u_phi, u_r, w, c, s2);
+    i = 2.0 * glm::dot(o, m) * m - o;
+  }
+  if (i.z <= 0.0) return 0.0;
+  const glm::dvec3 h = glm::normalize(i + o);
+  const double p_slope = pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h));
+  const double q = 0.5 * vis_pdf_i(h, o, w) + 0.25 * p_slope + 0.25 * i.z / M_PI;
+  return spec_brdf(s.brdf, i, o) * i.z / q;
+}
+
 }  // namespace
 
 // Twin of the pair draw in kernels/integrate.cl `reciprocity`.
@@ -254,6 +284,7 @@ double convergence_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   if (s.estimator != 0) return convergence_value(s, seed, index);
   if (s.kind == Integral::AlbedoRqmc || s.kind == Integral::EavgRqmc) return albedo_rqmc(s, seed, index);
+  if (s.kind == Integral::AlbedoMis) return albedo_mis(s, seed, index);
   auto r = philox(seed, s.stream, 0, index);
   const double u_branch = u01_open(r[0]), u_phi = u01_open(r[2]);
   double u_pick = u01_open(r[1]), u_r = u01_open(r[3]);

@@ -12,7 +12,10 @@ namespace mfv::ref {
 
 // AlbedoRqmc and EavgRqmc (mfv energy) are Albedo on randomized-QMC uniforms;
 // EavgRqmc also draws the view cosine per sample with density 2μ.
-enum class Integral { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4 };
+// AlbedoMis (mfv run's albedo): visible normals of the GGX shape, Cauchy
+// slopes and the cosine lobe by multi-sample MIS, strata = points per
+// randomized-QMC replicate (twin of albedo_mis in kernels/integrate.cl).
+enum class Integral { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoMis = 6 };
 
 struct IntegralRef {
   Integral kind = Integral::DNorm;
@@ -21,7 +24,7 @@ struct IntegralRef {
   double cos_o = 1.0;    // view for masking and albedo, at azimuth phi_o about n
   double phi_o = 0.0;    // (0: in the xz-plane); twin of IntegralSpec::phi_o
   uint32_t stream = 0;   // Philox stream = integral id
-  uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid)
+  uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid); AlbedoMis: points per replicate
   uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
 };
 

@@ -2,6 +2,7 @@
 
 #include <boost/math/distributions/binomial.hpp>
 #include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,13 @@ namespace mfv::stats {
 double normal_two_sided_quantile(double p) {
   // P(|Z| > z) = p  <=>  z = Q(p / 2), Q the upper quantile (complement of the CDF)
   return normal_upper_quantile(0.5 * std::min(p, 1.0));
+}
+
+double student_t_two_sided_quantile(double p, double dof) {
+  // P(|T| > t) = p  <=>  t = upper quantile of T at p / 2
+  const double q = 0.5 * std::min(p, 1.0);
+  if (q >= 0.5) return 0;
+  return boost::math::quantile(boost::math::complement(boost::math::students_t_distribution<double>(dof), q));
 }
 
 double normal_upper_quantile(double p) {

@@ -12,6 +12,8 @@ double normal_two_sided_quantile(double p);
 double normal_upper_quantile(double p);
 // P(|N(0,1)| > z).
 double normal_two_sided_tail(double z);
+// t with P(|T| > t) = p for Student's t with dof degrees of freedom.
+double student_t_two_sided_quantile(double p, double dof);
 
 // The smallest k with P(Binomial(n, p) > k) <= q: a count of events of
 // probability at most p that exceeds it has chance at most q.

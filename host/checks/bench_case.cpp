@@ -1,0 +1,182 @@
+#include "checks/bench_case.hpp"
+#include "mfv_git_commit.h"
+
+#include "catalog/catalog.hpp"
+#include "catalog/roughness.hpp"
+#include "checks/integrate.hpp"
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <time.h>
+
+namespace mfv {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+const Term& term_of(const std::string& id, Kind kind, const char* what) {
+  const Term* t = try_find_term(id, kind);
+  if (!t) throw Error(fmt::format("--case: '{}' is not a {} term of the catalog (see 'mfv list')", id, what));
+  return *t;
+}
+
+double number(const std::string& s, const char* what) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || s.empty() || !std::isfinite(v)) throw Error(fmt::format("--case: {} '{}' is not a number", what, s));
+  return v;
+}
+
+IntegralSpec case_spec(const BenchCase& c) {
+  const Term &d = find_term(c.d), &g = find_term(c.g), &f = find_term(c.f);
+  const double pg = g.params.empty() ? 0.0 : std::min(native_from_alpha(g.roughness, c.alpha), g.params[0].hi);
+  IntegralSpec s = make_spec(IntegralKind::AlbedoMis, &d, &g, &f, native_from_alpha(d.roughness, c.alpha), pg, c.f0,
+                             c.f1, 0.0, c.alpha, c.mu);
+  s.stream = 0;
+  return s;
+}
+
+// rms SE of `seeds` calls with n samples
+double rms_se(Integrator& in, const IntegralSpec& spec, uint64_t n, uint64_t seed, int seeds) {
+  double ss = 0;
+  for (int k = 0; k < seeds; ++k) {
+    const Estimate e = in.run({spec}, n, seed + 1000 + uint64_t(k))[0];
+    ss += e.stderr_ * e.stderr_;
+  }
+  return std::sqrt(ss / seeds);
+}
+
+}  // namespace
+
+BenchCase parse_bench_case(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+  const size_t s1 = parts.empty() ? std::string::npos : parts[0].find('/');
+  const size_t s2 = s1 == std::string::npos ? s1 : parts[0].find('/', s1 + 1);
+  if (parts.size() != 3 || s2 == std::string::npos || parts[0].find('/', s2 + 1) != std::string::npos)
+    throw Error(fmt::format("--case '{}': expected D/G/F:ALPHA:MU, e.g. ggx/smith_ggx_correlated/none:0.5:0.5", text));
+  BenchCase c;
+  c.d = parts[0].substr(0, s1);
+  c.g = parts[0].substr(s1 + 1, s2 - s1 - 1);
+  c.f = parts[0].substr(s2 + 1);
+  term_of(c.d, Kind::D, "D");
+  term_of(c.g, Kind::G, "G");
+  const Term& f = term_of(c.f, Kind::F, "F");
+  if (!f.params.empty()) c.f0 = f.params[0].fallback;
+  if (f.params.size() > 1) c.f1 = f.params[1].fallback;
+  c.alpha = number(parts[1], "ALPHA");
+  c.mu = number(parts[2], "MU");
+  const Term& d = find_term(c.d);
+  const double native = native_from_alpha(d.roughness, c.alpha);
+  if (!(c.alpha > 0) || !(native >= d.params[0].lo && native <= d.params[0].hi))
+    throw Error(fmt::format("--case: ALPHA {} is out of {}'s range", parts[1], c.d));
+  if (!(c.mu > 0 && c.mu <= 1)) throw Error(fmt::format("--case: MU {} must be in (0, 1]", parts[2]));
+  return c;
+}
+
+BenchCaseResult run_bench_case(const std::string& device_selector, const std::string& kernel_dir, const BenchCase& c,
+                               int repeats, uint64_t seed) {
+  const DeviceInfo dev = select_device(device_selector);
+  Runtime rt(std::to_string(dev.index), kernel_dir);
+  TermSelection sel;  // the one term triple: a program PoCL vectorizes
+  sel.d = {&find_term(c.d)};
+  sel.g = {&find_term(c.g)};
+  sel.f = {&find_term(c.f)};
+  Integrator in(rt, sel);
+  const IntegralSpec spec = case_spec(c);
+  BenchCaseResult r;
+  r.c = c;
+  r.device = dev.name;
+  r.replicates = kMisReplicates;
+  r.repeats = repeats;
+  // search: the smallest n on a grid of 2^k and midpoints whose rms SE (3 seeds) reaches the target
+  constexpr uint64_t kMax = uint64_t(1) << 26;
+  uint64_t lo = 0, hi = uint64_t(1) << 12;
+  while (hi < kMax && rms_se(in, spec, hi, seed, 3) > r.target_se) lo = hi, hi *= 2;
+  for (int step = 0; step < 3 && lo > 0 && hi - lo > 4096; ++step) {
+    const uint64_t mid = (lo + hi) / 2;
+    (rms_se(in, spec, mid, seed, 3) > r.target_se ? lo : hi) = mid;
+  }
+  const uint64_t n = in.samples_used(hi);
+  r.samples = uint64_t(in.mis_points(hi)) * kMisReplicates;
+  std::vector<double> wall, cpu;
+  double ss = 0;
+  in.run({spec}, n, seed);  // warm-up: first launch, allocations
+  for (int k = 0; k < repeats; ++k) {
+    const double c0 = cpu_now(), t0 = now();
+    const Estimate e = in.run({spec}, n, seed + uint64_t(k))[0];
+    wall.push_back(now() - t0);
+    cpu.push_back(cpu_now() - c0);
+    if (k == 0) r.estimate = e.mean, r.stderr_ = e.stderr_;
+    ss += e.stderr_ * e.stderr_;
+  }
+  r.rms_stderr = std::sqrt(ss / repeats);
+  r.median_seconds = median(wall);
+  r.median_cpu_seconds = median(cpu);
+  r.samples_per_s = double(r.samples) / r.median_seconds;
+  r.variance_per_sample = double(r.samples) * r.rms_stderr * r.rms_stderr;
+  const double over = r.rms_stderr / r.target_se;
+  r.seconds_to_se = r.median_seconds * (over > 1 ? over * over : 1.0);
+  return r;
+}
+
+std::string bench_case_text(const BenchCaseResult& r) {
+  return fmt::format(
+      "case {}/{}/{} alpha={:g} mu={:g} on {}: the suite's albedo estimator (MIS of visible normals, Cauchy slopes "
+      "and the cosine lobe on {} RQMC replicates)\n"
+      "  estimate {:.7f} +- {:.2e} with {} samples; rms SE of {} calls {:.2e}\n"
+      "  samples/s {:.3e}  variance/sample {:.3g} (n SE^2)  seconds to SE {:g}: {:.4g} (median of {}; CPU {:.4g} s)\n",
+      r.c.d, r.c.g, r.c.f, r.c.alpha, r.c.mu, r.device, r.replicates, r.estimate, r.stderr_, r.samples, r.repeats,
+      r.rms_stderr, r.samples_per_s, r.variance_per_sample, r.target_se, r.seconds_to_se, r.repeats,
+      r.median_cpu_seconds);
+}
+
+std::string bench_case_json(const BenchCaseResult& r, const std::string& load_average, const std::string& date) {
+  using nlohmann::json;
+  json j{{"schema", "mfv-bench-case/1"},
+         {"tool", {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}}},
+         {"date", date},
+         {"load_average", load_average},
+         {"case", fmt::format("{}/{}/{}:{:g}:{:g}", r.c.d, r.c.g, r.c.f, r.c.alpha, r.c.mu)},
+         {"device", r.device},
+         {"estimator", "albedo_mis: visible normals (GGX shape) + Cauchy slopes + cosine, balance heuristic, RQMC"},
+         {"replicates", r.replicates},
+         {"samples", r.samples},
+         {"estimate", r.estimate},
+         {"stderr", r.stderr_},
+         {"rms_stderr", r.rms_stderr},
+         {"repeats", r.repeats},
+         {"median_seconds", r.median_seconds},
+         {"median_cpu_seconds", r.median_cpu_seconds},
+         {"samples_per_s", r.samples_per_s},
+         {"variance_per_sample", r.variance_per_sample},
+         {"seconds_to_se_1e-4", r.seconds_to_se}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace mfv
