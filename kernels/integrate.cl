@@ -859,9 +859,13 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity(__global const IntegralSpec*
     // surface's 1/π), where float code loses its relative precision without
     // consequence: F = (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and
     // intermediates go subnormal.
-    float asym = m > R(0.0) ? (float)(fabs(f1 - f2) / max(m, R(1e-4))) : 0.0f;
-    if (!(asym <= w)) {  // NaN counts as the worst
-      w = isnan(asym) ? INFINITY : asym;
+    // A NaN or Inf value is no evidence of symmetry (max() and the m > 0 test
+    // would drop a NaN): it is the worst asymmetry.
+    float asym = !(isfinite(f1) && isfinite(f2)) ? INFINITY
+                 : m > R(0.0)                    ? (float)(fabs(f1 - f2) / max(m, R(1e-4)))
+                                                 : 0.0f;
+    if (!(asym <= w)) {
+      w = asym;
       wi = index;
     }
   }

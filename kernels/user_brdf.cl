@@ -9,7 +9,15 @@
 // params[k] is the k-th declared parameter; the host defines MFV_USER_HAS_D
 // and MFV_USER_HAS_G1 when the file has them.
 
-#define MFV_USER_PARAMS 6
+// MFV_USER_PARAMS (6) is defined in kernels/user_guard.cl. The arrays hold
+// one more slot, the poison slot that out-of-range reads are sent to; slots
+// past the declared MFV_USER_NPARAMS are NaN too, for reads through pointer
+// arithmetic the rewrite does not see.
+#define MFV_USER_SLOTS (MFV_USER_PARAMS + 1)
+
+static inline void user_poison(float* p) {
+  for (int k = MFV_USER_NPARAMS; k < MFV_USER_SLOTS; ++k) p[k] = NAN;
+}
 
 // The parameters of integral `s`: p[0..5] from pd, pg, f0, f1, kd, p5.
 static inline void user_params(__global const IntegralSpec* s, float* p) {
@@ -19,19 +27,20 @@ static inline void user_params(__global const IntegralSpec* s, float* p) {
   p[3] = s->f1;
   p[4] = s->kd;
   p[5] = s->p5;
+  user_poison(p);
 }
 
 static inline real user_channel(float3 v, uint channel) { return channel == 0u ? v.x : channel == 1u ? v.y : v.z; }
 
 static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, real3 o) {
-  float p[MFV_USER_PARAMS];
+  float p[MFV_USER_SLOTS];
   user_params(s, p);
   return user_channel(brdf(convert_float3(i), convert_float3(o), p), s->channel);
 }
 
 static inline real user_D_adapter(__global const IntegralSpec* s, real3 m) {
 #ifdef MFV_USER_HAS_D
-  float p[MFV_USER_PARAMS];
+  float p[MFV_USER_SLOTS];
   user_params(s, p);
   return D(convert_float3(m), p);
 #else
@@ -41,7 +50,7 @@ static inline real user_D_adapter(__global const IntegralSpec* s, real3 m) {
 
 static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m) {
 #ifdef MFV_USER_HAS_G1
-  float p[MFV_USER_PARAMS];
+  float p[MFV_USER_SLOTS];
   user_params(s, p);
   return G1(convert_float3(v), convert_float3(m), p);
 #else
@@ -59,8 +68,9 @@ __kernel void user_eval(__global const float* in, __global float* out) {
   size_t i = get_global_id(0);
   __global const float* r = in + i * USER_IN;
   float3 wi = (float3)(r[0], r[1], r[2]), wo = (float3)(r[3], r[4], r[5]), m = (float3)(r[6], r[7], r[8]);
-  float p[MFV_USER_PARAMS];
+  float p[MFV_USER_SLOTS];
   for (int k = 0; k < MFV_USER_PARAMS; ++k) p[k] = r[9 + k];
+  user_poison(p);
   __global float* o = out + i * USER_OUT;
   float3 f = brdf(wi, wo, p);
   o[0] = f.x;

@@ -17,16 +17,20 @@ struct Run {
   std::string out;  // stdout and stderr together
 };
 
-// `env` is prefixed to the command (e.g. "MFV_GNUPLOT=/nonexistent").
-inline Run run_mfv(const std::string& args, const std::string& env = "") {
-  std::string cmd = env + (env.empty() ? "" : " ") + std::string(MFV_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
+// A shell command line as it is (for tools beside mfv, e.g. pgrep).
+inline Run run_mfv_shell(const std::string& cmd_line) {
+  FILE* p = popen((cmd_line + " 2>&1").c_str(), "r");
   REQUIRE(p != nullptr);
   std::string out;
   std::array<char, 4096> buf{};
   while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
   int status = pclose(p);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// `env` is prefixed to the command (e.g. "MFV_GNUPLOT=/nonexistent").
+inline Run run_mfv(const std::string& args, const std::string& env = "") {
+  return run_mfv_shell(env + (env.empty() ? "" : " ") + std::string(MFV_BINARY) + " " + args);
 }
 
 }  // namespace mfv::test

@@ -215,7 +215,7 @@ TEST_CASE("mfv run rejects bad options with one clear line and exit code 2", "[s
   auto c = GENERATE(Case{"run --samples -5", "--samples must be a positive count"},
                     Case{"run --samples 0", "--samples must be a positive count"},
                     Case{"run --scale -1", "--scale must be a positive number"},
-                    Case{"run --scale nan", "--scale must be a positive number"},
+                    Case{"run --scale nan", "--scale: 'nan' is not a finite number"},
                     Case{"run --check bogus", "unknown check 'bogus'"},
                     Case{"run --model nosuchmodel", "no model matches"});
   CAPTURE(c.args);

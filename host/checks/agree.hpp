@@ -42,7 +42,10 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
 // A whole model (Model) takes wi.xyz, wo.xyz and its p[0..6] in params.
 struct Term;
 struct Model;
-enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4, Model = 5 };
+// = AGREE_* of kernels/agree.cl; the *Aniso modes take an anisotropic term's
+// directions (D: h in inputs [4], [5], [2]; G1: v in [4], [5], [1]) and its
+// alpha_y in params[6].
+enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4, Model = 5, DAniso = 6, G1Aniso = 7, BrdfAniso = 8 };
 struct PointSpec {
   EvalMode mode = EvalMode::Brdf;
   const Term* d = nullptr;

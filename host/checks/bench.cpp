@@ -7,6 +7,7 @@
 #include "reference/estimators.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -287,6 +288,7 @@ std::string bench_json(const BenchReport& r) {
   json j;
   j["schema"] = "mfv-bench/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["date"] = r.date;
   j["host"] = {{"cpu", r.cpu}, {"hardware_threads", r.hardware_threads}, {"load_average", r.load_average}};
   j["options"] = {{"integrals", r.opt.integrals}, {"samples", r.opt.samples}, {"ref_samples", r.opt.ref_samples},

@@ -8,6 +8,7 @@
 #include "rng/philox.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -243,6 +244,7 @@ std::string samplers_json(const std::vector<SamplerResult>& rs, const Runtime& r
   json j;
   j["schema"] = "mfv-samplers/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver}};
   j["date"] = utc_timestamp();
   j["options"] = {{"samples", opt.samples}, {"seed", opt.seed}, {"significance", opt.significance},

@@ -6,6 +6,7 @@
 
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -103,6 +104,7 @@ std::string stability_json(const StabilityReport& rep) {
   json j;
   j["schema"] = "mfv-stability/1";
   j["tool"] = {{"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["created"] = utc_timestamp();
   j["device"] = {{"name", rep.device}, {"platform", rep.platform}, {"driver", rep.driver}};
   j["precision"] = rep.precision;

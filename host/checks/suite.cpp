@@ -225,7 +225,7 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt, uint64_t
 
 std::vector<Plan> make_plans(const SuiteOptions& opt) {
   std::vector<Plan> plans;
-  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   auto Ds = terms_of(Kind::D), Gs = terms_of(Kind::G), Fs = terms_of(Kind::F);
   const Term* none = try_find_term("none", Kind::F);
   auto ok = [&](const std::string& m) { return wanted(opt.models, m); };
@@ -335,6 +335,20 @@ void pool_groups(SuiteReport& rep, double alpha) {
 }
 
 }  // namespace
+
+uint64_t scaled_samples(uint64_t n, double scale) {
+  const double x = double(n) * scale;
+  if (!(x < 0x1p64))  // also NaN
+    throw Error(fmt::format("--samples/--scale ask for {:.3g} samples per integral: too many", x));
+  return std::max<uint64_t>(64, uint64_t(x));
+}
+
+void validate_scale(double scale) {
+  if (!(scale > 0) || !std::isfinite(scale)) throw Error("--scale must be a positive number");
+  if (scale > 0x1p26)
+    throw Error(fmt::format("--scale {:g} (or --samples {:.0f}) is too large: at most 2^26 = 67108864 (--samples "
+                            "2^38)", scale, scale * double(kSuiteBaseSamples)));
+}
 
 void judge(SuiteReport& rep, const SuiteOptions& opt) {
   rep.tests = 0;
@@ -575,6 +589,8 @@ void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<Integr
                         std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
                         std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
   if (specs.empty()) return;
+  if (!(64 * scale <= UINT32_MAX))
+    throw Error(fmt::format("--samples/--scale ask for {:.3g} reciprocity pairs per work-item: too many", 64 * scale));
   const uint64_t pairs = 64 * uint64_t(std::max<uint32_t>(1, uint32_t(64 * scale)));
   for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
   const ReciprocityWorst rw = reciprocity_worst(rt, prog, specs, pairs, seed);
@@ -624,7 +640,7 @@ void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
     if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
       throw Error(fmt::format("unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)", c));
-  if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
+  validate_scale(opt.scale);
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();
   for (auto& m : models())

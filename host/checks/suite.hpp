@@ -90,6 +90,14 @@ struct CheckStats {
 // proportional to the scale.
 constexpr uint64_t kSuiteBaseSamples = 4096;
 
+// max(64, n * scale) samples for one integral; throws mfv::Error when that
+// does not fit a 64-bit count (a double cast there would be undefined).
+uint64_t scaled_samples(uint64_t n, double scale);
+
+// --scale (or --samples / kSuiteBaseSamples) in (0, 2^26]: reciprocity runs
+// 64 * scale pairs per work-item in a uint32 (record_reciprocity).
+void validate_scale(double scale);
+
 struct SuiteOptions {
   uint64_t seed = 1;
   double scale = 1.0;            // multiplies every check's sample count

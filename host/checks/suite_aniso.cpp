@@ -106,7 +106,7 @@ std::vector<std::string> aniso_model_names() {
 }
 
 void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
-  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   const Term* none = try_find_term("none", Kind::F);
   if (suite_check_wanted(opt, "d_norm")) {
     // ∫ D(m) (m·n) dm = 1, stratified in (stretched radius, azimuth)

@@ -2,9 +2,11 @@
 // code (contract in README "mfv check"); same verdicts, reports and exit
 // codes as mfv run, so it drops into a CI job.
 #include "cli/commands.hpp"
+#include "cli/report_errors.hpp"
 #include "report/files.hpp"
 #include "report/suite_report.hpp"
 #include "runtime/error.hpp"
+#include "user/time_limit.hpp"
 #include "user/user_check.hpp"
 
 #include <fmt/format.h>
@@ -12,6 +14,11 @@
 #include <cmath>
 
 namespace mfv::cli {
+
+// Seconds. The default check takes about a minute on 2 CPU cores with PoCL
+// (README "mfv check"); ten times that is a hang, not a slow device. The
+// maximum keeps the limit a finite wait (a week).
+constexpr double kDefaultCheckTimeout = 600, kMaxCheckTimeout = 7 * 86400;
 
 void add_check(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("check", "check your own BRDF code (an OpenCL C file) with the suite's checks; exit 0 "
@@ -39,12 +46,17 @@ void add_check(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--alpha-fw", opt.family_alpha, "family-wise false-alarm rate for the whole run")
       ->check(CLI::Range(1e-300, 0.5));
   cmd->add_option("--out", out_dir, "write results.json, report.md and junit.xml here");
+  static double timeout = kDefaultCheckTimeout;
+  cmd->add_option("--timeout", timeout, "stop the check after this many seconds, exit 2 (default 600): user code "
+                                        "may never return, and an OpenCL kernel cannot be interrupted");
   cmd->callback([&g, &rc, samples_opt] {
+    if (!(timeout > 0 && timeout <= kMaxCheckTimeout))
+      throw Error(fmt::format("--timeout {} must be in (0, {:g}] seconds", timeout, kMaxCheckTimeout));
     if (samples_opt->count() > 0) {
       if (samples <= 0) throw Error(fmt::format("--samples must be a positive count, not {}", samples));
       opt.scale = double(samples) / double(kSuiteBaseSamples);
     }
-    if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw Error("--scale must be a positive number");
+    validate_scale(opt.scale);
     if (!channels.empty()) {
       opt.channels.clear();
       for (auto& c : channels) {
@@ -57,12 +69,17 @@ void add_check(CLI::App& app, Globals& g, int& rc) {
     std::optional<Claim> claim;
     if (!as.empty()) claim = parse_claim(as, map, u);
     if (!out_dir.empty()) prepare_output_dir(out_dir);
-    Runtime rt(g.device, g.kernel_dir);
-    SuiteReport rep = run_user_check(rt, u, claim, opt);
-    SuiteOptions sopt = suite_options_of(opt);
-    print_suite_console(rep, rt, sopt);
-    if (!out_dir.empty()) write_suite_outputs(rep, rt, sopt, out_dir);
-    rc = rep.gate_ok() ? 0 : 1;
+    // in a child process, killed after --timeout (user/time_limit.hpp)
+    rc = run_with_time_limit(timeout, "mfv check --brdf " + path, [&] {
+      return run_reporting_errors([&] {
+        Runtime rt(g.device, g.kernel_dir);
+        SuiteReport rep = run_user_check(rt, u, claim, opt);
+        SuiteOptions sopt = suite_options_of(opt);
+        print_suite_console(rep, rt, sopt);
+        if (!out_dir.empty()) write_suite_outputs(rep, rt, sopt, out_dir);
+        return rep.gate_ok() ? 0 : 1;
+      });
+    });
   });
 }
 

@@ -12,35 +12,94 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace mfv::cli {
 namespace {
 
+// A direction is unit when its float32 rounding is, up to that rounding: a
+// unit vector w rounded componentwise to float (relative error u = 2^-24
+// each) has ||w~| - 1| <= |w~ - w| <= u |w|; typed in decimal with 9
+// significant digits (what the error message suggests) it is rounded twice,
+// so the tolerance is 2u = 2^-23.
+constexpr double kUnitTolerance = 0x1p-23;
+
 std::array<float, 3> parse_direction(const std::string& what, const std::string& text) {
   auto parts = split(text, ',');
   if (parts.size() != 3) throw Error(fmt::format("{} needs three comma-separated numbers, got '{}'", what, text));
   std::array<float, 3> v{};
+  double len2 = 0;
   for (int i = 0; i < 3; ++i) {
     double x = parse_number(what, parts[i]);
     if (!std::isfinite(x)) throw Error(fmt::format("{} has a non-finite component", what));
     v[i] = static_cast<float>(x);
+    len2 += double(v[i]) * double(v[i]);
+  }
+  const double len = std::sqrt(len2);
+  if (!(std::fabs(len - 1.0) <= kUnitTolerance)) {
+    if (!(len > 0)) throw Error(fmt::format("{} {} is the zero vector; give a unit direction", what, text));
+    throw Error(fmt::format("{} {} has length {:.9g}, not 1 within float rounding (2^-23); the unit vector is "
+                            "{:.9g},{:.9g},{:.9g}",
+                            what, text, len, v[0] / len, v[1] / len, v[2] / len));
   }
   return v;
 }
 
+// The --param values by name; each term reads what it needs, and a name no
+// term read is an error at the end (none is silently dropped).
+struct Given {
+  std::map<std::string, double> values;
+  std::set<std::string> used;
+  const double* find(const std::string& name) {
+    auto it = values.find(name);
+    if (it == values.end()) return nullptr;
+    used.insert(name);
+    return &it->second;
+  }
+};
+
 // A term's native parameter: --param NAME=V if given, else from --alpha.
-double term_param(const Term& t, size_t i, std::map<std::string, double>& given, double alpha, bool alpha_given) {
+double term_param(const Term& t, size_t i, Given& given, double alpha, bool alpha_given) {
   const Param& p = t.params[i];
   double v = p.fallback;
-  if (auto it = given.find(p.name); it != given.end()) {
-    v = it->second;
-    given.erase(it);
-  } else if (i == 0 && alpha_given && t.roughness != Roughness::None) {
-    v = native_from_alpha(t.roughness, alpha);
-  }
+  if (const double* x = given.find(p.name)) v = *x;
+  else if (i == 0 && alpha_given && t.roughness != Roughness::None) v = native_from_alpha(t.roughness, alpha);
   validate_param(t, i, v);
   return v;
+}
+
+struct EvalArgs {
+  std::string wi, wo, h;
+  bool wi_given, wo_given, h_given, cosines_given;
+  double NoL, NoV, NoH, VoH;
+};
+
+// A single term: cosines for the isotropic ones; an anisotropic D takes the
+// half vector (--h), an anisotropic G's G1 the view (--wo), in the tangent
+// frame t = +x, b = +y, n = +z.
+void single_term(PointSpec& ps, const Term& t, bool g1, const EvalArgs& a) {
+  if (g1 && (t.kind != Kind::G || !(t.ref_g1 || t.ref_g1_aniso))) throw Error(fmt::format("'{}' has no Smith G1", t.id));
+  if (!t.aniso) {
+    if (a.h_given) throw Error(fmt::format("--h is for anisotropic D terms; give '{}' cosines (--NoH ...)", t.id));
+    float cos[6] = {float(a.NoL), float(a.NoV), float(a.NoH), float(a.VoH), 0, 0};
+    std::copy(cos, cos + 6, ps.inputs);
+    ps.mode = t.kind == Kind::D ? EvalMode::D : t.kind == Kind::F ? EvalMode::F : g1 ? EvalMode::G1 : EvalMode::G;
+    return;
+  }
+  if (a.cosines_given)
+    throw Error(fmt::format("'{}' is anisotropic: cosines alone lose alpha_y; give {}", t.id,
+                            t.kind == Kind::D ? "the half vector --h x,y,z" : "--g1 and the view --wo x,y,z"));
+  if (t.kind == Kind::G && !g1)
+    throw Error(fmt::format("'{}' is anisotropic: evaluate its G1 (--g1 --wo x,y,z) or a BRDF D/G/F with --wi, --wo",
+                            t.id));
+  if (t.kind == Kind::D && !a.h_given) throw Error(fmt::format("'{}' is anisotropic: give the half vector --h x,y,z", t.id));
+  if (t.kind == Kind::G && !a.wo_given) throw Error(fmt::format("'{}' G1 is anisotropic: give the view --wo x,y,z", t.id));
+  auto w = t.kind == Kind::D ? parse_direction("--h", a.h) : parse_direction("--wo", a.wo);
+  ps.inputs[t.kind == Kind::D ? 2 : 1] = w[2];
+  ps.inputs[4] = w[0];
+  ps.inputs[5] = w[1];
+  ps.mode = t.kind == Kind::D ? EvalMode::DAniso : EvalMode::G1Aniso;
 }
 
 }  // namespace
@@ -48,7 +107,7 @@ double term_param(const Term& t, size_t i, std::map<std::string, double>& given,
 void add_eval(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("eval", "evaluate one term or one D/G/F BRDF at one point on the device and in "
                                          "the reference");
-  static std::string spec, wi_s = "0,0,1", wo_s = "0,0,1";
+  static std::string spec, wi_s = "0,0,1", wo_s = "0,0,1", h_s;
   static std::vector<std::string> params;
   static double alpha = 0.3, kd = 0.0;
   static double NoL = 1, NoV = 1, NoH = 1, VoH = 1;
@@ -57,29 +116,44 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
                                 "a whole model (lambert, eon, phong_004...)")
       ->required();
   auto* alpha_opt = cmd->add_option("--alpha", alpha, "shared width alpha, converted to each term's parameter");
-  cmd->add_option("--param", params, "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k...)");
+  cmd->add_option("--param", params, "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k, alpha_x, alpha_y...)");
   cmd->add_option("--kd", kd, "Lambert albedo added to a BRDF");
-  cmd->add_option("--wi", wi_s, "light direction x,y,z (n = +z)");
-  cmd->add_option("--wo", wo_s, "view direction x,y,z");
-  cmd->add_option("--NoL", NoL, "cos between normal and light (single terms)");
-  cmd->add_option("--NoV", NoV, "cos between normal and view (single terms)");
-  cmd->add_option("--NoH", NoH, "cos between normal and half vector (single terms)");
-  cmd->add_option("--VoH", VoH, "cos between view and half vector (single terms)");
-  cmd->add_flag("--g1", g1, "evaluate a Smith G term's G1 (at NoV) instead of its G2");
+  auto* wi_opt = cmd->add_option("--wi", wi_s, "light direction x,y,z, unit (n = +z, tangent t = +x)");
+  auto* wo_opt = cmd->add_option("--wo", wo_s, "view direction x,y,z, unit (also the view of an anisotropic G1)");
+  auto* h_opt = cmd->add_option("--h", h_s, "half vector x,y,z, unit, of an anisotropic D (aniso_ggx...)");
+  std::vector<CLI::Option*> cos_opts = {
+      cmd->add_option("--NoL", NoL, "cos between normal and light (single isotropic terms), in [-1, 1]"),
+      cmd->add_option("--NoV", NoV, "cos between normal and view (single isotropic terms), in [-1, 1]"),
+      cmd->add_option("--NoH", NoH, "cos between normal and half vector (single isotropic terms), in [-1, 1]"),
+      cmd->add_option("--VoH", VoH, "cos between view and half vector (single isotropic terms), in [-1, 1]")};
+  cmd->add_flag("--g1", g1, "evaluate a Smith G term's G1 (at NoV, or at --wo for an anisotropic one) instead of its G2");
   cmd->add_flag("--fp64", fp64, "evaluate the kernel in double");
-  cmd->callback([&g, &rc, alpha_opt] {
-    std::map<std::string, double> given;
+  cmd->callback([&g, &rc, alpha_opt, wi_opt, wo_opt, h_opt, cos_opts] {
+    Given given;
     for (auto& p : params) {
       auto kv = split(p, '=');
       if (kv.size() != 2) throw Error(fmt::format("--param wants NAME=VALUE, got '{}'", p));
-      given[kv[0]] = parse_number("--param " + kv[0], kv[1]);
+      given.values[kv[0]] = parse_number("--param " + kv[0], kv[1]);
     }
     bool alpha_given = alpha_opt->count() > 0;
     if (alpha_given && !(alpha > 0.0 && std::isfinite(alpha)))
       throw Error(fmt::format("--alpha = {} must be a positive finite number", alpha));
     if (!(kd >= 0.0 && kd <= 1.0)) throw Error(fmt::format("--kd = {} is out of range [0, 1]", kd));
-    for (double c : {NoL, NoV, NoH, VoH})
-      if (!std::isfinite(c)) throw Error("cosines must be finite numbers");
+    const char* cos_names[4] = {"--NoL", "--NoV", "--NoH", "--VoH"};
+    const double cos_values[4] = {NoL, NoV, NoH, VoH};
+    bool cosines_given = false;
+    for (int i = 0; i < 4; ++i) {
+      if (!(cos_values[i] >= -1.0 && cos_values[i] <= 1.0))
+        throw Error(fmt::format("{} = {} is not a cosine (outside [-1, 1])", cos_names[i], cos_values[i]));
+      cosines_given = cosines_given || cos_opts[size_t(i)]->count() > 0;
+    }
+    EvalArgs args{wi_s, wo_s, h_s, wi_opt->count() > 0, wo_opt->count() > 0, h_opt->count() > 0, cosines_given,
+                  NoL, NoV, NoH, VoH};
+    auto directions = [&](PointSpec& ps) {
+      if (cosines_given || args.h_given) throw Error(fmt::format("'{}' takes directions --wi and --wo, not cosines or --h", spec));
+      auto wi = parse_direction("--wi", wi_s), wo = parse_direction("--wo", wo_s);
+      for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
+    };
 
     PointSpec ps;
     auto parts = split(spec, '/');
@@ -90,44 +164,52 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
       ps.f = &find_term(parts[2]);
       if (ps.d->kind != Kind::D || ps.g->kind != Kind::G || ps.f->kind != Kind::F)
         throw Error(fmt::format("'{}' must name a D, a G and an F term, in that order", spec));
-      auto wi = parse_direction("--wi", wi_s), wo = parse_direction("--wo", wo_s);
-      for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
+      if (ps.d->aniso != ps.g->aniso)
+        throw Error(fmt::format("'{}': an anisotropic D goes with an anisotropic Smith G (e.g. aniso_ggx/smith_aniso_ggx)", spec));
+      directions(ps);
       ps.params[0] = static_cast<float>(term_param(*ps.d, 0, given, alpha, alpha_given));
       if (!ps.g->params.empty()) ps.params[1] = static_cast<float>(term_param(*ps.g, 0, given, alpha, alpha_given));
       for (size_t i = 0; i < ps.f->params.size(); ++i)
         ps.params[2 + i] = static_cast<float>(term_param(*ps.f, i, given, alpha, alpha_given));
       ps.params[4] = static_cast<float>(kd);
+      if (ps.d->aniso) {
+        // one alpha_y for both (kernels/agree.cl record slot 14), as D and G share the surface
+        ps.mode = EvalMode::BrdfAniso;
+        ps.params[6] = static_cast<float>(term_param(*ps.d, 1, given, alpha, alpha_given));
+        term_param(*ps.g, 1, given, alpha, alpha_given);
+      }
     } else if (const Model* m = parts.size() == 1 ? try_find_model(spec) : nullptr) {
       // a whole model: f(wi, wo) with its parameters by name, defaults otherwise
       if (alpha_given) throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", spec));
       ps.mode = EvalMode::Model;
       ps.model = m;
-      auto wi = parse_direction("--wi", wi_s), wo = parse_direction("--wo", wo_s);
-      for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
+      directions(ps);
       for (size_t i = 0; i < m->params.size(); ++i) {
         double v = m->params[i].fallback;
-        if (auto it = given.find(m->params[i].name); it != given.end()) {
-          v = it->second;
-          given.erase(it);
-        }
+        if (const double* x = given.find(m->params[i].name)) v = *x;
         validate_model_param(*m, i, v);
         ps.params[i] = static_cast<float>(v);
       }
     } else if (parts.size() == 1) {
       const Term& t = find_term(spec);
-      float cos[6] = {float(NoL), float(NoV), float(NoH), float(VoH), 0, 0};
-      std::copy(cos, cos + 6, ps.inputs);
-      if (t.kind == Kind::D) ps.mode = EvalMode::D, ps.d = &t;
-      if (t.kind == Kind::G) ps.mode = g1 ? EvalMode::G1 : EvalMode::G, ps.g = &t;
-      if (t.kind == Kind::F) ps.mode = EvalMode::F, ps.f = &t;
-      if (g1 && (t.kind != Kind::G || !t.ref_g1)) throw Error(fmt::format("'{}' has no Smith G1", t.id));
+      if (t.kind == Kind::D) ps.d = &t;
+      if (t.kind == Kind::G) ps.g = &t;
+      if (t.kind == Kind::F) ps.f = &t;
+      single_term(ps, t, g1, args);
       int slot = t.kind == Kind::D ? 0 : t.kind == Kind::G ? 1 : 2;
-      for (size_t i = 0; i < t.params.size(); ++i)
-        ps.params[slot + i] = static_cast<float>(term_param(t, i, given, alpha, alpha_given));
+      if (t.aniso) {
+        ps.params[slot] = static_cast<float>(term_param(t, 0, given, alpha, alpha_given));
+        ps.params[6] = static_cast<float>(term_param(t, 1, given, alpha, alpha_given));
+      } else {
+        for (size_t i = 0; i < t.params.size(); ++i)
+          ps.params[slot + i] = static_cast<float>(term_param(t, i, given, alpha, alpha_given));
+      }
     } else {
       throw Error(fmt::format("'{}' is neither a term id nor D/G/F", spec));
     }
-    if (!given.empty()) throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", given.begin()->first, spec));
+    if (g1 && parts.size() != 1) throw Error("--g1 applies to a single Smith G term");
+    for (auto& [name, v] : given.values)
+      if (!given.used.count(name)) throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, spec));
 
     Runtime rt(g.device, g.kernel_dir);
     PointResult r = eval_point(rt, ps, fp64);

@@ -3,6 +3,7 @@
 // catalog marks stable gives NaN or Inf on in-domain inputs.
 #include "checks/stability.hpp"
 #include "cli/commands.hpp"
+#include "report/files.hpp"
 #include "runtime/error.hpp"
 #include "scene/scene_filters.hpp"
 
@@ -35,11 +36,7 @@ void add_stability(CLI::App& app, Globals& g, int& rc) {
     }
     opt.combinations = !terms_only;
     opt.models = !terms_only;
-    if (!out.empty()) {  // checked before the sweep, not after it
-      std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-      if (!std::filesystem::is_directory(out)) throw Error(fmt::format("--out {}: cannot create that folder", out));
-    }
+    if (!out.empty()) prepare_output_dir(out);  // checked before the sweep, not after it
     Runtime rt(g.device, g.kernel_dir);
     StabilityReport rep = run_stability(rt, opt);
     fmt::print("{}", stability_console(rep));

@@ -5,6 +5,7 @@
 #include "mfv_git_commit.h"
 #include "report/files.hpp"
 #include "report/gnuplot.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -64,6 +65,7 @@ std::string json_of(const ConvergenceReport& r) {
   json j;
   j["schema"] = "mfv-convergence/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["date"] = r.date;
   j["device"] = {{"name", r.device}, {"platform", r.platform}};
   j["options"] = {{"min_log2", r.opt.min_log2}, {"max_log2", r.opt.max_log2}, {"ref_max_log2", r.opt.ref_max_log2},

@@ -3,6 +3,7 @@
 
 #include "report/files.hpp"
 #include "runtime/error.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -112,6 +113,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   json j;
   j["schema"] = "mfv-energy/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
                  {"fp64", rt.device().fp64}};
   j["build_options"] = rt.base_options();

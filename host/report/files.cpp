@@ -1,13 +1,18 @@
 #include "report/files.hpp"
 
+#include "report/temp_files.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+
+#include <unistd.h>
 
 namespace mfv {
 
@@ -16,13 +21,20 @@ void prepare_output_dir(const std::string& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error(fmt::format("--out {}: exists and is not a folder", dir));
+  if (dir.empty()) throw Error("--out: the folder name is empty");
   fs::create_directories(dir, ec);
-  if (ec) throw Error(fmt::format("--out {}: cannot create the folder ({})", dir, ec.message()));
+  if (ec) throw Error(fmt::format("--out {}: cannot create that folder ({})", dir, ec.message()));
+  // Writable? A probe file now, not a failed rename after the whole run.
+  std::string probe = (fs::path(dir) / fmt::format(".mfv-write-probe-{}", ::getpid())).string();
+  bool ok = static_cast<bool>(std::ofstream(probe, std::ios::binary | std::ios::trunc));
+  fs::remove(probe, ec);
+  if (!ok) throw Error(fmt::format("--out {}: cannot write files in that folder ({})", dir, std::strerror(errno)));
 }
 
 void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
   namespace fs = std::filesystem;
   std::vector<std::string> temps;
+  std::vector<TempFile> registered;  // removed by a signal handler until renamed (report/temp_files.hpp)
   auto cleanup = [&] {
     std::error_code ec;
     for (auto& t : temps) fs::remove(t, ec);
@@ -32,10 +44,11 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
     fs::path parent = fs::path(path).parent_path();
     if (!parent.empty()) fs::create_directories(parent, ec);
     std::string tmp = path + ".tmp-mfv";
+    registered.emplace_back(tmp);
+    temps.push_back(tmp);
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (out) out << text;
     out.flush();
-    temps.push_back(tmp);
     if (!out) {
       cleanup();
       throw Error(fmt::format("cannot write {}; earlier results are untouched", path));

@@ -2,6 +2,7 @@
 #include "mfv_git_commit.h"
 
 #include "report/files.hpp"
+#include "runtime/provenance.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -96,6 +97,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   json j;
   j["schema_version"] = 1;
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}, {"command", rep.title}};
+  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["run"] = {{"seed", opt.seed},       {"scale", opt.scale},
               {"family_alpha", opt.family_alpha}, {"z_threshold", rep.z_threshold},
               {"tests", rep.tests},     {"pooled_tests", rep.pooled_tests}, {"date", utc_timestamp()},

@@ -2,6 +2,8 @@
 
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
+#include "runtime/provenance.hpp"
+#include "util/parse.hpp"
 #include "runtime/work_group.hpp"
 
 #include <fmt/format.h>
@@ -9,8 +11,12 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
+#include <functional>
 #include <sstream>
+
+#include <unistd.h>
 
 namespace mfv {
 namespace {
@@ -31,6 +37,39 @@ std::string trim(std::string s) {
   while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
   return s;
 }
+
+// PoCL's compiler writes its diagnostics ("1 error generated.") straight to
+// file descriptor 2 during clBuildProgram; they are held back while a build
+// runs so mfv's one `mfv: error:` line comes first, and then passed on
+// (warnings of a good build) or folded into the error's build log.
+class StderrCapture {
+ public:
+  StderrCapture() : file_(std::tmpfile()) {
+    std::fflush(stderr);
+    if (file_) saved_ = ::dup(2);
+    if (saved_ >= 0 && ::dup2(::fileno(file_), 2) < 0) ::close(saved_), saved_ = -1;
+  }
+  ~StderrCapture() { restore(); }
+  // Puts fd 2 back and returns what was written to it meanwhile.
+  std::string restore() {
+    std::string text;
+    if (saved_ >= 0) {
+      std::fflush(stderr);
+      ::dup2(saved_, 2);
+      ::close(saved_);
+      saved_ = -1;
+      std::rewind(file_);
+      char buf[4096];
+      while (size_t n = std::fread(buf, 1, sizeof buf, file_)) text.append(buf, n);
+    }
+    if (file_) std::fclose(file_), file_ = nullptr;
+    return text;
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
 
 }  // namespace
 
@@ -70,8 +109,7 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
-DeviceInfo select_device(const std::string& selector) {
-  auto devs = list_devices();
+DeviceInfo pick_device(const std::vector<DeviceInfo>& devs, const std::string& selector) {
   if (selector.empty()) {
     for (auto& d : devs)
       if (d.type == "GPU") return d;
@@ -79,21 +117,41 @@ DeviceInfo select_device(const std::string& selector) {
   }
   if (selector == "all") throw Error("--device all is for 'mfv bench' only; other commands run on one device");
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
-    size_t i = std::stoul(selector);
+    uint64_t i = parse_unsigned("--device", selector);
     if (i >= devs.size())
       throw Error(fmt::format("no OpenCL device with index {} ({} found; see 'mfv devices')", i, devs.size()));
     return devs[i];
   }
-  for (auto& d : devs)
-    if (lower(d.platform + " " + d.name).find(lower(selector)) != std::string::npos) return d;
+  // Exact names first (device, platform, or "platform device"), then substrings;
+  // more than one device either way is ambiguous.
+  const std::string want = lower(selector);
+  auto exact = [&](const DeviceInfo& d) {
+    return lower(d.name) == want || lower(d.platform) == want || lower(d.platform + " " + d.name) == want;
+  };
+  auto part = [&](const DeviceInfo& d) { return lower(d.platform + " " + d.name).find(want) != std::string::npos; };
+  for (auto match : {std::function<bool(const DeviceInfo&)>(exact), std::function<bool(const DeviceInfo&)>(part)}) {
+    std::vector<const DeviceInfo*> found;
+    for (auto& d : devs)
+      if (match(d)) found.push_back(&d);
+    if (found.size() == 1) return *found[0];
+    if (found.size() > 1) {
+      std::string names;
+      for (auto* d : found) names += fmt::format("{}#{} {} / {}", names.empty() ? "" : ", ", d->index, d->platform, d->name);
+      throw Error(fmt::format("--device '{}' matches {} devices ({}); give an index or an exact name", selector,
+                              found.size(), names));
+    }
+  }
   throw Error(fmt::format("no OpenCL device matches '{}' (see 'mfv devices')", selector));
 }
+
+DeviceInfo select_device(const std::string& selector) { return pick_device(list_devices(), selector); }
 
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
     : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
   local_size_cap_from_env();  // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
+  record_runtime(info_, kernel_dir_);
 }
 
 std::string Runtime::base_options() const {
@@ -127,12 +185,15 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
     for (size_t i = 0; i < inserts.size(); ++i)
       if (!done[i] && (inserts[i].before == before || before.empty())) {
         source += "#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text + "\n";
+        if (inserts[i].name != "<generated>") record_kernel_source(inserts[i].name, inserts[i].text);
         done[i] = true;
       }
   };
   for (auto& f : files) {
     insert(f);
-    source += kernel_text(f);
+    std::string text = kernel_text(f);
+    record_kernel_source(f, text.substr(text.find('\n') + 1));  // the file, without the #line mfv puts first
+    source += text;
     source += "\n";
   }
   insert("");  // those whose file is not in the list, or that asked for the end
@@ -142,15 +203,20 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
 
   cl::Program program(context_, source);
   auto t0 = std::chrono::steady_clock::now();
+  StderrCapture capture;
   try {
     program.build(std::vector<cl::Device>{info_.device}, options.c_str());
   } catch (const cl::BuildError& e) {
-    std::string log;
+    std::string log, printed = trim(capture.restore());
     for (auto& [dev, text] : e.getBuildLog()) log += trim(text) + "\n";
+    if (!printed.empty() && log.find(printed) == std::string::npos) log += printed + "\n";
     throw Error(fmt::format("kernel build failed on {} (options: {}); build log:\n{}", info_.name, options, log));
   } catch (const cl::Error& e) {
+    capture.restore();
     throw Error(fmt::format("kernel build failed on {}: {} ({})", info_.name, e.what(), e.err()));
   }
+  std::string printed = capture.restore();
+  if (!printed.empty()) std::fputs(printed.c_str(), stderr);
   stats_.builds += 1;
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return program;

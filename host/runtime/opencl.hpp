@@ -28,8 +28,11 @@ struct DeviceInfo {
 std::vector<DeviceInfo> list_devices();
 
 // "" picks the first GPU, else the first device; a number picks by index;
-// anything else is a case-insensitive substring of "platform device".
-DeviceInfo select_device(const std::string& selector);
+// anything else is, case-insensitively, first an exact device name, platform
+// name or "platform device", then a substring of "platform device". A name
+// that matches several devices is an error listing them.
+DeviceInfo pick_device(const std::vector<DeviceInfo>& devices, const std::string& selector);
+DeviceInfo select_device(const std::string& selector);  // pick_device over list_devices()
 
 struct BuildStats {
   int builds = 0;

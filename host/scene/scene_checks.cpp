@@ -104,7 +104,7 @@ bool wants(const SuiteOptions& opt, const std::string& check) {
 
 SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   SceneSets s;
-  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   const std::vector<double> views = view_cosines(32);
   const Term* ggx = &term("ggx", Kind::D);
   const Term* smith = &term("smith_ggx_correlated", Kind::G);

@@ -218,6 +218,32 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
   u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, WidthRole::None, 0});
 }
 
+// `text` with every `NAME[k]` read (NAME: a function's params argument)
+// rewritten as `NAME[MFV_PARAM_INDEX(k)]`, found in the comment-free `code`
+// (same offsets); lines are kept, so build logs still point at the file.
+std::string guard_param_reads(const std::string& text, const std::string& code, const std::vector<std::string>& names) {
+  std::vector<std::pair<size_t, size_t>> spans;  // after '[', at the matching ']'
+  for (auto& name : names) {
+    const std::regex use("\\b" + name + "\\s*\\[");
+    for (auto it = std::sregex_iterator(code.begin(), code.end(), use); it != std::sregex_iterator(); ++it) {
+      size_t open = size_t(it->position(0) + it->length(0)), depth = 1, close = open;
+      for (; close < code.size() && depth > 0; ++close) depth += code[close] == '[' ? 1 : code[close] == ']' ? -1 : 0;
+      if (depth == 0) spans.push_back({open, close - 1});
+    }
+  }
+  std::sort(spans.begin(), spans.end());
+  std::string out;
+  size_t at = 0;
+  for (auto& [open, close] : spans) {
+    if (open < at) continue;  // nested in a span already rewritten: guarded by the outer read's rewrite below
+    out += text.substr(at, open - at) + "MFV_PARAM_INDEX(" + guard_param_reads(text.substr(open, close - open),
+                                                                               code.substr(open, close - open), names) +
+           ")";
+    at = close;
+  }
+  return out + text.substr(at);
+}
+
 }  // namespace
 
 UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
@@ -274,6 +300,11 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   Found fg = find_function(u, code, contracts()[2]);
   u.has_d = fd.defined;
   u.has_g1 = fg.defined;
+  std::vector<std::string> names;
+  for (const Found* f : {&fb, &fd, &fg})
+    if (f->defined && !f->params_name.empty() && std::find(names.begin(), names.end(), f->params_name) == names.end())
+      names.push_back(f->params_name);
+  u.guarded_text = guard_param_reads(u.text, code, names);
   // Every params[k] the code reads must be declared.
   for (const Found* f : {&fb, &fd, &fg}) {
     if (!f->defined || f->params_name.empty()) continue;

@@ -25,6 +25,7 @@ struct UserParam {
 
 struct UserBrdf {
   std::string path, name, text;  // name: the file's stem, used as the model name
+  std::string guarded_text;       // text with each params[k] read bounds-checked (kernels/user_guard.cl)
   bool has_d = false, has_g1 = false;
   std::vector<UserParam> params;  // params[k] of the contract
   int roughness = -1;             // index of the width parameter, -1: none declared

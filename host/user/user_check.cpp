@@ -41,13 +41,13 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // integrate.cl with the user's file and the adapters after it: one build for
 // every check. A compile error leads with its first line in the user's file.
 cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
-  std::vector<std::string> defines = {"MFV_USER_BRDF"};
+  std::vector<std::string> defines = {"MFV_USER_BRDF", fmt::format("MFV_USER_NPARAMS={}", u.params.size())};
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
   if (u.has_d) defines.push_back("MFV_USER_HAS_D");
   if (u.has_g1) defines.push_back("MFV_USER_HAS_G1");
   try {
-    return rt.build({"common.cl", "rng.cl", "brdf.cl", "integrate.cl", "user_brdf.cl"}, defines,
-                    generate_dispatch(TermSelection{}), "brdf.cl", {{u.path, u.text, "user_brdf.cl"}});
+    return rt.build({"common.cl", "rng.cl", "brdf.cl", "integrate.cl", "user_guard.cl", "user_brdf.cl"}, defines,
+                    generate_dispatch(TermSelection{}), "brdf.cl", {{u.path, u.guarded_text, "user_brdf.cl"}});
   } catch (const Error& e) {
     std::string log = e.what(), first;
     size_t errors = 0;
@@ -145,7 +145,7 @@ const char* kChannel = "rgb";
 
 std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, const std::vector<std::string>& checks) {
   auto wanted = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
-  auto scaled = [&](uint64_t n) { return std::max<uint64_t>(64, uint64_t(double(n) * opt.scale)); };
+  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   std::vector<Plan> plans;
   auto add = [&](Plan& plan, IntegralKind kind, const Values& v, double co, int ch, bool upper) {
     plan.specs.push_back(spec_of(u, kind, v, co, ch));

@@ -1,0 +1,22 @@
+# ctest's sanitized_host_tests (cmake/Sanitize.cmake): configure and build
+# BINARY_DIR with -DMFV_SANITIZE=ON, only the target mfv_host_tests, and run it.
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
+  endif()
+endfunction()
+set(launcher "")
+if(LAUNCHER)
+  set(launcher -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER})
+endif()
+# -O1: the sanitizers' own advice (fast enough, stacks still exact)
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -DMFV_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug
+    "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" ${launcher})
+run(${CMAKE_COMMAND} --build ${BINARY_DIR} --target mfv_host_tests -j2)
+set(ENV{ASAN_OPTIONS} "detect_leaks=1:abort_on_error=0:halt_on_error=1")
+set(ENV{UBSAN_OPTIONS} "print_stacktrace=1:halt_on_error=1")
+if(NOT DEFINED ENV{MFV_FUZZ_SECONDS})
+  set(ENV{MFV_FUZZ_SECONDS} "4")
+endif()
+run(${BINARY_DIR}/mfv_host_tests)
