@@ -168,6 +168,12 @@ TEST_CASE("each KHR material extension is accounted for per material", "[scene][
   CHECK(any_has(named(sp, "over one").warnings, "f0 x specularColor = 0.04 x 25 = 1 in channel r is clamped to 1"));
   CHECK(named(sp, "tinted").warnings.empty());
 
+  // KHR_materials_ior: also through the exact dielectric Fresnel
+  Scene ior = load_scene(kCorpus + "/ior_grid.gltf");
+  CHECK(named(ior, "ior 1.33 rough 0.5").ior_exact);
+  CHECK(any_has(named(ior, "ior 2.0 rough 0.1").account, "exact dielectric Fresnel at eta = 2"));
+  CHECK_FALSE(named(sp, "tinted").ior_exact);  // no KHR_materials_ior: Schlick at f0 0.04 only
+
   TempDir t;
   nlohmann::json j = nlohmann::json::parse(slurp(kCorpus + "/ior_grid.gltf"));
   j["materials"][0]["extensions"]["KHR_materials_unlit"] = nlohmann::json::object();
@@ -427,4 +433,20 @@ TEST_CASE("coated materials are checked with their coat lobe, and a planted coat
   INFO(bad.out);
   CHECK(bad.code == 1);
   CHECK(bad.out.find("(bound 0.005: FAILED) at energy gltf_clearcoat") != std::string::npos);
+}
+
+TEST_CASE("KHR_materials_ior is checked through the exact dielectric Fresnel as well", "[device][scene][corpus]") {
+  TempDir t;
+  auto r = run_mfv("run --scene " + kCorpus + "/ior_grid.gltf --check energy --seed 5 --scale 0.5 --out " +
+                   (t.dir / "out").string());
+  INFO(r.out);
+  CHECK(r.code == 0);
+  size_t exact = 0;
+  for (auto& m : results_of(t)["scene"]["materials"])
+    for (auto& c : m["checks"])
+      if (c["set"].get<std::string>().rfind("ggx/smith_ggx_correlated/dielectric", 0) == 0) {
+        ++exact;
+        CHECK(c["verdict"] == "pass");
+      }
+  CHECK(exact == 6);  // each material's one roughness, at its own ior
 }

@@ -358,6 +358,16 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
   const json& spec = ext_of("KHR_materials_specular");
   const json& aniso = ext_of("KHR_materials_anisotropy");
   m.factors.ior = number_or(ior, "ior", 1.5, m, "KHR_materials_ior.");
+  if (ext.contains("KHR_materials_ior")) {
+    // the catalog's exact dielectric F takes eta in [0.1, 10]; ior 0 is the specular-glossiness f0 = 1
+    m.ior_exact = m.factors.ior >= 1.0 && m.factors.ior <= 10.0;
+    m.account.push_back(m.ior_exact ? fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 (the spec) and "
+                                                  "also the exact dielectric Fresnel at eta = {:g} "
+                                                  "(ggx/smith_ggx_correlated/dielectric): energy at every roughness "
+                                                  "point", m.factors.ior, m.factors.ior)
+                                    : fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 only (the exact "
+                                                  "dielectric F takes eta in [1, 10])", m.factors.ior));
+  }
   m.factors.specular = number_or(spec, "specularFactor", 1.0, m, "KHR_materials_specular.");
   if (spec.contains("specularColorFactor")) {
     const auto c = number_array(spec["specularColorFactor"], 3, at(m, "KHR_materials_specular.specularColorFactor"));

@@ -85,6 +85,9 @@ struct SceneMaterial {
   // "gltf_clearcoat" model where coat_checked (host/scene/scene_points.cpp)
   ParamRange clearcoat, clearcoat_roughness;
   bool coat_checked = false;
+  // KHR_materials_ior with 1 <= ior <= 10 (the dielectric F term's range): the
+  // specular lobe is also checked with the exact dielectric Fresnel at eta = ior
+  bool ior_exact = false;
   std::array<ParamRange, 3> base, specular_color;
   // What is checked and what is not, one line each ("KHR_materials_volume: nothing to check on a surface BSDF").
   std::vector<std::string> account;

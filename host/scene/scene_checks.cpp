@@ -188,6 +188,22 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
           }
           sp.add_model(*w.model);
         }
+        // KHR_materials_ior: the specular lobe also with the exact dielectric
+        // Fresnel at eta = ior (Walter et al. 2007 eq. 22), not Schlick's
+        // approximation from f0, at every roughness point
+        if (m.ior_exact) {
+          const Term* exact = &term("dielectric", Kind::F);
+          for (double a : m.alphas()) {
+            std::string key = fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
+            if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
+            for (double co : views) {
+              IntegralSpec is = make_spec(IntegralKind::Albedo, ggx, smith, exact, a, a, m.factors.ior, 0, 0, a, co);
+              add(sp, key, is, ggx, smith, exact, {{"alpha", a}, {"cos_o", co}, {"eta", m.factors.ior}},
+                  expect(sp.plan.check, ggx, smith, a, m.factors.ior, 0), true);
+            }
+            sp.add_terms(ggx, smith, exact);
+          }
+        }
       } else if (m.f != none || m.kd > 0) {
         const bool diffuse = m.kd > 0;
         SetPlan& dp = sp;
