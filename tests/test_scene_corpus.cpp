@@ -389,7 +389,8 @@ TEST_CASE("energy --scene: rounding is no gain, anisotropy is sampled and kept a
   // run --scene on the same scene: what energy reports as an expected gain is an expected failure there
   auto run = run_mfv("run --scene " + scene + " --check energy --seed 5 --out " + (t.dir / "out").string());
   INFO(run.out);
-  for (auto& m : results_of(t)["scene"]["materials"])
+  const nlohmann::json res = results_of(t);  // kept: a range-for over a temporary's member dangles
+  for (auto& m : res["scene"]["materials"])
     if (m["name"] == "white plastic") CHECK(verdicts_of(m, "energy") == std::vector<std::string>{"xfail"});
 }
 
@@ -442,7 +443,8 @@ TEST_CASE("KHR_materials_ior is checked through the exact dielectric Fresnel as 
   INFO(r.out);
   CHECK(r.code == 0);
   size_t exact = 0;
-  for (auto& m : results_of(t)["scene"]["materials"])
+  const nlohmann::json j = results_of(t);  // kept: a range-for over a temporary's member dangles
+  for (auto& m : j["scene"]["materials"])
     for (auto& c : m["checks"])
       if (c["set"].get<std::string>().rfind("ggx/smith_ggx_correlated/dielectric", 0) == 0) {
         ++exact;
