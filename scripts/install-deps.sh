@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(cmake g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers
           catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libtinygltf-dev libssl-dev
-          libboost-math-dev gnuplot-nox)  # gnuplot: optional at run time, for mfv stability's and mfv energy's plots
+          libboost-math-dev libstb-dev
+          gnuplot-nox)  # gnuplot: optional at run time, for mfv stability's and mfv energy's plots
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

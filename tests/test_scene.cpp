@@ -4,6 +4,7 @@
 // agrees with its reference and every scene check fails on a planted defect.
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
+#include "scene_files.hpp"
 #include "scene/scene.hpp"
 
 #include <catch2/catch.hpp>
@@ -17,54 +18,16 @@
 #include <string>
 
 using namespace mfv;
+using mfv::test::glb_of;
+using mfv::test::named;
 using mfv::test::run_mfv;
+using mfv::test::slurp;
+using mfv::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
 
 const std::string kData = std::string(MFV_TEST_DATA_DIR);
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A temporary folder for files a test writes.
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    static int n = 0;
-    dir = fs::temp_directory_path() / ("mfv_scene_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir / name, std::ios::binary) << text;
-    return (dir / name).string();
-  }
-};
-
-// A GLB container (glTF 2.0 §4.4) holding `json` as its JSON chunk.
-std::string glb_of(std::string json) {
-  while (json.size() % 4) json += ' ';
-  std::string out = "glTF";
-  auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
-  u32(2);
-  u32(uint32_t(12 + 8 + json.size()));
-  u32(uint32_t(json.size()));
-  u32(0x4E4F534Au);  // "JSON"
-  return out + json;
-}
-
-const SceneMaterial& named(const Scene& s, const std::string& name) {
-  for (auto& m : s.materials)
-    if (m.name == name) return m;
-  FAIL("no material " << name);
-  return s.materials.front();
-}
 
 // scene.gltf with `edit` applied to its JSON.
 std::string edited_gltf(const TempDir& t, const std::string& name, void (*edit)(nlohmann::json&)) {
@@ -93,11 +56,15 @@ TEST_CASE("glTF materials map to the glTF BRDF's parameters", "[scene]") {
   CHECK(ch[0].weight == 1.0);
   CHECK(plastic.warnings.empty());
 
-  const SceneMaterial& gold = named(s, "gold");  // metallic, roughness from a texture: warning, factor checked
+  // metallic, roughness from an embedded 2x2 texture: G spans [128, 255]/255, B = 1 (issue 21)
+  const SceneMaterial& gold = named(s, "gold");
   CHECK(gold.alpha == Approx(0.09));
-  CHECK(gold.channels().size() == 3);
-  REQUIRE(gold.warnings.size() == 1);
-  CHECK(gold.warnings[0].find("not sample") != std::string::npos);
+  CHECK(gold.roughness.lo == Approx(0.3 * 128 / 255.0));
+  CHECK(gold.roughness.hi == Approx(0.3));
+  CHECK_FALSE(gold.metallic.varies());
+  CHECK(gold.alphas().size() == 4);  // the ends and two points inside
+  CHECK(gold.channels().size() == 3 * 4);
+  CHECK(gold.warnings.empty());
 
   const SceneMaterial& glass = named(s, "coated glass");  // KHR_materials_ior 1.8, KHR_materials_specular
   auto gc = glass.channels();
@@ -125,12 +92,19 @@ TEST_CASE("KHR_materials_anisotropy maps to alpha_t = mix(alpha, 1, strength^2),
   REQUIRE(brushed.warnings.size() == 1);
   CHECK(brushed.warnings[0].find("anisotropyRotation 0.5") != std::string::npos);
 
-  const SceneMaterial& textured = named(s, "textured brushed");  // strength 1: alpha_t = 1
-  CHECK(textured.channels()[0].alpha == Approx(1.0));
-  CHECK(textured.channels()[0].alpha_b == Approx(0.04));
-  REQUIRE(textured.warnings.size() == 1);
-  CHECK(textured.warnings[0].find("anisotropyTexture is not sampled: checked at anisotropyStrength 1") !=
-        std::string::npos);
+  // strength 1 from an absent texture: checked over [0, 1], alpha_t from 0.04 (isotropic) to 1
+  const SceneMaterial& textured = named(s, "textured brushed");
+  CHECK(textured.anisotropy_strength.lo == 0.0);
+  CHECK(textured.anisotropy_strength.hi == 1.0);
+  auto tc = textured.channels();
+  REQUIRE(tc.size() == 4);
+  CHECK(tc[0].alpha == Approx(0.04));
+  CHECK(tc[0].alpha_b == 0.0);
+  CHECK(tc[3].alpha == Approx(1.0));
+  CHECK(tc[3].alpha_b == Approx(0.04));
+  REQUIRE(textured.account.size() == 1);
+  CHECK(textured.account[0].find("image 0 'brushed_direction.png' is not beside the scene") != std::string::npos);
+  CHECK(s.warnings.size() == 1);  // the absent image, once, with the material it scales
 
   // strength 0 is today's isotropic material, parameter for parameter (p[6] = 0)
   auto iso = named(s, "isotropic steel").channels(), plain = named(s, "plain steel").channels();
@@ -187,8 +161,8 @@ TEST_CASE("bad scenes: one line, exit 2, earlier results untouched", "[scene][cl
       {t.write("broken.glb", "glTF\x02\x00\x00\x00garbage"), "not a valid glTF binary"},
       {t.write("scene.obj", "o cube"), "unknown format"},
       {edited_gltf(t, "required.gltf",
-                   [](nlohmann::json& j) { j["extensionsRequired"].push_back("KHR_materials_transmission"); }),
-       "requires extension KHR_materials_transmission"},
+                   [](nlohmann::json& j) { j["extensionsRequired"].push_back("EXT_not_a_real_extension"); }),
+       "requires extension EXT_not_a_real_extension"},
       {edited_gltf(t, "aniso.gltf",
                    [](nlohmann::json& j) {
                      j["materials"][0]["extensions"]["KHR_materials_anisotropy"] = {{"anisotropyStrength", 1.5}};

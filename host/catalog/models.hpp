@@ -35,7 +35,8 @@ using RefAlbedo = double (*)(double cos_l, const double* p);
 enum class Width {
   Diffuse,         // no lobe: width 1 (the cosine lobe of the proposal does the work)
   Alpha,           // p[width_param] is a microfacet width alpha
-  AlphaPair,       // anisotropic: sqrt(p[a] p[b])
+  AlphaPair,       // anisotropic: sqrt(p[a] p[b]); p[a] where p[b] = 0 (isotropic)
+  AlphaMin,        // two lobes (a coat over a base): the narrower, min(p[a], p[b])
   Perceptual,      // seed 002 roughness r: alpha = r^2
   HalfExponent,    // (n.h)^e lobe: alpha = sqrt(2/(e+2)) (Walter et al. 2007)
   MirrorExponent,  // (v.r)^e lobe: about (n.h)^(4e) in half-vector space

@@ -78,7 +78,8 @@ struct ModelEnergy {
   Cell eavg, eavg_quad;           // E_avg: its own integral; midpoint rule over the mu grid
   size_t max_at = 0;              // mu index of the largest E
   double excess_p = 1;            // one-sided p-value of E(mu[max_at]) <= 1 (Student t, R - 1 df)
-  bool gains = false;             // E > 1 beyond noise somewhere (Bonferroni over every model cell)
+  bool gains = false;             // E > 1 beyond noise and float rounding somewhere (Bonferroni over every model cell)
+  bool unresolved = false;        // not gains, but a cell's standard error is above target and its upper bound above 1
   double loss() const { return 1 - eavg.mean; }
 };
 

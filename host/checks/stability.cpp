@@ -505,11 +505,14 @@ CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64) {
 
 // ---- Cases: whole models (catalog/models.hpp) --------------------------------
 
-// A whole model's parameter points: its catalog cases, then each parameter at
-// the ends of its range with the others at their defaults.
-std::vector<ModelParams> model_points(const Model& m) {
+// A whole model's parameter points: its catalog cases (or the points a scene
+// gives, --scene), then each parameter at the ends of its range with the
+// others at their defaults.
+std::vector<ModelParams> model_points(const Model& m, const StabilityOptions& opt) {
   std::vector<ModelParams> out;
-  for (auto& c : m.cases) out.push_back(c.p);
+  auto given = std::find_if(opt.model_points.begin(), opt.model_points.end(), [&](auto& e) { return e.first == m.id; });
+  if (given != opt.model_points.end()) out = given->second;
+  else for (auto& c : m.cases) out.push_back(c.p);
   for (size_t i = 0; i < m.params.size(); ++i)
     for (double v : {m.params[i].lo, m.params[i].hi}) {
       ModelParams p = model_defaults(m);
@@ -519,7 +522,8 @@ std::vector<ModelParams> model_points(const Model& m) {
   return out;
 }
 
-CaseDef model_case(const Model& m, bool fp64) {
+CaseDef model_case(const Model& m, const StabilityOptions& opt) {
+  const bool fp64 = opt.fp64;
   CaseDef c;
   c.info.group = "model";
   c.info.family = "MODEL";
@@ -537,7 +541,7 @@ CaseDef model_case(const Model& m, bool fp64) {
     for (size_t i = 0; i < pm->params.size(); ++i) s += fmt::format(" {}={}", pm->params[i].name, hx(r[6 + i]));
     return s;
   };
-  const std::vector<ModelParams> points = model_points(m);
+  const std::vector<ModelParams> points = model_points(m, opt);
   auto add = [&](int region, const glm::dvec3& wi, const glm::dvec3& wo) {
     for (auto& p : points) {
       Point pt;
@@ -546,7 +550,8 @@ CaseDef model_case(const Model& m, bool fp64) {
       c.points.push_back(pt);
     }
   };
-  const std::string params = "; the model's catalog cases and each parameter at its range ends";
+  const std::string params = opt.model_points.empty() ? "; the model's catalog cases and each parameter at its range ends"
+                                                       : "; the scene's parameter points and each parameter at its range ends";
   for (auto& ps : pair_sets(fp64)) {
     int r = c.add_region({ps.name, ps.what + params, true, ps.expect});
     for (auto& pr : ps.pairs) add(r, pr.wi, pr.wo);
@@ -815,7 +820,7 @@ std::vector<CaseDef> make_cases(const StabilityOptions& opt) {
       for (auto* g : terms_of(Kind::G))
         for (auto* f : terms_of(Kind::F)) cases.push_back(brdf_case(*d, *g, *f, opt.fp64));
   if (opt.models)
-    for (auto& m : models()) cases.push_back(model_case(m, opt.fp64));
+    for (auto& m : models()) cases.push_back(model_case(m, opt));
   if (!opt.only.empty()) {
     std::vector<CaseDef> kept;
     for (auto& c : cases)

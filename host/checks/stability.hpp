@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct StabilityOptions {
   bool combinations = true;       // the D x G x F BRDFs besides terms and variants
   bool models = true;             // the catalog's whole models (catalog/models.hpp)
   std::vector<std::string> only;  // keep cases whose name contains one of these
+  // mfv stability --scene (issue 21): whole models at these parameter points
+  // (the scene's materials) instead of their catalog cases; model id -> points
+  std::vector<std::pair<std::string, std::vector<std::array<double, 7>>>> model_points;
 };
 
 // One case in one region of the sweep.

@@ -9,9 +9,27 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace mfv::cli {
+namespace {
+
+// "out/energy.json, report.md, csv/ (3 files)": what energy_outputs wrote, never a file it did not (issue 21).
+std::string written_list(const std::vector<std::pair<std::string, std::string>>& files, const std::string& dir) {
+  std::string top;
+  std::map<std::string, size_t> folders;
+  for (auto& [path, text] : files) {
+    const std::string rel = path.substr(dir.size() + 1);
+    const size_t slash = rel.find('/');
+    if (slash == std::string::npos) top += (top.empty() ? dir + "/" : ", ") + rel;
+    else ++folders[rel.substr(0, slash + 1)];
+  }
+  for (auto& [f, n] : folders) top += fmt::format(", {} ({} file{})", f, n, n == 1 ? "" : "s");
+  return top;
+}
+
+}  // namespace
 
 void add_energy(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("energy", "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
@@ -73,8 +91,9 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
       print_baseline_console(diff);
     }
     if (!out_dir.empty()) {
-      write_files_atomically(energy_outputs(rep, rt, out_dir, baseline.empty() ? nullptr : &diff));
-      fmt::print("wrote {}/energy.json, report.md, kulla_conty.h, csv/, plots/\n", out_dir);
+      const auto files = energy_outputs(rep, rt, out_dir, baseline.empty() ? nullptr : &diff);
+      write_files_atomically(files);
+      fmt::print("wrote {}\n", written_list(files, out_dir));
     }
     rc = (rep.reference_worst <= rep.reference_bound && diff.moved.empty()) ? 0 : 1;
   });

@@ -32,7 +32,7 @@ void add_stability(CLI::App& app, Globals& g, int& rc) {
     if (!scene_path.empty()) {
       if (!opt.only.empty()) throw Error("--only and --scene cannot be combined: the scene chooses the cases");
       scene = load_scene(scene_path);
-      opt.only = scene_stability_cases(scene);
+      scene_stability_options(scene, opt);
     }
     opt.combinations = !terms_only;
     opt.models = !terms_only;

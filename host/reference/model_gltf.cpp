@@ -50,6 +50,21 @@ double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
   return (1.0 - metallic) * dielectric + metallic * metal;
 }
 
+double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
+  // KHR_materials_clearcoat, "Implementation": coated_material = mix(material,
+  // clearcoat_brdf, clearcoat · (0.04 + 0.96 (1 − |V·Nc|)^5)), Nc = n
+  const double base[7] = {p[0], p[1], p[2], p[3], p[4], 1.0, 0.0};
+  const double material = model_gltf(l, v, base);
+  // clearcoat_brdf = specular_brdf(α = clearcoatRoughness²): Appendix B.3.2 D·Vis, the
+  // metal with F = 1 (base colour 1: conductor_fresnel = 1) of the glTF model itself
+  const double white_metal[7] = {p[5], 1.0, 1.0, 0.04, 0.04, 1.0, 0.0};
+  const double layer = model_gltf(l, v, white_metal);
+  // V = l: the catalog's first direction is the spec's view (kernels/model_gltf.cl explains why)
+  const double weight = p[6] * (0.04 + 0.96 * std::pow(1.0 - std::min(l.z, 1.0), 5.0));
+  return (1.0 - weight) * material + weight * layer;
+}
+
 double albedo_gltf(double, const double* p) {
   if (p[1] == 0.0 && p[5] == 0.0) return p[2];  // (1 - 0) base/π integrated against n·v
   return std::nan("");

@@ -11,6 +11,9 @@ namespace mfv::ref {
 // f(l, v), l = light, v = view, unit (taken as given, as the other whole
 // models: host/reference/models.hpp), n = +z; 0 below either horizon.
 double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// KHR_materials_clearcoat over it: p[0..6] = alpha, metallic, base, f0, f0_max,
+// clearcoat_alpha, clearcoat ("gltf_clearcoat"; V = l, see kernels/model_gltf.cl).
+double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p);
 // Exact albedo where known: a dielectric without a specular layer (metallic 0,
 // weight 0) is Lambert, E = base; NaN elsewhere.
 double albedo_gltf(double cos_l, const double* p);

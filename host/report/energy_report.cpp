@@ -79,8 +79,8 @@ void print_energy_console(const EnergyReport& rep) {
       fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10.5f} {:>6} {:>9}\n", me.point.name,
                  fmt::format("{:.5f}±{:.1e}", me.E.back().mean, me.E.back().se),
                  fmt::format("{:.4f}±{:.1e} ({:.3g})", mx.mean, mx.se, rep.mu[me.max_at]),
-                 fmt::format("{:.5f}±{:.1e}", me.eavg.mean, me.eavg.se), me.loss(), me.gains ? "GAINS" : "no",
-                 expect_name(me.point.expect));
+                 fmt::format("{:.5f}±{:.1e}", me.eavg.mean, me.eavg.se), me.loss(),
+                 me.gains ? "GAINS" : me.unresolved ? "UNRES" : "no", expect_name(me.point.expect));
     }
   }
   fmt::print("accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
@@ -197,7 +197,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                            {"max_E_se", me.E[me.max_at].se},
                            {"max_E_mu", rep.mu[me.max_at]},
                            {"excess_p", me.excess_p},
-                           {"gains", me.gains},
+                           {"gains", me.gains}, {"unresolved", me.unresolved},
                            {"catalog_expect", expect_name(me.point.expect)},
                            {"catalog_why", me.point.why}});
   }
@@ -436,8 +436,11 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
   s += fmt::format("- **Speed:** {:.3g} QMC points (one BRDF evaluation each, E and B together) in {:.1f} s ({:.1f} s "
                    "kernel build), {:.3g} points/s.\n\n",
                    double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second);
-  s += "Files: `energy.json` (everything, arrays [alpha][mu]), `csv/<d>__<g>.csv` (one per combination, grid in the "
-       "header), `csv/eavg.csv`, `kulla_conty.h` (E and E_avg arrays for a renderer).\n\n";
+  // the files this run writes (energy_outputs): the tables' only where there are tables
+  s += rep.tables.empty() ? "Files: `energy.json` (everything), `csv/models.csv`, `csv/models_eavg.csv`.\n\n"
+                          : "Files: `energy.json` (everything, arrays [alpha][mu]), `csv/<d>__<g>.csv` (one per "
+                            "combination, grid in the header), `csv/eavg.csv`, `kulla_conty.h` (E and E_avg arrays "
+                            "for a renderer).\n\n";
   if (base) {
     s += fmt::format("## Baseline comparison\n\n{} values compared (Welch t-test on the two standard errors, "
                      "Bonferroni threshold p < {:.2e}): **{} moved**.\n\n",
@@ -475,7 +478,7 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
     for (auto& me : rep.models)
       s += fmt::format("| {} | {:.5f} ± {:.1e} | {:.4f} ± {:.1e} ({:.3g}) | {:.5f} ± {:.1e} | {:.5f} | {} | {} |\n",
                        me.point.name, me.E.back().mean, me.E.back().se, me.E[me.max_at].mean, me.E[me.max_at].se,
-                       rep.mu[me.max_at], me.eavg.mean, me.eavg.se, me.loss(), me.gains ? "**yes**" : "no",
+                       rep.mu[me.max_at], me.eavg.mean, me.eavg.se, me.loss(), me.gains ? "**yes**" : me.unresolved ? "unresolved" : "no",
                        expect_name(me.point.expect));
   }
   if (!plots.empty()) {

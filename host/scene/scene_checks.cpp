@@ -65,21 +65,10 @@ IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
   return model_spec(IntegralKind::Albedo, gltf_model(), c.params(), cos_l);
 }
 
-std::string gltf_key(const GltfChannelParams& c) {
-  return fmt::format("gltf alpha={:.9g} metallic={:.9g} base={:.9g} f0={:.9g} f0_max={:.9g} specular={:.9g} alpha_b={:.9g}",
-                     c.alpha, c.metallic, c.base, c.f0, c.f0_max, c.weight, c.alpha_b);
-}
-
-std::map<std::string, double> gltf_params(const GltfChannelParams& c) {
+std::map<std::string, double> whole_params(const WholePoint& w) {
   std::map<std::string, double> out;
-  const ModelParams p = c.params();
-  for (size_t i = 0; i < gltf_model().params.size(); ++i) out[gltf_model().params[i].name] = p[i];
+  for (size_t i = 0; i < w.model->params.size(); ++i) out[w.model->params[i].name] = w.p[i];
   return out;
-}
-
-Expectation gltf_energy_expectation(const GltfChannelParams& c) {
-  const Expect e = gltf_energy_expect(c);
-  return {e, e == Expect::Hold ? "" : kGltfFresnelMixGain, 0};
 }
 
 struct SceneSets {
@@ -119,29 +108,38 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
       sp.models.insert(model);
       return sp.keys.emplace(key, true).second;
     };
+    if (!m.not_checked.empty()) continue;  // accounted for in the report (skipped), never checked as something else
     const Term* d = m.gltf ? ggx : m.d;
     const Term* g = m.gltf ? smith : m.g;
     const double pd = m.gltf ? m.alpha : m.pd, pg = m.gltf ? m.alpha : m.pg;
-    if (wants(opt, "d_norm")) {
-      SetPlan& sp = plan_for(s, "d_norm", scaled(256 * kSuiteBaseSamples));
-      std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, pd);
-      if (claim(sp, key, d->id)) {
-        IntegralSpec is = make_spec(IntegralKind::DNorm, d, nullptr, nullptr, pd, 0, 0, 0, 0, m.alpha, 1.0);
-        add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, pd}}, expect("d_norm", d, nullptr, m.alpha, 0, 0),
-            false);
-        sp.add_terms(d, nullptr, nullptr);
-      }
+    // the widths the material's D and G are checked at: every roughness point of a glTF range
+    std::vector<std::pair<double, double>> widths;  // (pD, pG) with alpha = pD for glTF
+    if (m.gltf) {
+      for (double a : m.alphas()) widths.push_back({a, a});
+      for (double a : m.coat_alphas()) widths.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
     }
-    if (wants(opt, "masking")) {
-      SetPlan& sp = plan_for(s, "masking", scaled(kSuiteBaseSamples));
-      std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, m.alpha, pd, pg);
-      if (claim(sp, key, dgf(d, g, nullptr))) {
-        for (double co : views) {
-          IntegralSpec is = make_spec(IntegralKind::Masking, d, g, nullptr, pd, pg, 0, 0, 0, m.alpha, co);
-          add(sp, key, is, d, g, nullptr, {{"alpha", m.alpha}, {"cos_o", co}},
-              expect("masking", d, g, m.alpha, 0, 0), false);
+    else widths.push_back({pd, pg});
+    for (auto [wd, wg] : widths) {
+      const double a = m.gltf ? wd : m.alpha;
+      if (wants(opt, "d_norm")) {
+        SetPlan& sp = plan_for(s, "d_norm", scaled(256 * kSuiteBaseSamples));
+        std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, wd);
+        if (claim(sp, key, d->id)) {
+          IntegralSpec is = make_spec(IntegralKind::DNorm, d, nullptr, nullptr, wd, 0, 0, 0, 0, a, 1.0);
+          add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, wd}}, expect("d_norm", d, nullptr, a, 0, 0), false);
+          sp.add_terms(d, nullptr, nullptr);
         }
-        sp.add_terms(d, g, nullptr);
+      }
+      if (wants(opt, "masking")) {
+        SetPlan& sp = plan_for(s, "masking", scaled(kSuiteBaseSamples));
+        std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, a, wd, wg);
+        if (claim(sp, key, dgf(d, g, nullptr))) {
+          for (double co : views) {
+            IntegralSpec is = make_spec(IntegralKind::Masking, d, g, nullptr, wd, wg, 0, 0, 0, a, co);
+            add(sp, key, is, d, g, nullptr, {{"alpha", a}, {"cos_o", co}}, expect("masking", d, g, a, 0, 0), false);
+          }
+          sp.add_terms(d, g, nullptr);
+        }
       }
     }
     if (wants(opt, "furnace")) {
@@ -150,14 +148,16 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
       // specular lobe at its roughness.
       SetPlan& sp = plan_for(s, "furnace", scaled(kSuiteBaseSamples));
       if (m.gltf) {
-        // the widths of the material's lobe (alpha_t, alpha_b under KHR_materials_anisotropy)
-        const GltfChannelParams lobe = m.channels().front();
-        GltfChannelParams white{lobe.alpha, 1.0, 1.0, 1.0, 1.0, 1.0, lobe.alpha_b};
-        std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", lobe.alpha, lobe.alpha_b);
-        if (claim(sp, key, "gltf")) {
+        // every specular lobe of the material's range (alpha_t, alpha_b under KHR_materials_anisotropy)
+        auto lobes = m.lobes();
+        for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // the coat's lobe, F = 1
+        for (auto [at, ab] : lobes) {
+          GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
+          std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", at, ab);
+          if (!claim(sp, key, "gltf")) continue;
           for (double co : views)
-            add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", m.alpha}, {"cos_l", co}}, {},
-                true);
+            add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}},
+                {}, true);
           sp.add_model(gltf_model());
         }
       } else {
@@ -177,15 +177,32 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
     if (wants(opt, energy_check)) {
       SetPlan& sp = plan_for(s, energy_check, scaled(kSuiteBaseSamples));
       if (m.gltf) {
-        for (auto& c : m.channels()) {
-          std::string key = gltf_key(c);
-          if (!claim(sp, key, "gltf")) continue;
+        for (auto& w : m.whole_points()) {
+          std::string key = w.key();
+          if (!claim(sp, key, w.model->id)) continue;
           for (double co : views) {
-            std::map<std::string, double> ps = gltf_params(c);
+            std::map<std::string, double> ps = whole_params(w);
             ps["cos_l"] = co;
-            add(sp, key, gltf_spec(c, co), nullptr, nullptr, nullptr, ps, gltf_energy_expectation(c), true);
+            add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, co), nullptr, nullptr, nullptr, ps,
+                {w.energy, w.energy_why, 0}, true);
           }
-          sp.add_model(gltf_model());
+          sp.add_model(*w.model);
+        }
+        // KHR_materials_ior: the specular lobe also with the exact dielectric
+        // Fresnel at eta = ior (Walter et al. 2007 eq. 22), not Schlick's
+        // approximation from f0, at every roughness point
+        if (m.ior_exact) {
+          const Term* exact = &term("dielectric", Kind::F);
+          for (double a : m.alphas()) {
+            std::string key = fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
+            if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
+            for (double co : views) {
+              IntegralSpec is = make_spec(IntegralKind::Albedo, ggx, smith, exact, a, a, m.factors.ior, 0, 0, a, co);
+              add(sp, key, is, ggx, smith, exact, {{"alpha", a}, {"cos_o", co}, {"eta", m.factors.ior}},
+                  expect(sp.plan.check, ggx, smith, a, m.factors.ior, 0), true);
+            }
+            sp.add_terms(ggx, smith, exact);
+          }
         }
       } else if (m.f != none || m.kd > 0) {
         const bool diffuse = m.kd > 0;
@@ -207,11 +224,12 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
     if (wants(opt, "reciprocity")) {
       SetPlan& sp = plan_for(s, "reciprocity", 0);
       if (m.gltf) {
-        for (auto& c : m.channels()) {
-          std::string key = gltf_key(c);
-          if (!claim(sp, key, "gltf")) continue;
-          add(sp, key, gltf_spec(c, 1.0), nullptr, nullptr, nullptr, gltf_params(c), {}, false);
-          sp.add_model(gltf_model());
+        for (auto& w : m.whole_points()) {
+          std::string key = w.key();
+          if (!claim(sp, key, w.model->id)) continue;
+          add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, 1.0), nullptr, nullptr, nullptr, whole_params(w),
+              {w.reciprocity, w.reciprocity_why, 0}, false);
+          sp.add_model(*w.model);
         }
       } else {
         std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
@@ -252,7 +270,10 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     else run_plan(rt, plan, opt, stream, run.rep);
     stat_of[check] = run.rep.stats.size() - 1;
   }
-  if (run.rep.points.empty()) throw Error("the scene's materials need none of the chosen checks");
+  const bool any_checked =
+      std::any_of(scene.materials.begin(), scene.materials.end(), [](auto& m) { return m.not_checked.empty(); });
+  // a scene whose every material is accounted for as not checked still reports them (skipped)
+  if (run.rep.points.empty() && any_checked) throw Error("the scene's materials need none of the chosen checks");
   judge(run.rep, opt);
   run.scene_builds = rt.build_stats().builds - builds0;
   // groups of each material, in check order

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace mfv {
 namespace {
@@ -24,22 +25,31 @@ void terms_of_material(const SceneMaterial& m, const Term*& d, const Term*& g, c
 
 namespace {
 
-// The energy points of a glTF material: its distinct channels, then the white metal.
+// The energy points of a glTF material: its distinct parameter points, then
+// each of its lobes as a white metal (F = 1: the specular lobe's own loss), with
+// both widths under KHR_materials_anisotropy.
 std::vector<ModelPoint> gltf_points(const SceneMaterial& m) {
   std::vector<ModelPoint> out;
-  const auto chans = m.channels();
-  for (size_t k = 0; k < chans.size(); ++k)
-    out.push_back({&gltf_model(), fmt::format("{} (channel set {} of {})", m.name, k + 1, chans.size()),
-                   chans[k].params(), gltf_energy_expect(chans[k]), kGltfFresnelMixGain});
-  GltfChannelParams white{m.alpha, 1.0, 1.0, 1.0, 1.0, 1.0};
-  out.push_back({&gltf_model(), fmt::format("{} (F = 1: the specular lobe)", m.name), white.params(), Expect::Hold,
-                 ""});
+  if (!m.not_checked.empty()) return out;
+  const auto points = m.whole_points();
+  for (size_t k = 0; k < points.size(); ++k)
+    out.push_back({points[k].model, fmt::format("{} ({} point {} of {})", m.name, points[k].model->id, k + 1, points.size()),
+                   points[k].p, points[k].energy, points[k].energy_why});
+  auto lobes = m.lobes();
+  for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // KHR_materials_clearcoat: the coat's own lobe
+  for (auto [at, ab] : lobes) {
+    GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
+    out.push_back({&gltf_model(),
+                   ab > 0 ? fmt::format("{} (F = 1 at alpha_t {:g}, alpha_b {:g})", m.name, at, ab)
+                          : fmt::format("{} (F = 1 at alpha {:g})", m.name, at),
+                   white.params(), Expect::Hold, ""});
+  }
   return out;
 }
 
-const ModelEnergy* find_point(const EnergyReport& rep, const ModelParams& p) {
+const ModelEnergy* find_point(const EnergyReport& rep, const ModelPoint& p) {
   for (auto& me : rep.models)
-    if (me.point.model == &gltf_model() && me.point.p == p) return &me;
+    if (me.point.model == p.model && me.point.p == p.p) return &me;
   return nullptr;
 }
 
@@ -52,7 +62,8 @@ void scene_energy_options(const Scene& scene, EnergyOptions& opt) {
   for (auto& m : scene.materials) {
     if (m.gltf) {
       for (auto& p : gltf_points(m))
-        if (std::none_of(opt.model_points.begin(), opt.model_points.end(), [&](auto& q) { return q.p == p.p; }))
+        if (std::none_of(opt.model_points.begin(), opt.model_points.end(),
+                         [&](auto& q) { return q.model == p.model && q.p == p.p; }))
           opt.model_points.push_back(p);  // distinct parameter sets only
       continue;
     }
@@ -71,12 +82,16 @@ void print_scene_energy(const Scene& scene, const EnergyReport& rep) {
   for (auto& m : scene.materials) {
     if (m.gltf) {
       for (auto& p : gltf_points(m)) {
-        const ModelEnergy* me = find_point(rep, p.p);
+        const ModelEnergy* me = find_point(rep, p);
         if (!me) continue;
-        fmt::print("  material {}: alpha {:g}: E_avg {:.4f} ± {:.1e}, energy loss 1 - E_avg {:.4f}; max E {:.4f} at "
-                   "cos_l {:.3g}{}\n",
-                   p.name, m.alpha, me->eavg.mean, me->eavg.se, me->loss(), me->E[me->max_at].mean,
-                   rep.mu[me->max_at], me->gains ? " (gains energy beyond noise)" : "");
+        const GltfChannelParams c{p.p[0], p.p[1], p.p[2], p.p[3], p.p[4], p.p[5], p.model == &gltf_model() ? p.p[6] : 0.0};
+        fmt::print("  material {}: alpha {:g}{}: E_avg {:.4f} ± {:.1e}, energy loss 1 - E_avg {:.4f}; max E {:.4f} ± "
+                   "{:.1e} at cos_l {:.3g}{}\n",
+                   p.name, c.alpha, c.alpha_b > 0 ? fmt::format(", alpha_b {:g}", c.alpha_b) : "", me->eavg.mean,
+                   me->eavg.se, me->loss(), me->E[me->max_at].mean, me->E[me->max_at].se, rep.mu[me->max_at],
+                   me->gains ? (p.expect == Expect::Hold ? " (GAINS energy beyond noise: a defect)"
+                                                         : " (gains energy beyond noise, as the catalog expects there)")
+                   : me->unresolved ? " (UNRESOLVED: standard error above target, gain not ruled out)" : "");
       }
       continue;
     }
@@ -101,9 +116,21 @@ void print_scene_energy(const Scene& scene, const EnergyReport& rep) {
   }
 }
 
+void scene_stability_options(const Scene& scene, StabilityOptions& opt) {
+  opt.only = scene_stability_cases(scene);
+  std::map<std::string, std::vector<ModelParams>> points;  // model id -> the scene's distinct points
+  for (auto& m : scene.materials)
+    for (auto& w : m.whole_points()) {
+      auto& v = points[w.model->id];
+      if (std::find(v.begin(), v.end(), w.p) == v.end()) v.push_back(w.p);
+    }
+  opt.model_points.assign(points.begin(), points.end());
+}
+
 std::vector<std::string> scene_stability_cases(const Scene& scene) {
   std::vector<std::string> out;
   for (auto& m : scene.materials) {
+    if (!m.not_checked.empty()) continue;
     const Term *d, *g, *f;
     terms_of_material(m, d, g, f);
     add_unique(out, "D " + d->id);
@@ -112,7 +139,9 @@ std::vector<std::string> scene_stability_cases(const Scene& scene) {
       add_unique(out, "G1 " + (g->id == "smith_ggx_correlated" ? std::string("smith_ggx") : g->id));
     add_unique(out, "F " + f->id);
     // glTF: the model itself (its Fresnel mix and metal/dielectric blend) besides its terms' product
-    add_unique(out, m.gltf ? "MODEL gltf" : "BRDF " + d->id + "/" + g->id + "/" + f->id);
+    // ("MODEL gltf" also names "MODEL gltf_clearcoat": the filter matches substrings)
+    add_unique(out, m.gltf ? (m.coat_checked ? "MODEL gltf_clearcoat" : "MODEL gltf")
+                           : "BRDF " + d->id + "/" + g->id + "/" + f->id);
   }
   return out;
 }
@@ -129,9 +158,22 @@ void print_scene_stability(const Scene& scene, const StabilityReport& rep) {
              "out)\n",
              scene.path, rep.cases.size(), full, points);
   bool gltf = std::any_of(scene.materials.begin(), scene.materials.end(), [](auto& m) { return m.gltf; });
-  if (gltf)
-    fmt::print("  the glTF model is swept whole (MODEL gltf, at its catalog cases and parameter range ends) and "
-               "through its terms (GGX D, height-correlated Smith G and G1, Schlick F)\n");
+  if (gltf) {
+    fmt::print("  the glTF model is swept whole (MODEL gltf) at the scene's own parameter points and each parameter's "
+               "range ends, and through its terms (GGX D, height-correlated Smith G and G1, Schlick F):\n");
+    for (auto& m : scene.materials) {
+      if (!m.gltf) continue;
+      if (!m.not_checked.empty()) {
+        fmt::print("    material '{}': not swept: {}\n", m.name, m.not_checked);
+        continue;
+      }
+      std::string pts;
+      for (auto& c : m.channels())
+        pts += fmt::format(" (alpha {:.4g}{}, metallic {:g}, base {:.4g})", c.alpha,
+                           c.alpha_b > 0 ? fmt::format(", alpha_b {:.4g}", c.alpha_b) : "", c.metallic, c.base);
+      fmt::print("    material '{}': {} points:{}\n", m.name, m.channels().size(), pts);
+    }
+  }
 }
 
 }  // namespace mfv

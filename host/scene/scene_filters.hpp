@@ -23,6 +23,8 @@ void print_scene_energy(const Scene& scene, const EnergyReport& rep);
 // Stability case names (kernels the scene's materials evaluate): "D ggx",
 // "G smith_ggx_correlated", "G1 smith_ggx", "F schlick", "BRDF ggx/smith_ggx_correlated/schlick".
 std::vector<std::string> scene_stability_cases(const Scene& scene);
+// The cases above, and the glTF model swept at the scene's own parameter points (issue 21).
+void scene_stability_options(const Scene& scene, StabilityOptions& opt);
 void print_scene_stability(const Scene& scene, const StabilityReport& rep);
 
 }  // namespace mfv

@@ -81,8 +81,50 @@ std::string material_params(const SceneMaterial& m) {
   return s + fmt::format(" (alpha {:g})", m.alpha);
 }
 
+std::string range_text(const char* name, const ParamRange& r) {
+  if (!r.varies()) return fmt::format("{} {:g}", name, r.hi);
+  return fmt::format("{} [{:.4g}, {:.4g}] ({})", name, r.lo, r.hi, r.source);
+}
+
+// The ranges a glTF material was checked over, and at which points (issue 21).
+std::string ranges_text(const SceneMaterial& m) {
+  std::string s = "checked over " + range_text("roughness", m.roughness);
+  if (m.roughness.varies()) {
+    s += " at alpha";
+    for (double a : m.alphas()) s += fmt::format(" {:.4g}", a);
+  }
+  s += "; " + range_text("metallic", m.metallic);
+  for (size_t k = 0; k < 3; ++k) s += fmt::format("; {}", range_text(k == 0 ? "base r" : k == 1 ? "base g" : "base b", m.base[k]));
+  if (m.specular.varies()) s += "; " + range_text("specular", m.specular);
+  for (size_t k = 0; k < 3; ++k)
+    if (m.specular_color[k].varies()) s += "; " + range_text("specularColor", m.specular_color[k]);
+  if (m.anisotropy_strength.hi > 0) s += "; " + range_text("anisotropyStrength", m.anisotropy_strength);
+  if (m.coat_checked) {
+    s += "; " + range_text("clearcoat", m.clearcoat) + "; " + range_text("clearcoatRoughness", m.clearcoat_roughness);
+    s += fmt::format(" ({} gltf_clearcoat points)", m.coat_points().size());
+  }
+  return s + fmt::format(" ({} parameter points; the ends of every range, roughness and anisotropy also inside)",
+                         m.channels().size());
+}
+
+// The account of one material: what is checked over which range, what is not and why.
+std::vector<std::string> account_lines(const SceneMaterial& m) {
+  std::vector<std::string> out;
+  if (!m.not_checked.empty()) out.push_back("NOT checked: " + m.not_checked);
+  else if (m.gltf) out.push_back(ranges_text(m));
+  for (auto& a : m.account) out.push_back(a);
+  return out;
+}
+
+// Account lines that are a part of the material not checked: junit skipped testcases.
+bool is_skip(const std::string& line) {
+  return line.rfind("NOT checked", 0) == 0 || line.find("is NOT checked") != std::string::npos ||
+         line.find("nothing to check") != std::string::npos;
+}
+
 // The worst verdict over a material's checks.
 std::string material_verdict(const SceneRun& run, size_t mi) {
+  if (!run.scene.materials[mi].not_checked.empty()) return "NOT CHECKED";
   bool fail = false, xpass = false, xfail = false;
   for (size_t gi : run.material_groups[mi]) {
     Verdict v = run.rep.groups[gi].verdict;
@@ -108,6 +150,28 @@ std::string time_text(const SceneRun& run) {
                      run.seconds > 0 ? run.full_seconds / run.seconds : 0.0);
 }
 
+// junit.xml: one skipped testcase per part of a material that is not checked, with the reason.
+std::string with_skipped_testcases(std::string xml, const Scene& sc) {
+  std::string cases;
+  size_t skipped = 0;
+  for (auto& m : sc.materials)
+    for (auto& line : account_lines(m))
+      if (is_skip(line)) {
+        ++skipped;
+        cases += fmt::format("  <testcase classname=\"scene\" name=\"material {}\"><skipped message=\"{}\"/></testcase>\n",
+                             xml_escape(m.name), xml_escape(line));
+      }
+  const size_t end = xml.rfind("</testsuite>");
+  if (skipped == 0 || end == std::string::npos) return xml;
+  xml.insert(end, cases);
+  // the suite's counts: tests="N" grows by the skipped cases, skipped="k" is added
+  const size_t t = xml.find("tests=\"");
+  const size_t q = xml.find('"', t + 7);
+  const size_t n = std::stoul(xml.substr(t + 7, q - t - 7)) + skipped;
+  xml.replace(t, q - t + 1, fmt::format("tests=\"{}\" skipped=\"{}\"", n, skipped));
+  return xml;
+}
+
 }  // namespace
 
 void print_scene_console(const SceneRun& run) {
@@ -119,6 +183,7 @@ void print_scene_console(const SceneRun& run) {
     const SceneMaterial& m = sc.materials[mi];
     fmt::print("material '{}' [{}] {}: {}\n", m.name, m.origin, material_verdict(run, mi), material_params(m));
     for (auto& w : m.warnings) fmt::print("  warning: {}\n", w);
+    for (auto& a : account_lines(m)) fmt::print("  account: {}\n", a);
     for (size_t gi : run.material_groups[mi]) {
       CheckLine c = check_line(run.rep, run.rep.groups[gi]);
       fmt::print("  {:<6} {:<15} {}\n", c.verdict, c.check, c.text);
@@ -147,7 +212,8 @@ std::string scene_json(const SceneRun& run) {
   for (size_t mi = 0; mi < sc.materials.size(); ++mi) {
     const SceneMaterial& m = sc.materials[mi];
     json mj{{"name", m.name}, {"origin", m.origin}, {"model", m.model()}, {"alpha", m.alpha},
-            {"verdict", material_verdict(run, mi)}, {"parameters", material_params(m)}, {"warnings", m.warnings}};
+            {"verdict", material_verdict(run, mi)}, {"parameters", material_params(m)}, {"warnings", m.warnings},
+            {"account", account_lines(m)}, {"not_checked", m.not_checked}};
     if (m.gltf) {
       mj["factors"] = {{"baseColor", m.factors.base}, {"metallic", m.factors.metallic},
                        {"roughness", m.factors.roughness}, {"ior", m.factors.ior},
@@ -202,6 +268,11 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
         const SceneMaterial& m = sc.materials[mi];
         md += fmt::format("### {} — {}\n\n{} ({})\n\n", m.name, material_verdict(run, mi), material_params(m), m.origin);
         for (auto& w : m.warnings) md += fmt::format("- warning: {}\n", w);
+        for (auto& a : account_lines(m)) md += fmt::format("- account: {}\n", a);
+        if (!m.not_checked.empty()) {
+          md += "\n";
+          continue;
+        }
         md += "\n| verdict | check | result | parameter set | expected failure because |\n|---|---|---|---|---|\n";
         for (size_t gi : run.material_groups[mi]) {
           CheckLine c = check_line(run.rep, run.rep.groups[gi]);
@@ -217,6 +288,8 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
       md += fmt::format("\nKernel builds: {} run, {} in a full run. {}.\n", run.scene_builds, run.full_builds,
                         time_text(run));
       text += md;
+    } else if (path == dir + "/junit.xml") {
+      text = with_skipped_testcases(text, run.scene);
     }
   }
   write_files_atomically(files);

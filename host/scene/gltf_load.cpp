@@ -1,0 +1,523 @@
+// glTF 2.0 (.gltf, .glb) materials, read from the JSON alone (issue 21): mfv
+// checks materials, so buffers are never loaded (a .gltf whose .bin is absent
+// reads), and images only where a texture scales a checked parameter: then its
+// texels give the range, else [0, factor] is checked. Every number is a finite
+// JSON number and every array has the spec's length (issue 17).
+//
+// Spec references: glTF 2.0 §3.9 (materials, default values), §3.8 (textures,
+// images: uri or bufferView, PNG/JPEG), §4.4 (GLB: 12-byte header, JSON chunk,
+// optional BIN chunk); the KHR_materials_* extension specifications.
+#include "scene/scene.hpp"
+
+#include "runtime/error.hpp"
+#include "scene/json_input.hpp"
+#include "scene/texture_range.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace mfv {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Extensions mfv models (their parameters enter the glTF model)...
+const std::set<std::string> kModelled = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_anisotropy"};
+// ... that it accounts for per material without a surface check (see account_extension) ...
+const std::set<std::string> kAccounted = {"KHR_materials_clearcoat",   "KHR_materials_sheen",
+                                          "KHR_materials_transmission", "KHR_materials_volume",
+                                          "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+// ... and that change nothing a BSDF check sees (geometry, texture coordinates, encodings, lights, instancing).
+const std::set<std::string> kHarmless = {"KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                         "KHR_texture_transform", "KHR_texture_basisu",         "EXT_texture_webp",
+                                         "KHR_lights_punctual",   "KHR_materials_variants",     "EXT_mesh_gpu_instancing"};
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct GltfFile {
+  std::string path;
+  fs::path dir;
+  bool binary = false;
+  json j;
+  std::optional<std::string> bin;  // the GLB BIN chunk, where there is one
+};
+
+uint32_t u32_at(const std::string& b, size_t at) {
+  uint32_t v;
+  std::memcpy(&v, b.data() + at, 4);  // GLB is little-endian, as every platform mfv builds on
+  return v;
+}
+
+// GLB (§4.4): magic "glTF", version 2, length; chunk 0 JSON; chunk 1 BIN (optional).
+std::string glb_json(GltfFile& f, const std::string& bytes) {
+  auto bad = [&](const std::string& why) {
+    return Error(fmt::format("{}: not a valid glTF binary (.glb) file: {}", f.path, why));
+  };
+  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) throw bad("no 'glTF' header");
+  if (u32_at(bytes, 4) != 2) throw bad(fmt::format("container version {} (2 expected)", u32_at(bytes, 4)));
+  const size_t total = std::min<size_t>(u32_at(bytes, 8), bytes.size());
+  const size_t json_len = u32_at(bytes, 12);
+  if (u32_at(bytes, 16) != 0x4E4F534Au || 20 + json_len > total) throw bad("the first chunk is not a whole JSON chunk");
+  const size_t next = 20 + ((json_len + 3) & ~size_t(3));
+  if (next + 8 <= total && u32_at(bytes, next + 4) == 0x004E4942u) {  // "BIN\0"
+    const size_t bin_len = u32_at(bytes, next);
+    if (next + 8 + bin_len > total) throw bad("the BIN chunk runs past the end of the file");
+    f.bin = bytes.substr(next + 8, bin_len);
+  }
+  return bytes.substr(20, json_len);
+}
+
+GltfFile read_gltf_file(const std::string& path, bool binary) {
+  GltfFile f;
+  f.path = path;
+  f.dir = fs::path(path).parent_path();
+  f.binary = binary;
+  const std::string bytes = read_bytes(path);
+  const std::string text = binary ? glb_json(f, bytes) : bytes;
+  try {
+    f.j = parse_json_strict(path, text);
+  } catch (const Error& e) {
+    std::string what = e.what();
+    if (what.rfind(path + ": ", 0) == 0) what = what.substr(path.size() + 2);
+    throw Error(fmt::format("{}: not a valid glTF {} file: {}", path, binary ? "binary (.glb)" : "JSON (.gltf)", what));
+  }
+  if (!f.j.is_object() || !f.j.contains("asset") || !f.j["asset"].is_object() || !f.j["asset"].contains("version") ||
+      !f.j["asset"]["version"].is_string())
+    throw Error(fmt::format("{}: not a valid glTF {} file: no asset.version", path,
+                            binary ? "binary (.glb)" : "JSON (.gltf)"));
+  const std::string version = f.j["asset"]["version"].get<std::string>();
+  if (version.rfind("2.", 0) != 0) throw Error(fmt::format("{}: glTF version {} (mfv reads 2.x)", path, version));
+  return f;
+}
+
+// The top-level array `key` (empty where absent); not an array is an error.
+const json& top_array(const GltfFile& f, const char* key) {
+  static const json empty = json::array();
+  if (!f.j.contains(key)) return empty;
+  if (!f.j[key].is_array()) throw Error(fmt::format("{}: {} is not an array", f.path, key));
+  return f.j[key];
+}
+
+const json& element(const GltfFile& f, const char* array, size_t i, const std::string& who) {
+  const json& a = top_array(f, array);
+  if (i >= a.size()) throw Error(fmt::format("{}: {} names {}[{}], but the file has {}", f.path, who, array, i, a.size()));
+  if (!a[i].is_object()) throw Error(fmt::format("{}: {}[{}] is not an object", f.path, array, i));
+  return a[i];
+}
+
+// RFC 3986 percent-decoding of a relative URI (glTF §3.8.4: "images/a%20b.png").
+std::string uri_to_path(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// The bytes a uri names: a data: URI (base64), or a file beside the scene; nullopt when the file is absent.
+std::optional<std::string> uri_bytes(const GltfFile& f, const std::string& uri, const std::string& who) {
+  if (uri.rfind("data:", 0) == 0) {
+    const size_t comma = uri.find(',');
+    if (comma == std::string::npos || uri.substr(0, comma).find(";base64") == std::string::npos)
+      throw Error(fmt::format("{}: {}: a data: URI without ';base64,'", f.path, who));
+    return base64_decode(uri.substr(comma + 1), f.path + ": " + who);
+  }
+  const fs::path p = f.dir / uri_to_path(uri);
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return std::nullopt;
+  return read_bytes(p.string());
+}
+
+// One image's channel ranges, or why there are none (missing file, an encoding stb does not read).
+struct ImageInfo {
+  std::string label;  // "image 1 'mr.png'"
+  std::optional<ImageRanges> ranges;
+  std::string missing;  // non-empty when ranges is empty
+};
+
+ImageInfo read_image(const GltfFile& f, size_t index) {
+  const json& im = element(f, "images", index, "a texture");
+  ImageInfo info;
+  const std::string name = im.contains("name") && im["name"].is_string() ? im["name"].get<std::string>() : "";
+  const std::string uri = im.contains("uri") && im["uri"].is_string() ? im["uri"].get<std::string>() : "";
+  const std::string shown = !uri.empty() && uri.rfind("data:", 0) != 0 ? uri : !name.empty() ? name : "embedded";
+  info.label = fmt::format("image {} '{}'", index, shown);
+  const std::string mime = im.contains("mimeType") && im["mimeType"].is_string() ? im["mimeType"].get<std::string>() : "";
+  if (!mime.empty() && mime != "image/png" && mime != "image/jpeg") {
+    info.missing = fmt::format("{} is {}, which mfv does not decode", info.label, mime);
+    return info;
+  }
+  std::optional<std::string> bytes;
+  if (!uri.empty()) {
+    bytes = uri_bytes(f, uri, info.label);
+    if (!bytes) info.missing = fmt::format("{} is not beside the scene ({})", info.label, (f.dir / uri_to_path(uri)).string());
+  } else if (im.contains("bufferView")) {
+    const size_t bv_i = json_index(im["bufferView"], fmt::format("{}: images[{}].bufferView", f.path, index));
+    const json& bv = element(f, "bufferViews", bv_i, info.label);
+    const size_t buf_i = json_index(bv.value("buffer", json()), fmt::format("{}: bufferViews[{}].buffer", f.path, bv_i));
+    const size_t off = bv.contains("byteOffset") ? json_index(bv["byteOffset"], f.path + ": byteOffset") : 0;
+    const size_t len = json_index(bv.value("byteLength", json()), fmt::format("{}: bufferViews[{}].byteLength", f.path, bv_i));
+    const json& buf = element(f, "buffers", buf_i, info.label);
+    std::optional<std::string> data;
+    if (!buf.contains("uri") && buf_i == 0 && f.bin) data = f.bin;  // GLB: buffer 0 without uri is the BIN chunk
+    else if (buf.contains("uri") && buf["uri"].is_string()) data = uri_bytes(f, buf["uri"].get<std::string>(), info.label);
+    if (!data) {
+      info.missing = fmt::format("{} sits in buffer {}, which is absent", info.label, buf_i);
+    } else {
+      if (off + len > data->size())
+        throw Error(fmt::format("{}: {}: bufferView {} runs past its buffer", f.path, info.label, bv_i));
+      bytes = data->substr(off, len);
+    }
+  } else {
+    throw Error(fmt::format("{}: images[{}] has neither uri nor bufferView", f.path, index));
+  }
+  if (bytes) info.ranges = image_ranges(*bytes, f.path + ": " + info.label);
+  return info;
+}
+
+// Reads the scene's images once each, on demand.
+struct Images {
+  const GltfFile& f;
+  std::map<size_t, ImageInfo> cache;
+  std::map<size_t, std::vector<std::string>> missing_users;  // image -> "material 'x' baseColorTexture"
+  const ImageInfo& get(size_t i) {
+    auto it = cache.find(i);
+    return it != cache.end() ? it->second : cache.emplace(i, read_image(f, i)).first->second;
+  }
+};
+
+// Where a field sits, for messages: material 'x' (materials[3]): pbrMetallicRoughness.roughnessFactor
+std::string at(const SceneMaterial& m, const std::string& field) {
+  return fmt::format("material '{}' ({}): {}", m.name, m.origin, field);
+}
+
+double number_or(const json& obj, const char* key, double fallback, const SceneMaterial& m, const std::string& prefix) {
+  return obj.contains(key) ? finite_number(obj[key], at(m, prefix + key)) : fallback;
+}
+
+const json& object_or_empty(const json& obj, const char* key, const std::string& where) {
+  static const json empty = json::object();
+  if (!obj.contains(key)) return empty;
+  if (!obj[key].is_object()) throw Error(fmt::format("{}{} = {} is not an object", where, key, json_shown(obj[key])));
+  return obj[key];
+}
+
+// A texture's channel c scales `factor`: the range [texels] x factor, or
+// [0, factor] where the image cannot be read. srgb: colour textures (spec §3.9.2).
+struct TextureSlot {
+  const char* field;  // "metallicRoughnessTexture"
+  int channel;        // 0..3 = R, G, B, A
+  bool srgb;
+};
+
+ParamRange textured(const SceneMaterial& m, Images& images, const json& parent, const std::string& prefix,
+                    const TextureSlot& slot, double factor, std::vector<std::string>& notes) {
+  ParamRange r{factor, factor, "factor"};
+  if (!parent.contains(slot.field)) return r;
+  const json& info = parent[slot.field];
+  const std::string where = at(m, prefix + slot.field);
+  if (!info.is_object() || !info.contains("index")) throw Error(where + " is not a textureInfo with an index");
+  const size_t t = json_index(info["index"], where + ".index");
+  const json& tex = element(images.f, "textures", t, where);
+  const char* ch = "RGBA" + slot.channel;
+  if (!tex.contains("source")) {
+    r = {0.0, factor, fmt::format("texture {} has no PNG/JPEG source: [0, factor {:g}]", t, factor)};
+    notes.push_back(fmt::format("{} {}: texture {} has no PNG/JPEG source: checked over [0, {:g}]", prefix, slot.field, t, factor));
+    return r;
+  }
+  const size_t src = json_index(tex["source"], fmt::format("{}: textures[{}].source", images.f.path, t));
+  const ImageInfo& im = images.get(src);
+  if (!im.ranges) {
+    auto& users = images.missing_users[src];
+    const std::string user = fmt::format("material '{}' {}", m.name, slot.field);
+    if (std::find(users.begin(), users.end(), user) == users.end()) users.push_back(user);  // once, not per channel
+    r = {0.0, factor, fmt::format("{} unread: [0, factor {:g}]", im.label, factor)};
+    notes.push_back(fmt::format("{}{} reads {}: {}; checked over the whole range [0, {:g}]", prefix, slot.field,
+                                im.label, im.missing, factor));
+    return r;
+  }
+  double lo = im.ranges->rgba[size_t(slot.channel)].lo, hi = im.ranges->rgba[size_t(slot.channel)].hi;
+  if (slot.srgb) lo = srgb_to_linear(lo), hi = srgb_to_linear(hi);
+  r = {lo * factor, hi * factor,
+       fmt::format("{} {}{}: [{:.4g}, {:.4g}] x factor {:g}", im.label, *ch, slot.srgb ? " (sRGB decoded)" : "", lo, hi, factor)};
+  notes.push_back(fmt::format("{}{}: {} channel {} spans [{:.4g}, {:.4g}]{}: checked over [{:.4g}, {:.4g}]", prefix,
+                              slot.field, im.label, *ch, lo, hi, slot.srgb ? " (sRGB decoded)" : "", r.lo, r.hi));
+  return r;
+}
+
+void check_unit_range(const SceneMaterial& m, const std::string& field, double v) {
+  if (!(v >= 0.0 && v <= 1.0)) throw Error(fmt::format("{} = {:g} is out of range [0, 1]", at(m, field), v));
+}
+
+// Extensions accounted for without a surface check; sets m.not_checked where the material cannot be checked.
+void account_extension(SceneMaterial& m, const std::string& ext, const json& v) {
+  const std::string p = ext + ".";
+  if (ext == "KHR_materials_transmission") {
+    const double t = number_or(v, "transmissionFactor", 0.0, m, p);
+    check_unit_range(m, p + "transmissionFactor", t);
+    if (t > 0.0 || v.contains("transmissionTexture"))
+      m.not_checked = fmt::format("KHR_materials_transmission (transmissionFactor {:g}): no surface check fits rough "
+                                  "dielectric transmission until mfv models it; not checked (and never as a metal)", t);
+    else
+      m.account.push_back("KHR_materials_transmission: transmissionFactor 0, no transmission: the surface is checked");
+  } else if (ext == "KHR_materials_unlit") {
+    m.not_checked = "KHR_materials_unlit: no BSDF (shaded by the base colour alone): nothing to check on a surface BSDF";
+  } else if (ext == "KHR_materials_volume") {
+    const double th = number_or(v, "thicknessFactor", 0.0, m, p);
+    if (th < 0.0) throw Error(fmt::format("{} = {:g} is negative", at(m, p + "thicknessFactor"), th));
+    m.account.push_back("KHR_materials_volume: the medium under the surface (attenuation, thickness): nothing to "
+                        "check on a surface BSDF");
+  } else if (ext == "KHR_materials_emissive_strength") {
+    const double s = number_or(v, "emissiveStrength", 1.0, m, p);
+    if (s < 0.0) throw Error(fmt::format("{} = {:g} is negative", at(m, p + "emissiveStrength"), s));
+    m.account.push_back("KHR_materials_emissive_strength: emission, not reflection: nothing to check on a surface BSDF");
+  } else if (ext == "KHR_materials_sheen") {
+    const auto col = v.contains("sheenColorFactor") ? number_array(v["sheenColorFactor"], 3, at(m, p + "sheenColorFactor"))
+                                                    : std::vector<double>{0, 0, 0};
+    for (int k = 0; k < 3; ++k) check_unit_range(m, fmt::format("{}sheenColorFactor[{}]", p, k), col[size_t(k)]);
+    const double r = number_or(v, "sheenRoughnessFactor", 0.0, m, p);
+    check_unit_range(m, p + "sheenRoughnessFactor", r);
+    if (col[0] > 0 || col[1] > 0 || col[2] > 0 || v.contains("sheenColorTexture"))
+      m.account.push_back(fmt::format("KHR_materials_sheen (sheenColorFactor ({:g}, {:g}, {:g}), sheenRoughnessFactor "
+                                      "{:g}): the sheen lobe is NOT checked (mfv has no sheen model yet); the base "
+                                      "material below it is", col[0], col[1], col[2], r));
+  }
+}
+
+// KHR_materials_clearcoat: clearcoat = clearcoatFactor x clearcoatTexture.r,
+// clearcoatRoughness = clearcoatRoughnessFactor x clearcoatRoughnessTexture.g
+// (both linear); checked through "gltf_clearcoat", whose base is isotropic
+// with specularFactor 1.
+void read_clearcoat(SceneMaterial& m, Images& images, const json& v) {
+  const std::string p = "KHR_materials_clearcoat.";
+  const double c = number_or(v, "clearcoatFactor", 0.0, m, p), r = number_or(v, "clearcoatRoughnessFactor", 0.0, m, p);
+  check_unit_range(m, p + "clearcoatFactor", c);
+  check_unit_range(m, p + "clearcoatRoughnessFactor", r);
+  if (!(c > 0.0)) return;  // clearcoatFactor 0 disables the layer (the spec), whatever its texture
+  m.clearcoat = textured(m, images, v, p, {"clearcoatTexture", 0, false}, c, m.account);
+  m.clearcoat_roughness = textured(m, images, v, p, {"clearcoatRoughnessTexture", 1, false}, r, m.account);
+  if (m.anisotropy_strength.hi > 0.0 || m.specular.lo != 1.0 || m.specular.hi != 1.0) {
+    m.account.push_back("KHR_materials_clearcoat: the coat is NOT checked: the gltf_clearcoat model layers it over an "
+                        "isotropic base with specularFactor 1, and this base is not one");
+    return;
+  }
+  m.coat_checked = true;
+  m.account.push_back(fmt::format("KHR_materials_clearcoat: checked as the gltf_clearcoat model (fresnel_coat over "
+                                  "the base) over clearcoat [{:.4g}, {:.4g}], clearcoatRoughness [{:.4g}, {:.4g}]",
+                                  m.clearcoat.lo, m.clearcoat.hi, m.clearcoat_roughness.lo, m.clearcoat_roughness.hi));
+  if (m.clearcoat_roughness.lo * m.clearcoat_roughness.lo < kSceneMinAlpha)
+    m.warnings.push_back(fmt::format("clearcoatRoughness {:g} gives a coat alpha below {:g}: the coat is checked at "
+                                     "alpha = {:g} (clearcoatRoughness 0.01)",
+                                     m.clearcoat_roughness.lo, kSceneMinAlpha, kSceneMinAlpha));
+}
+
+SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
+  SceneMaterial m;
+  m.origin = fmt::format("materials[{}]", index);
+  if (!jm.is_object()) throw Error(fmt::format("{} is not an object", m.origin));
+  if (jm.contains("name") && !jm["name"].is_string())
+    throw Error(fmt::format("{}.name = {} is not a string", m.origin, json_shown(jm["name"])));
+  m.name = jm.contains("name") && !jm["name"].get<std::string>().empty() ? jm["name"].get<std::string>()
+                                                                         : fmt::format("material #{}", index);
+  const json& pbr = object_or_empty(jm, "pbrMetallicRoughness", at(m, ""));
+  const std::string pp = "pbrMetallicRoughness.";
+  if (pbr.contains("baseColorFactor")) {
+    const auto b = number_array(pbr["baseColorFactor"], 4, at(m, pp + "baseColorFactor"));  // RGBA (§3.9.2)
+    for (size_t k = 0; k < 3; ++k) m.factors.base[k] = b[k];
+    check_unit_range(m, pp + "baseColorFactor[3]", b[3]);
+  }
+  m.factors.metallic = number_or(pbr, "metallicFactor", 1.0, m, pp);
+  m.factors.roughness = number_or(pbr, "roughnessFactor", 1.0, m, pp);
+  const json& ext = object_or_empty(jm, "extensions", at(m, ""));
+  for (auto& [name, v] : ext.items())
+    if (!v.is_object()) throw Error(fmt::format("{} is not an object", at(m, "extensions." + name)));
+  auto ext_of = [&](const char* e) -> const json& {
+    static const json empty = json::object();
+    return ext.contains(e) ? ext[e] : empty;
+  };
+  const json& ior = ext_of("KHR_materials_ior");
+  const json& spec = ext_of("KHR_materials_specular");
+  const json& aniso = ext_of("KHR_materials_anisotropy");
+  m.factors.ior = number_or(ior, "ior", 1.5, m, "KHR_materials_ior.");
+  if (ext.contains("KHR_materials_ior")) {
+    // the catalog's exact dielectric F takes eta in [0.1, 10]; ior 0 is the specular-glossiness f0 = 1
+    m.ior_exact = m.factors.ior >= 1.0 && m.factors.ior <= 10.0;
+    m.account.push_back(m.ior_exact ? fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 (the spec) and "
+                                                  "also the exact dielectric Fresnel at eta = {:g} "
+                                                  "(ggx/smith_ggx_correlated/dielectric): energy at every roughness "
+                                                  "point", m.factors.ior, m.factors.ior)
+                                    : fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 only (the exact "
+                                                  "dielectric F takes eta in [1, 10])", m.factors.ior));
+  }
+  m.factors.specular = number_or(spec, "specularFactor", 1.0, m, "KHR_materials_specular.");
+  if (spec.contains("specularColorFactor")) {
+    const auto c = number_array(spec["specularColorFactor"], 3, at(m, "KHR_materials_specular.specularColorFactor"));
+    for (size_t k = 0; k < 3; ++k) m.factors.specular_color[k] = c[k];
+  }
+  m.factors.anisotropy_strength = number_or(aniso, "anisotropyStrength", 0.0, m, "KHR_materials_anisotropy.");
+  m.factors.anisotropy_rotation = number_or(aniso, "anisotropyRotation", 0.0, m, "KHR_materials_anisotropy.");
+  validate_gltf_factors(fmt::format("material '{}' ({})", m.name, m.origin), m.factors);
+  set_factor_ranges(m);
+
+  // Textures scale the factors (glTF §3.9.2: metallicRoughnessTexture G = roughness,
+  // B = metallic; baseColorTexture sRGB; KHR_materials_specular: specularTexture A,
+  // specularColorTexture sRGB RGB; KHR_materials_anisotropy: anisotropyTexture B = strength).
+  std::vector<std::string>& notes = m.account;
+  for (size_t k = 0; k < 3; ++k)
+    m.base[k] = textured(m, images, pbr, pp, {"baseColorTexture", int(k), true}, m.factors.base[k], notes);
+  m.roughness = textured(m, images, pbr, pp, {"metallicRoughnessTexture", 1, false}, m.factors.roughness, notes);
+  m.metallic = textured(m, images, pbr, pp, {"metallicRoughnessTexture", 2, false}, m.factors.metallic, notes);
+  m.specular = textured(m, images, spec, "KHR_materials_specular.", {"specularTexture", 3, false}, m.factors.specular, notes);
+  for (size_t k = 0; k < 3; ++k)
+    m.specular_color[k] = textured(m, images, spec, "KHR_materials_specular.", {"specularColorTexture", int(k), true},
+                                   m.factors.specular_color[k], notes);
+  m.anisotropy_strength = textured(m, images, aniso, "KHR_materials_anisotropy.", {"anisotropyTexture", 2, false},
+                                   m.factors.anisotropy_strength, notes);
+  // notes of colour textures come once per channel: keep one of each
+  std::vector<std::string> unique;
+  for (auto& n : notes)
+    if (std::find(unique.begin(), unique.end(), n) == unique.end()) unique.push_back(n);
+  notes = unique;
+
+  // KHR_materials_specular: dielectric F0 = min(f0_ior · specularColor, 1) per channel, the spec's own clamp: said where it acts
+  const double r = m.factors.ior == 0 ? 1.0 : (m.factors.ior - 1.0) / (m.factors.ior + 1.0);
+  for (size_t k = 0; k < 3; ++k)
+    if (r * r * m.specular_color[k].hi > 1.0)
+      m.warnings.push_back(fmt::format("KHR_materials_specular: f0 x specularColor = {:g} x {:g} = {:g} in channel {} "
+                                       "is clamped to 1 (the extension's min(f0 x specularColor, 1))",
+                                       r * r, m.specular_color[k].hi, r * r * m.specular_color[k].hi, "rgb"[k]));
+  if (m.factors.anisotropy_rotation != 0.0)
+    m.warnings.push_back(fmt::format("anisotropyRotation {:g} turns the lobe about n: checked in the anisotropy "
+                                     "direction's own frame, where the BRDF does not depend on it",
+                                     m.factors.anisotropy_rotation));
+  read_clearcoat(m, images, ext_of("KHR_materials_clearcoat"));
+  for (auto& [name, v] : ext.items()) {
+    if (kModelled.count(name)) continue;
+    if (kAccounted.count(name)) account_extension(m, name, v);
+    else if (name.rfind("KHR_materials_", 0) == 0 || name.rfind("EXT_materials_", 0) == 0)
+      m.not_checked = fmt::format("{} changes the BSDF and mfv does not model it: not checked", name);
+    else if (!kHarmless.count(name))
+      m.account.push_back(fmt::format("{}: not a material extension mfv knows; the BSDF is checked without it", name));
+  }
+  note_alpha_floor(m);
+  return m;
+}
+
+// The glTF default material (spec §3.9.6): base colour 1, metallic 1, roughness 1.
+SceneMaterial default_gltf_material() {
+  SceneMaterial m;
+  m.name = "default material";
+  m.origin = "mesh primitives without a material (glTF default material)";
+  set_factor_ranges(m);
+  note_alpha_floor(m);
+  return m;
+}
+
+struct Usage {
+  std::set<size_t> materials;
+  bool default_used = false;
+  std::set<size_t> seen_nodes;
+};
+
+void collect_node(const GltfFile& f, size_t node, Usage& u) {
+  if (!u.seen_nodes.insert(node).second) return;
+  const json& n = element(f, "nodes", node, "a scene");
+  if (n.contains("mesh")) {
+    const size_t mi = json_index(n["mesh"], fmt::format("{}: nodes[{}].mesh", f.path, node));
+    const json& mesh = element(f, "meshes", mi, fmt::format("nodes[{}]", node));
+    if (!mesh.contains("primitives") || !mesh["primitives"].is_array())
+      throw Error(fmt::format("{}: meshes[{}].primitives is not an array", f.path, mi));
+    for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+      const json& prim = mesh["primitives"][p];
+      if (prim.is_object() && prim.contains("material"))
+        u.materials.insert(json_index(prim["material"], fmt::format("{}: meshes[{}].primitives[{}].material", f.path, mi, p)));
+      else
+        u.default_used = true;
+    }
+  }
+  if (n.contains("children")) {
+    if (!n["children"].is_array()) throw Error(fmt::format("{}: nodes[{}].children is not an array", f.path, node));
+    for (auto& c : n["children"]) collect_node(f, json_index(c, fmt::format("{}: nodes[{}].children", f.path, node)), u);
+  }
+}
+
+// The materials the scene's nodes use; a file without meshes is a material library (all of them).
+Usage used_materials(const GltfFile& f) {
+  Usage u;
+  const json& mats = top_array(f, "materials");
+  if (top_array(f, "meshes").empty()) {
+    for (size_t i = 0; i < mats.size(); ++i) u.materials.insert(i);
+    return u;
+  }
+  std::vector<size_t> roots;
+  const json& scenes = top_array(f, "scenes");
+  auto scene_nodes = [&](size_t s) {
+    const json& sc = element(f, "scenes", s, "the file");
+    if (sc.contains("nodes"))
+      for (auto& n : sc["nodes"]) roots.push_back(json_index(n, fmt::format("{}: scenes[{}].nodes", f.path, s)));
+  };
+  if (f.j.contains("scene")) scene_nodes(json_index(f.j["scene"], f.path + ": scene"));
+  else for (size_t s = 0; s < scenes.size(); ++s) scene_nodes(s);
+  if (scenes.empty())  // no scene: every node
+    for (size_t i = 0; i < top_array(f, "nodes").size(); ++i) roots.push_back(i);
+  for (size_t r : roots) collect_node(f, r, u);
+  for (size_t i : u.materials)
+    if (i >= mats.size())
+      throw Error(fmt::format("{}: a mesh primitive names material {}, but the file has {}", f.path, i, mats.size()));
+  return u;
+}
+
+}  // namespace
+
+Scene load_gltf(const std::string& path, bool binary) {
+  const GltfFile f = read_gltf_file(path, binary);
+  Scene sc;
+  sc.path = path;
+  sc.format = binary ? "glb" : "gltf";
+  if (f.j.contains("extensionsRequired")) {
+    if (!f.j["extensionsRequired"].is_array()) throw Error(path + ": extensionsRequired is not an array");
+    for (auto& e : f.j["extensionsRequired"]) {
+      const std::string ext = e.is_string() ? e.get<std::string>() : json_shown(e);
+      if (!kModelled.count(ext) && !kAccounted.count(ext) && !kHarmless.count(ext))
+        throw Error(fmt::format("{} requires extension {}, which mfv neither models nor accounts for (it models "
+                                "KHR_materials_ior, KHR_materials_specular, KHR_materials_anisotropy; see docs/scenes.md)",
+                                path, ext));
+    }
+  }
+  const Usage u = used_materials(f);
+  const json& mats = top_array(f, "materials");
+  sc.materials_in_file = mats.size();
+  Images images{f, {}, {}};
+  for (size_t i : u.materials) sc.materials.push_back(from_gltf(mats[i], i, images));
+  if (u.default_used) sc.materials.push_back(default_gltf_material());
+  if (sc.materials.empty()) throw Error(fmt::format("{}: the scene uses no material (no mesh, no material)", path));
+  // every image that could not be read, once each, with the materials it scales
+  for (auto& [i, users] : images.missing_users) {
+    std::string who;
+    for (auto& w : users) who += (who.empty() ? "" : ", ") + w;
+    sc.warnings.push_back(fmt::format("{}: its textured parameters are checked over [0, factor] ({})",
+                                      images.cache.at(i).missing, who));
+  }
+  return sc;
+}
+
+}  // namespace mfv

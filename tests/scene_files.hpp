@@ -1,0 +1,71 @@
+// Files for the scene tests: a temporary folder, reading a file whole, and a
+// GLB container around a JSON chunk (and an optional BIN chunk).
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace mfv::test {
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A temporary folder for files a test writes.
+struct TempDir {
+  std::filesystem::path dir;
+  TempDir() {
+    static int n = 0;
+    dir = std::filesystem::temp_directory_path() / ("mfv_scene_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~TempDir() { std::filesystem::remove_all(dir); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return (dir / name).string();
+  }
+  // a copy of `src` here, alone (no .bin, no images beside it)
+  std::string copy(const std::string& src) const {
+    return write(std::filesystem::path(src).filename().string(), slurp(src));
+  }
+};
+
+// A GLB container (glTF 2.0 §4.4) holding `json` as its JSON chunk and `bin`, if any, as its BIN chunk.
+inline std::string glb_of(std::string json, std::string bin = "") {
+  while (json.size() % 4) json += ' ';
+  while (bin.size() % 4) bin += '\0';
+  std::string out = "glTF";
+  auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+  u32(2);
+  u32(uint32_t(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(uint32_t(json.size()));
+  u32(0x4E4F534Au);  // "JSON"
+  out += json;
+  if (!bin.empty()) {
+    u32(uint32_t(bin.size()));
+    u32(0x004E4942u);  // "BIN\0"
+    out += bin;
+  }
+  return out;
+}
+
+inline const SceneMaterial& named(const Scene& s, const std::string& name) {
+  for (auto& m : s.materials)
+    if (m.name == name) return m;
+  FAIL("no material " << name);
+  return s.materials.front();
+}
+
+}  // namespace mfv::test
