@@ -5,6 +5,7 @@
 #include "reference/brdf.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "util/progress.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -268,6 +269,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   std::vector<float> rec(chunk * kRecord);
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
 
+  progress::Task task("agree: cases", cases.size());
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
     std::array<float, 3 * kRangeSlots> ranges{};
@@ -339,6 +341,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
     r.median_rel = *mid;
     rep.results.push_back(r);
     rep.samples += opt.samples;
+    task.advance(1);
   }
   return rep;
 }

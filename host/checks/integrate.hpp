@@ -5,6 +5,7 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
+#include "util/progress.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -116,6 +117,8 @@ class Integrator {
   bool fast_albedo_ = false, fast_albedo_available_ = false;
   size_t local_size_ = 64;
   size_t max_work_group_ = 64;
+  progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read
+  uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()
 };
 
 }  // namespace mfv

@@ -5,6 +5,7 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "util/progress.hpp"
 
 #include <fmt/format.h>
 
@@ -551,8 +552,12 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   uint32_t stream = 0;
   std::vector<Plan> plans = make_plans(opt);
-  for (auto& plan : plans) run_plan(rt, plan, opt, stream, rep);
+  for (size_t i = 0; i < plans.size(); ++i) {
+    progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
+    run_plan(rt, plans[i], opt, stream, rep);
+  }
   if (check_wanted(opt, "reciprocity")) {
+    progress::Task task("reciprocity", 0);
     Plan rp = reciprocity_plan(opt);
     run_reciprocity(rt, rp, opt, rep);
   }

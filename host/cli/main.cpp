@@ -1,6 +1,8 @@
 // mfv: the microfacet-verify command line.
 #include "cli/commands.hpp"
 #include "runtime/error.hpp"
+#include "util/progress.hpp"
+#include "util/version.hpp"
 
 #include <CL/opencl.hpp>
 #include <fmt/format.h>
@@ -9,8 +11,16 @@
 #include <string>
 
 int main(int argc, char** argv) {
+  // Line-buffered stdout: a CI log shows each result line as it is printed.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"mfv: verify microfacet BRDFs on OpenCL against a double-precision reference"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "mfv " + mfv::version_text());
+  bool quiet = false;
+  app.add_flag("--quiet,-q", quiet, "no progress on stderr (by default: a bar on a terminal, a line every few "
+                                    "seconds otherwise)");
+  // Global options are also accepted after the command (mfv run --quiet).
+  app.fallthrough();
   mfv::cli::Globals g;
   app.add_option("--device", g.device, "OpenCL device: index or name substring (default: first GPU, else CPU)");
   app.add_option("--kernel-dir", g.kernel_dir, "read kernels from this folder instead of the embedded copies")
@@ -27,6 +37,10 @@ int main(int argc, char** argv) {
   mfv::cli::add_samplers(app, g, rc);
   mfv::cli::add_bench(app, g, rc);
   mfv::cli::add_convergence(app, g, rc);
+  mfv::cli::add_help_footers(app);
+  // Subcommands run inside app.parse(): --quiet must take effect before it.
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--quiet" || std::string(argv[i]) == "-q") mfv::progress::set_quiet(true);
   try {
     // Name an unknown command instead of CLI11's "a subcommand is required".
     for (int i = 1; i < argc; ++i) {
@@ -49,6 +63,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "mfv: error: %s (see 'mfv --help')\n", e.what());
