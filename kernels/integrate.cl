@@ -1,4 +1,4 @@
-// Batched Monte Carlo integrals for the conformance checks (DESIGN.md §3-4).
+// Batched Monte Carlo integrals for the conformance checks (docs/design.md §3-4).
 // Each work-group owns one slice of one integral and reduces sum and sum of
 // squares in local memory, in double where the device has it; the host adds
 // the slices. Needs the generated eval_D/eval_G/eval_F and brdf.cl.
@@ -532,7 +532,7 @@ static inline real convergence_value(__global const IntegralSpec* s, ulong seed,
     }
     // Sampling by D (or visible normals) is never used for D normalization:
     // with the proposal equal to the D under test every weight is D c /
-    // (D c) = 1, so d_norm would be 1 by construction (DESIGN.md §3). The
+    // (D c) = 1, so d_norm would be 1 by construction (docs/design.md §3). The
     // host refuses these; NaN makes a misuse visible.
     return NAN;
   }

@@ -1,7 +1,7 @@
 // Whole reflectance models (catalog: host/catalog/models.cpp), f(l, v) with
 // l = light, v = view, both unit and pointing away from the surface, n = +z;
 // parameters p[0..5]. Every model returns 0 below either horizon. The
-// generated eval_model(id, wi, wo, p) calls them (DESIGN.md §5: only the
+// generated eval_model(id, wi, wo, p) calls them (docs/design.md §5: only the
 // models a program uses). Reference twin: host/reference/models.cpp.
 // Needs terms_d.cl, terms_g.cl and terms_f.cl (shared D, G and F forms).
 

@@ -2,7 +2,7 @@
 // estimators. Built only with -DMFV_USER_BRDF, right after the user's file
 // (injected by host/user/ with `#line 1 "FILE.cl"`, so build logs point into
 // it), after integrate.cl, whose seams spec_brdf, spec_D and spec_G1 call
-// these. The contract (README "mfv check"), in the local frame n = +z:
+// these. The contract (docs/cli/check.md), in the local frame n = +z:
 //   float3 brdf(float3 wi, float3 wo, const float* params);   RGB, required
 //   float D(float3 m, const float* params);                    optional
 //   float G1(float3 v, float3 m, const float* params);          optional

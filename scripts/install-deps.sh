@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(cmake g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers
           catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libtinygltf-dev libssl-dev
           libboost-math-dev libstb-dev
-          gnuplot-nox)  # gnuplot: optional at run time, for mfv stability's and mfv energy's plots
+          gnuplot-nox   # gnuplot: optional at run time, for the plots
+          python3-jsonschema python3-yaml)  # tests: outputs against schemas/, the CI snippets of docs/ci/
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -74,7 +74,7 @@ double adaptive_simpson(const std::function<double(double)>& f, double a, double
 
 // 2π ∫_0^{π/2} D(cosθ) cosθ sinθ dθ  (= ∫_H D(m)(m·n) dω_m for isotropic D).
 // The θ range is cut at width/8 · 2^k so a peak of that width (roughness
-// only, never D's formula: DESIGN.md §3) is resolved before the tail.
+// only, never D's formula: docs/design.md §3) is resolved before the tail.
 double projected_integral(Scalar2 D, double param, double width) {
     const auto integrand = [&](double theta) {
         return D(std::cos(theta), param) * std::cos(theta) * std::sin(theta);

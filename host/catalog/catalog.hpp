@@ -1,4 +1,4 @@
-// The one catalog (DESIGN.md §1): every term is declared here once, with its
+// The one catalog (docs/design.md §1): every term is declared here once, with its
 // parameters and valid ranges, its source, its kernel function and reference
 // twin, its agreement tolerance and the physical properties it is expected to
 // have. Kernels (through generated dispatch), reference, checks, CLI listing

@@ -1,4 +1,4 @@
-// Whole reflectance models in the one catalog (DESIGN.md §1): BRDFs the seeds
+// Whole reflectance models in the one catalog (docs/design.md §1): BRDFs the seeds
 // give as one formula rather than as a D x G x F product (Lambert, Oren-Nayar,
 // Toon, Phong, Blinn, Ward, seed 004's Cook-Torrance k-mix, seed 003's
 // Torrance-Sparrow, seed 002's compute_radiance). Each is declared once: up

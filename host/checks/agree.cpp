@@ -5,6 +5,7 @@
 #include "reference/brdf.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "util/progress.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -295,6 +296,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   const double ftz_floor = !opt.fp64 && !rt.device().fp32_denorms ? std::numeric_limits<float>::min() : 0.0;
 
+  progress::Task task("agree: cases", cases.size());
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
     std::array<float, 3 * kRangeSlots> ranges{};
@@ -367,6 +369,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
     r.median_rel = *mid;
     rep.results.push_back(r);
     rep.samples += opt.samples;
+    task.advance(1);
   }
   return rep;
 }

@@ -188,7 +188,7 @@ ConvergenceCase parse_convergence_case(const std::string& text) {
 
 bool estimator_applies(const std::string& estimator, const std::string& check) {
   // Sampling by D or by visible normals makes D normalization a tautology:
-  // the weight D c / (D c) is 1 for every sample (DESIGN.md §3).
+  // the weight D c / (D c) is 1 for every sample (docs/design.md §3).
   return check != "d_norm" || (estimator != "dsample" && estimator != "vndf");
 }
 

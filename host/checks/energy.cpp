@@ -6,6 +6,7 @@
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "stats/verdict.hpp"
+#include "util/progress.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 #include <fmt/format.h>
@@ -450,11 +451,7 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
       throw Error(fmt::format("--baseline has a {}x{} grid; this run has {}x{}: rerun with the same --grid",
                               grid.at("mu").size(), grid.at("alpha").size(), now.mu.size(), now.alpha.size()));
     const double df_old = j.at("options").at("replicates").get<double>() - 1, df_new = now.opt.replicates - 1;
-    struct Test {
-      std::string where;
-      double b, bse, a, ase;
-    };
-    std::vector<Test> tests;
+    std::vector<BaselineValue> tests;
     std::map<std::string, const json*> old;
     for (auto& c : j.at("combinations")) old[c.at("d").get<std::string>() + "/" + c.at("g").get<std::string>()] = &c;
     const size_t nm = now.mu.size();
@@ -469,11 +466,13 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
         for (size_t m = 0; m < nm; ++m) {
           const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), now.alpha[a], now.mu[m]);
           const size_t ci = a * nm + m;
-          tests.push_back({"E " + w, num(c.at("E")[a][m]), num(c.at("E_se")[a][m]), t.E[ci].mean, t.E[ci].se});
-          tests.push_back({"A " + w, num(c.at("A")[a][m]), num(c.at("A_se")[a][m]), t.A[ci].mean, t.A[ci].se});
+          tests.push_back({"E " + w, num(c.at("E")[a][m]), num(c.at("E_se")[a][m]), df_old, t.E[ci].mean, t.E[ci].se,
+                           df_new});
+          tests.push_back({"A " + w, num(c.at("A")[a][m]), num(c.at("A_se")[a][m]), df_old, t.A[ci].mean, t.A[ci].se,
+                           df_new});
         }
         tests.push_back({fmt::format("E_avg {} alpha={:.4g}", t.name(), now.alpha[a]), num(c.at("E_avg")[a]),
-                         num(c.at("E_avg_se")[a]), t.eavg[a].mean, t.eavg[a].se});
+                         num(c.at("E_avg_se")[a]), df_old, t.eavg[a].mean, t.eavg[a].se, df_new});
       }
     }
     for (auto& [name, c] : old)
@@ -492,28 +491,15 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
       const json& c = *it->second;
       for (size_t m = 0; m < nm; ++m)
         tests.push_back({fmt::format("E {} mu_l={:.4g}", me.point.name, now.mu[m]), num(c.at("E")[m]),
-                         num(c.at("E_se")[m]), me.E[m].mean, me.E[m].se});
-      tests.push_back({"E_avg " + me.point.name, num(c.at("E_avg")), num(c.at("E_avg_se")), me.eavg.mean, me.eavg.se});
+                         num(c.at("E_se")[m]), df_old, me.E[m].mean, me.E[m].se, df_new});
+      tests.push_back({"E_avg " + me.point.name, num(c.at("E_avg")), num(c.at("E_avg_se")), df_old, me.eavg.mean,
+                       me.eavg.se, df_new});
     }
-    out.compared = tests.size();
-    out.threshold_p = alpha_fw / double(std::max<size_t>(1, tests.size()));
-    for (auto& t : tests) {
-      // Welch: the two standard errors come from R-1 degrees of freedom each.
-      const double v1 = t.bse * t.bse, v2 = t.ase * t.ase, se = std::sqrt(v1 + v2);
-      double p;
-      if (std::isnan(t.a) != std::isnan(t.b)) p = 0;  // one side lost its value
-      else if (std::isnan(t.a)) continue;
-      else if (se == 0) p = t.a == t.b ? 1 : 0;
-      else {
-        const double df = (v1 + v2) * (v1 + v2) / (v1 * v1 / df_old + v2 * v2 / df_new);
-        p = student_t_two_sided_p((t.a - t.b) / se, std::isfinite(df) ? df : std::min(df_old, df_new));
-      }
-      if (p < out.threshold_p) out.moved.push_back({t.where, t.b, t.a, se, p});
-    }
+    // the standard errors come from R-1 degrees of freedom each (replicates)
+    judge_baseline(tests, alpha_fw, out);
   } catch (const json::exception& e) {
     throw Error(fmt::format("--baseline is malformed: {}", e.what()));
   }
-  std::sort(out.moved.begin(), out.moved.end(), [](auto& x, auto& y) { return x.p < y.p; });
   return out;
 }
 

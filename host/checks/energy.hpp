@@ -21,6 +21,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "checks/baseline.hpp"
 #include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 
@@ -106,24 +107,9 @@ std::vector<double> energy_alpha_grid(int n);
 void validate_energy_options(const EnergyOptions& opt);  // throws mfv::Error
 EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt);
 
-// --baseline: cells that moved beyond their combined standard errors.
-struct BaselineDiff {
-  size_t compared = 0;  // values tested (E, A per cell and E_avg per alpha)
-  double threshold_p = 0;  // per-test p-value threshold (Bonferroni)
-  struct Moved {
-    std::string where;
-    double before, after, se, p;
-  };
-  std::vector<Moved> moved;  // sorted by p, ascending
-  std::vector<std::string> notes;
-};
-
 // `baseline_json` is the text of an earlier energy.json; family-wise
 // false-alarm rate `alpha_fw`. Throws mfv::Error on a malformed or
 // incompatible baseline (different grid).
 BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string& baseline_json, double alpha_fw);
-
-// Two-sided p-value of Student's t with `df` degrees of freedom.
-double student_t_two_sided_p(double t, double df);
 
 }  // namespace mfv

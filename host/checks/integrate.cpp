@@ -170,8 +170,11 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
   if (specs.empty()) return out;
   cl::Kernel k(program_, "integrate");
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
-  // Batches of at most ~2^15 work-groups keep buffers small and launches short.
-  const size_t per_batch = std::max<size_t>(1, (size_t(1) << 15) / slices);
+  // Batches of at most ~2^15 work-groups keep buffers small and launches
+  // short, and at least 16 of them let progress (util/progress.hpp) advance
+  // during a check; the samples and sums do not depend on the batching.
+  const size_t per_batch =
+      std::max<size_t>(1, std::min((size_t(1) << 15) / slices, (specs.size() + 15) / 16));
   for (size_t first = 0; first < specs.size(); first += per_batch) {
     size_t count = std::min(per_batch, specs.size() - first);
     size_t groups = count * slices;
@@ -313,6 +316,7 @@ void Integrator::add_sums(const cl::Buffer& sums, size_t count, uint32_t slices,
       out[i].sum += host[2 * (i * slices + j)];
       out[i].sumsq += host[2 * (i * slices + j) + 1];
     }
+  if (task_) task_->advance(groups * group_samples_);
 }
 
 std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
@@ -347,6 +351,9 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     }
   }
   std::vector<Sums> sums(specs.size());
+  progress::Task task("samples", specs.size() * n);
+  task_ = &task;
+  group_samples_ = uint64_t(local_size_) * per_item;
   for (const auto& [kernel, at] : fast_at) {
     std::vector<IntegralSpec> fast;
     for (size_t j : at) fast.push_back(specs[j]);
@@ -354,6 +361,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
   }
   const auto gs = sums_integrate(general, per_item, slices, seed, first_index);
+  task_ = nullptr;
   for (size_t j = 0; j < general.size(); ++j) sums[general_at[j]] = gs[j];
   std::vector<Estimate> out(specs.size());
   const auto ms = sums_mis(mis, seed);

@@ -5,6 +5,7 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
+#include "util/progress.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -146,6 +147,8 @@ class Integrator {
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
   size_t local_size_ = 64;  // of `integrate`: 64, or less where the device or kernel allows less
+  progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read
+  uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()
 };
 
 // The `reciprocity` kernel of `program` over pairs 0 .. pairs-1 of each

@@ -9,6 +9,7 @@
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
+#include "util/progress.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -174,6 +175,11 @@ SamplerResult test_draws(const SamplerCase& c, const std::vector<glm::dvec3>& dr
   // expected.back() stays 0: a draw that is no direction is impossible, not
   // merely unlikely
   const ChiSquare t = chi_square_test(observed, expected);
+  r.cos_bins = nz;
+  r.phi_bins = np;
+  r.cos_low = zlo;
+  r.observed.assign(observed.begin(), observed.end() - 1);  // without the no-direction cell
+  r.expected.assign(expected.begin(), expected.end() - 1);
   r.chi2 = t.statistic;
   r.dof = t.dof;
   r.p_value = t.p_value;
@@ -205,6 +211,7 @@ std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt)
   cl::Buffer buf(rt.context(), CL_MEM_WRITE_ONLY, opt.samples * 3 * sizeof(float));
   std::vector<float> host(opt.samples * 3);
   std::vector<SamplerResult> out;
+  progress::Task task("samplers: cases", cases.size());
   for (const auto& c : cases) {
     const double total = sampler_pdf_total(c);
     k.setArg(0, static_cast<cl_int>(c.sampler));
@@ -226,6 +233,7 @@ std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt)
       r.pdf_ok = std::fabs(total - 1.0) < 1e-6;  // the quadrature resolves the lobe to ~1e-10
       out.push_back(r);
     }
+    task.advance(1);
   }
   return out;
 }
@@ -255,6 +263,8 @@ std::string samplers_json(const std::vector<SamplerResult>& rs, const Runtime& r
                           {"draws", r.impl}, {"pdf_integral", r.pdf_total}, {"chi2", r.chi2}, {"dof", r.dof},
                           {"p_value", r.p_value}, {"level", r.level}, {"lost", r.lost},
                           {"impossible", r.impossible}, {"pass", r.pass()}});
+  for (size_t i = 0; i < rs.size(); ++i)
+    if (!rs[i].plot.empty()) j["tests"][i]["plot"] = "plots/" + rs[i].plot;
   return j.dump(2) + "\n";
 }
 

@@ -1,4 +1,4 @@
-// mfv samplers: every sampling routine the suite uses, verified (DESIGN.md
+// mfv samplers: every sampling routine the suite uses, verified (docs/design.md
 // §3): its pdf integrates to 1 (deterministic quadrature) and a histogram of
 // its draws matches the pdf (chi-square, Šidák-corrected over all tests).
 // Draws come from the device (kernels/samplers.cl, which calls the very
@@ -56,6 +56,12 @@ struct SamplerResult {
   std::string impossible;  // samples where the pdf is zero
   bool pdf_ok = false, fit_ok = false;
   bool pass() const { return pdf_ok && fit_ok; }
+  // the histogram: cos_bins x phi_bins cells, cos θ-major, for the
+  // observed/expected/difference image (report/sampler_plots.hpp)
+  int cos_bins = 0, phi_bins = 0;
+  double cos_low = 0;  // the cells span cos θ in [cos_low, 1]
+  std::vector<double> observed, expected;
+  std::string plot;  // the image's file name, where one was written
 };
 
 // Histogram of directions in (cos θ, φ) cells against the case's pdf.

@@ -9,6 +9,7 @@
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "runtime/work_group.hpp"
+#include "util/progress.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -843,7 +844,7 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
     throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
   auto cases = make_cases(opt);
 
-  // Compile only the terms the selected cases use (DESIGN.md §5).
+  // Compile only the terms the selected cases use (docs/design.md §5).
   TermSelection sel;
   auto add = [](std::vector<const Term*>& v, const Term* t) {
     if (t && std::find(v.begin(), v.end(), t) == v.end()) v.push_back(t);
@@ -874,7 +875,9 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
   rep.build_seconds = rt.build_stats().seconds - build0;
   cl::Kernel kern(prog, "stability_eval");
 
+  progress::Task task("stability: cases", cases.size());
   for (auto& c : cases) {
+    task.advance(1);
     std::vector<In> rounded(c.points.size());
     for (size_t i = 0; i < c.points.size(); ++i) {
       for (int k = 0; k < kIn; ++k) rounded[i][k] = rnd(c.points[i].in[k], opt.fp64);

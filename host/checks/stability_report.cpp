@@ -1,10 +1,11 @@
 // Outputs of mfv stability: console table, JSON (schema mfv-stability/1),
 // Markdown, and gnuplot plots of error over θ and α. Files are written whole
-// or not at all (DESIGN.md §7).
+// or not at all (docs/design.md §7).
 #include "checks/stability.hpp"
 #include "mfv_git_commit.h"
 
 #include "report/files.hpp"
+#include "report/gnuplot.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
 
@@ -204,7 +205,7 @@ std::string stability_markdown(const StabilityReport& rep) {
       }
     o += "\n\n";
   }
-  o += "## Plots\n\n`error_theta_d.svg`, `error_theta_g1.svg`: ulps against the reference over θ (near the normal and "
+  o += "## Plots\n\n`error_theta_d.svg`, `error_theta_g1.svg` (and `.png`): ulps against the reference over θ (near the normal and "
        "near grazing) for the GGX forms and the catalog terms; `error_alpha.svg`: the largest error over θ for each "
        "alpha. NaN, Inf and negative results are drawn at 1e12 ulps, exact results at 0.01.\n";
   return o;
@@ -247,26 +248,38 @@ std::string data_text(const Plot& p) {
   return o;
 }
 
+// The plot as SVG and as PNG: the same commands under two terminals, written
+// to OUT.svg.tmp-mfv and OUT.png.tmp-mfv (renamed in place on success).
+std::string gnuplot_body(const Plot& p, const std::string& data);
 std::string gnuplot_text(const Plot& p, const std::string& data, const std::string& out) {
-  std::string o = fmt::format("set terminal svg size 1200,{} dynamic noenhanced\n", p.log_x ? 900 : 560);
-  o += "set output '" + out + "'\nset logscale y\nset format y '1e%L'\nset key outside right\n";
+  const int height = p.log_x ? 900 : 560;
+  return fmt::format("set terminal svg size 1200,{} dynamic noenhanced\nset output '{}.svg.tmp-mfv'\n", height, out) +
+         gnuplot_body(p, data) +
+         fmt::format("set terminal pngcairo size 1200,{} noenhanced font ',9'\nset output '{}.png.tmp-mfv'\n", height,
+                     out) +
+         gnuplot_body(p, data);
+}
+
+std::string gnuplot_body(const Plot& p, const std::string& data) {
+  std::string o = "reset\nset logscale y\nset format y '1e%L'\nset key outside right\n";
   o += "set ylabel 'ulps vs double reference'\nset yrange [1e-2:1e13]\n";
   if (p.log_x) {
     // θ near the normal on the left panel, π/2 − θ near grazing on the right.
     o += "set multiplot layout 2,1 title '" + p.title + "'\nset logscale x\nset format x '1e%L'\n";
     o += "set xlabel 'theta (rad), near the normal'\nset xrange [1e-8:1]\nplot ";
     for (size_t i = 0; i < p.series.size(); ++i)
-      o += fmt::format("{}'{}' index {} using 1:($1 < 1 ? $2 : 1/0) with linespoints title '{}'", i ? ", " : "", data,
-                       i, p.series[i].first);
+      o += fmt::format("{}'{}' index {} using 1:($1 < 1 ? $2 : 1/0) with linespoints {} title '{}'", i ? ", " : "",
+                       data, i, series_colour(i), p.series[i].first);
     o += "\nset xlabel 'pi/2 - theta (rad), near grazing'\nset xrange [1e-8:1]\nplot ";
     for (size_t i = 0; i < p.series.size(); ++i)
-      o += fmt::format("{}'{}' index {} using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints title '{}'", i ? ", " : "",
-                       data, i, p.series[i].first);
+      o += fmt::format("{}'{}' index {} using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints {} title '{}'",
+                       i ? ", " : "", data, i, series_colour(i), p.series[i].first);
     o += "\nunset multiplot\n";
   } else {
     o += "set title '" + p.title + "'\nset logscale x\nset format x '1e%L'\nset xlabel '" + p.xlabel + "'\nplot ";
     for (size_t i = 0; i < p.series.size(); ++i)
-      o += fmt::format("{}'{}' index {} using 1:2 with linespoints title '{}'", i ? ", " : "", data, i, p.series[i].first);
+      o += fmt::format("{}'{}' index {} using 1:2 with linespoints {} title '{}'", i ? ", " : "", data, i,
+                       series_colour(i), p.series[i].first);
     o += "\n";
   }
   return o;
@@ -333,7 +346,7 @@ std::vector<std::string> write_stability_outputs(const StabilityReport& rep, con
   for (auto& p : plots) {
     files.push_back({dir + "/" + p.file + ".dat", data_text(p)});
     // The script writes to a temporary name; the svg is renamed in place only when gnuplot succeeded.
-    files.push_back({dir + "/" + p.file + ".gp", gnuplot_text(p, p.file + ".dat", p.file + ".svg.tmp-mfv")});
+    files.push_back({dir + "/" + p.file + ".gp", gnuplot_text(p, p.file + ".dat", p.file)});
   }
   write_files_atomically(files);
 
@@ -349,14 +362,16 @@ std::vector<std::string> write_stability_outputs(const StabilityReport& rep, con
   for (auto& p : plots) {
     std::string cmd = fmt::format("cd {} && {} {}.gp >/dev/null 2>&1", shell_quote(dir), shell_quote(gp), p.file);
     int st = std::system(cmd.c_str());
-    fs::path tmp = fs::path(dir) / (p.file + ".svg.tmp-mfv"), out = fs::path(dir) / (p.file + ".svg");
-    if (st == 0 && WIFEXITED(st) && fs::exists(tmp)) {
-      fs::rename(tmp, out, ec);
-      if (!ec) made.push_back(out.string());
-    } else {
-      fs::remove(tmp, ec);
-      notes.push_back(fmt::format("plot {} failed: {} exited with {}", p.file, gp, st));
+    for (const char* ext : {".svg", ".png"}) {
+      fs::path tmp = fs::path(dir) / (p.file + ext + ".tmp-mfv"), out = fs::path(dir) / (p.file + ext);
+      if (st == 0 && WIFEXITED(st) && fs::exists(tmp)) {
+        fs::rename(tmp, out, ec);
+        if (!ec) made.push_back(out.string());
+      } else {
+        fs::remove(tmp, ec);
+      }
     }
+    if (!(st == 0 && WIFEXITED(st))) notes.push_back(fmt::format("plot {} failed: {} exited with {}", p.file, gp, st));
   }
   if (!made.empty()) {
     std::string list;

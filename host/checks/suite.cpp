@@ -10,6 +10,7 @@
 #include "runtime/error.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
+#include "util/progress.hpp"
 
 #include <fmt/format.h>
 
@@ -661,11 +662,13 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   uint32_t stream = 0;
   std::vector<Plan> plans = make_plans(opt);
-  for (auto& plan : plans) {
-    if (plan.check == "furnace") attach_furnace_truth(plan);  // its pooled test is two-sided
-    run_plan(rt, plan, opt, stream, rep);
+  for (size_t i = 0; i < plans.size(); ++i) {
+    progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
+    if (plans[i].check == "furnace") attach_furnace_truth(plans[i]);  // its pooled test is two-sided
+    run_plan(rt, plans[i], opt, stream, rep);
   }
   if (check_wanted(opt, "reciprocity")) {
+    progress::Task task("reciprocity", 0);
     Plan rp = reciprocity_plan(opt);
     run_reciprocity(rt, rp, opt, rep);
   }

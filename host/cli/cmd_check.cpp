@@ -1,5 +1,5 @@
 // mfv check --brdf FILE.cl: the conformance checks on a renderer's own BRDF
-// code (contract in README "mfv check"); same verdicts, reports and exit
+// code (contract in docs/cli/check.md); same verdicts, reports and exit
 // codes as mfv run, so it drops into a CI job.
 #include "cli/commands.hpp"
 #include "cli/report_errors.hpp"

@@ -72,14 +72,7 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
       opt.n_alpha = a;
     }
     validate_energy_options(opt);
-    std::string base_text;
-    if (!baseline.empty()) {
-      std::ifstream in(baseline);
-      if (!in) throw Error(fmt::format("--baseline {}: cannot read the file", baseline));
-      std::stringstream ss;
-      ss << in.rdbuf();
-      base_text = ss.str();
-    }
+    const std::string base_text = baseline.empty() ? "" : read_text_file(baseline, "--baseline");
     if (!out_dir.empty()) prepare_output_dir(out_dir);
     Runtime rt(g.device, g.kernel_dir);
     EnergyReport rep = run_energy(rt, opt);

@@ -1,6 +1,8 @@
 // mfv run: the conformance suite and CI gate.
 #include "checks/suite.hpp"
 #include "cli/commands.hpp"
+#include "report/energy_report.hpp"
+#include "report/suite_baseline.hpp"
 #include "report/suite_report.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"
@@ -8,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mfv::cli {
@@ -37,6 +40,13 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
   static bool compare_full = false;
   cmd->add_flag("--compare-full", compare_full, "with --scene: also run the full catalog and measure the time the "
                                                 "scene saved");
+  static std::string baseline;
+  static double baseline_alpha = 1e-3;
+  cmd->add_option("--baseline", baseline, "earlier results.json: exit 1 if an estimate moved beyond its combined "
+                                          "standard errors (Welch t, Bonferroni over all integrals, as mfv energy)");
+  cmd->add_option("--baseline-alpha-fw", baseline_alpha, "family-wise false-alarm rate of the baseline comparison "
+                                                         "(default 1e-3)")
+      ->check(CLI::Range(1e-300, 0.5));
   auto* every_opt = cmd->get_option("--reference-every");
   cmd->callback([&g, &rc, samples_opt, every_opt] {
     if (samples_opt->count() > 0) {
@@ -45,6 +55,15 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
     }
     validate_suite_options(opt);
     if (compare_full && scene_path.empty()) throw Error("--compare-full needs --scene");
+    const nlohmann::json base =
+        baseline.empty() ? nlohmann::json() : parse_run_baseline(read_text_file(baseline, "--baseline"));
+    // 0 when nothing moved (or no baseline), 1 otherwise
+    auto compare = [&](const SuiteReport& rep) {
+      if (baseline.empty()) return 0;
+      BaselineDiff diff = compare_run_baseline(rep, base, baseline_alpha);
+      print_baseline_console(diff);
+      return diff.moved.empty() ? 0 : 1;
+    };
     if (!scene_path.empty()) {
       if (!opt.models.empty()) throw Error("--model and --scene cannot be combined: the scene chooses the models");
       Scene scene = load_scene(scene_path);  // every input error before any work
@@ -56,7 +75,7 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
       print_suite_console(run.rep, rt, opt);
       print_scene_console(run);
       if (!out_dir.empty()) write_scene_outputs(run, rt, opt, out_dir);
-      rc = run.rep.gate_ok() ? 0 : 1;
+      rc = std::max(run.rep.gate_ok() ? 0 : 1, compare(run.rep));
       return;
     }
     if (!out_dir.empty()) prepare_output_dir(out_dir);
@@ -64,7 +83,7 @@ void add_run(CLI::App& app, Globals& g, int& rc) {
     SuiteReport rep = run_suite(rt, opt);
     print_suite_console(rep, rt, opt);
     if (!out_dir.empty()) write_suite_outputs(rep, rt, opt, out_dir);
-    rc = rep.gate_ok() ? 0 : 1;
+    rc = std::max(rep.gate_ok() ? 0 : 1, compare(rep));
   });
 }
 

@@ -18,6 +18,8 @@ int run_reporting_errors(const std::function<int()>& work) {
     throw;  // main prints the help
   } catch (const CLI::CallForAllHelp&) {
     throw;
+  } catch (const CLI::CallForVersion&) {
+    throw;  // main prints the version
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "mfv: error: %s (see 'mfv --help')\n", e.what());
   } catch (const mfv::Error& e) {

@@ -1,4 +1,4 @@
-// Scalar double-precision reference for every catalog term (DESIGN.md §2).
+// Scalar double-precision reference for every catalog term (docs/design.md §2).
 //
 // Written from the seeds' formulas (../shared/seeds/) and the cited papers,
 // independently of kernels/: agreement between the two is the evidence.

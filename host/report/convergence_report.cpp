@@ -108,6 +108,18 @@ std::string json_of(const ConvergenceReport& r) {
 }
 
 // One PNG per check and case: error against samples and against time.
+// One colour and point type per estimator (seven, none reused), solid for
+// the device and dashed for the reference.
+std::string series_style(const std::string& estimator, bool device) {
+  static const std::vector<std::pair<std::string, std::string>> colours = {
+      {"uniform", "#9400d3"}, {"cosine", "#009e73"}, {"mis", "#56b4e9"}, {"dsample", "#e69f00"},
+      {"vndf", "#0072b2"},    {"rqmc", "#d55e00"},   {"quadrature", "#000000"}};
+  size_t i = 0;
+  while (i < colours.size() && colours[i].first != estimator) ++i;
+  const std::string colour = i < colours.size() ? colours[i].second : "#808080";
+  return fmt::format("lc rgb '{}' pt {} dt {}", colour, 4 + int(i) % 10, device ? 1 : 2);
+}
+
 NamedBytes plots(const ConvergenceReport& r, std::vector<std::string>& names) {
   NamedBytes data;
   std::string gp = "set encoding utf8\nset datafile missing 'nan'\nset logscale xy\nset format y '10^{%L}'\n"
@@ -116,7 +128,7 @@ NamedBytes plots(const ConvergenceReport& r, std::vector<std::string>& names) {
     for (size_t k = 0; k < r.cases.size(); ++k) {
       const std::string st = stem(r, ch, k);
       std::string dat;
-      std::vector<std::string> titles;
+      std::vector<std::string> titles, styles;
       for (auto& s : r.series) {
         if (s.check != ch || s.case_index != k || s.levels.empty()) continue;
         for (auto& l : s.levels)  // one gnuplot block per series: n, error, seconds, estimated se
@@ -124,6 +136,7 @@ NamedBytes plots(const ConvergenceReport& r, std::vector<std::string>& names) {
         dat += "\n\n";
         titles.push_back(fmt::format("{} ({}{})", s.estimator, s.engine == "device" ? "dev" : "ref",
                                      std::isfinite(s.slope) ? fmt::format(", {:.2f}", s.slope) : ""));
+        styles.push_back(series_style(s.estimator, s.engine == "device"));
       }
       if (titles.empty()) continue;
       data.push_back({st + ".dat", dat});
@@ -135,11 +148,12 @@ NamedBytes plots(const ConvergenceReport& r, std::vector<std::string>& names) {
         gp += panel == 0 ? "set xlabel 'samples (quadrature: evaluations) per run'\nset ylabel 'RMS error'\n"
                          : "set xlabel 'wall seconds per run'\nset ylabel 'RMS error'\n";
         gp += "plot ";
-        for (size_t i = 0; i < titles.size(); ++i) {
-          const bool reference = titles[i].find("(ref") != std::string::npos;  // dashed
-          gp += fmt::format("{}'{}.dat' index {} using {}:2 with linespoints pt {} ps 0.6 dt {} title '{}'",
-                            i ? ", " : "", st, i, panel == 0 ? 1 : 3, 7 + int(i % 6), reference ? 2 : 1, titles[i]);
-        }
+        // The time panel joins its points in order of time ("smooth unique"):
+        // at small counts launch overhead makes time non-monotone in samples,
+        // and joining in sample order drew lines running backwards.
+        for (size_t i = 0; i < titles.size(); ++i)
+          gp += fmt::format("{}'{}.dat' index {} using {}:2 {}with linespoints {} ps 0.6 title '{}'", i ? ", " : "", st,
+                            i, panel == 0 ? 1 : 3, panel == 0 ? "" : "smooth unique ", styles[i], titles[i]);
         gp += "\n";
       }
       gp += "unset multiplot\n";

@@ -2,6 +2,7 @@
 #include "mfv_git_commit.h"
 
 #include "report/files.hpp"
+#include "report/gnuplot.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
 
@@ -306,32 +307,25 @@ std::string header_of(const EnergyReport& rep) {
   return s + "\n#endif /* MFV_KULLA_CONTY_H */\n";
 }
 
-// Runs gnuplot in a scratch folder; returns the PNGs it made, or nothing
-// (with one printed line) where gnuplot is missing or fails.
-std::vector<std::pair<std::string, std::string>> make_plots(const EnergyReport& rep, std::vector<std::string>& names) {
-  namespace fs = std::filesystem;
-  std::vector<std::pair<std::string, std::string>> pngs;
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    fmt::print("gnuplot not found: plots skipped (install gnuplot-nox); tables and report still written\n");
-    return pngs;
-  }
-  const fs::path dir = fs::temp_directory_path() / fmt::format("mfv_energy_plots_{}", ::getpid());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+// The plots (PNG and SVG, report/gnuplot.hpp); `names` gets the PNGs the
+// report shows. Nothing (with one printed line) where gnuplot is missing or fails.
+NamedBytes make_plots(const EnergyReport& rep, std::vector<std::string>& names) {
+  NamedBytes data;
   const size_t nm = rep.mu.size(), na = rep.alpha.size();
   std::vector<const Term*> ds;
   for (auto& t : rep.tables)
     if (std::find(ds.begin(), ds.end(), t.d) == ds.end()) ds.push_back(t.d);
   for (auto& t : rep.tables) {
-    std::ofstream f(dir / (file_stem(t) + ".dat"));
+    std::string f, e;
     for (size_t a = 0; a < na; ++a) {
       for (size_t m = 0; m < nm; ++m)
-        f << fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[m]) * 180 / M_PI, rep.alpha[a],
+        f += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[m]) * 180 / M_PI, rep.alpha[a],
                          t.E[a * nm + m].mean, 1 - t.E[a * nm + m].mean);
-      f << "\n";
+      f += "\n";
+      e += fmt::format("{:.9g} {:.9g} {:.3e}\n", rep.alpha[a], t.eavg[a].mean, t.eavg[a].se);
     }
-    std::ofstream e(dir / (file_stem(t) + ".avg"));
-    for (size_t a = 0; a < na; ++a) e << fmt::format("{:.9g} {:.9g} {:.3e}\n", rep.alpha[a], t.eavg[a].mean, t.eavg[a].se);
+    data.push_back({file_stem(t) + ".dat", f});
+    data.push_back({file_stem(t) + ".avg", e});
   }
   // Which alpha blocks the E(theta) curves show.
   std::vector<size_t> cols;
@@ -352,10 +346,12 @@ std::vector<std::pair<std::string, std::string>> make_plots(const EnergyReport& 
     std::string png = "heat_" + d->id + ".png";
     names.push_back(png);
     gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 420 * cols_n, 340 * rows_n, png);
-    gp += fmt::format("set multiplot layout {},{} title '1 - E(theta, alpha), D = {}, F = none (alpha = r^2)'\n",
-                      rows_n, cols_n, d->id);
-    gp += "set view map\nset logscale y\nset xlabel 'theta_view (deg)'\nset ylabel 'alpha'\nset cbrange [0:*]\n"
-          "set palette rgb 33,13,10\nset xrange [0:90]\nset yrange [0.001:1]\n";
+    gp += fmt::format("set multiplot layout {},{} title '1 − E(θ_{{view}}, α), D = {}, F = none (α = r^2)'\n",
+                      rows_n, cols_n, gnuplot_literal(d->id));
+    // x spans the data: the view cosines are cell midpoints (m + 1/2)/MU, so
+    // the first lies at θ = acos(1 - 1/(2 MU)) (10° for 32 cells), not at 0
+    gp += "set view map\nset logscale y\nset xlabel 'θ_{view} (deg)'\nset ylabel 'α'\nset cbrange [0:*]\n"
+          "set palette rgb 33,13,10\nset autoscale xfix\nset yrange [0.001:1]\n";
     for (auto* t : ts)
       gp += fmt::format("set title 'G = {}' noenhanced\nsplot '{}.dat' using 1:2:4 with pm3d notitle\n", t->g->id,
                         file_stem(*t));
@@ -365,14 +361,14 @@ std::vector<std::pair<std::string, std::string>> make_plots(const EnergyReport& 
     names.push_back(png);
     const int pc = int(cols.size()) > 1 ? 2 : 1, pr = (int(cols.size()) + pc - 1) / pc;
     gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 560 * pc, 400 * pr, png);
-    gp += fmt::format("set multiplot layout {},{} title 'E(theta) with F = 1, D = {}: G terms compared'\n", pr, pc,
-                      d->id);
-    gp += "set key left bottom noenhanced font ',7'\nset xlabel 'theta_view (deg)'\nset ylabel 'E'\nset xrange [0:90]\n";
+    gp += fmt::format("set multiplot layout {},{} title 'E(θ_{{view}}) with F = 1, D = {}: G terms compared'\n", pr,
+                      pc, gnuplot_literal(d->id));
+    gp += "set key left bottom noenhanced font ',7'\nset xlabel 'θ_{view} (deg)'\nset ylabel 'E'\nset xrange [0:90]\n";
     for (size_t c : cols) {
-      gp += fmt::format("set title 'alpha = {:.3g} (r = {:.3g})'\nplot ", rep.alpha[c], std::sqrt(rep.alpha[c]));
+      gp += fmt::format("set title 'α = {:.3g} (r = {:.3g})'\nplot ", rep.alpha[c], std::sqrt(rep.alpha[c]));
       for (size_t i = 0; i < ts.size(); ++i)
-        gp += fmt::format("{}'{}.dat' every :::{}::{} using 1:3 with linespoints pt 7 ps 0.4 title '{}'",
-                          i ? ", " : "", file_stem(*ts[i]), c, c, ts[i]->g->id);
+        gp += fmt::format("{}'{}.dat' every :::{}::{} using 1:3 with linespoints pt 7 ps 0.4 {} title '{}'",
+                          i ? ", " : "", file_stem(*ts[i]), c, c, series_colour(i), ts[i]->g->id);
       gp += "\n";
     }
     gp += "unset multiplot\nunset xrange\n";
@@ -382,39 +378,24 @@ std::vector<std::pair<std::string, std::string>> make_plots(const EnergyReport& 
     names.push_back("eavg.png");
     const int n = int(ds.size()), pc = n > 1 ? 2 : 1, pr = (n + pc - 1) / pc;
     gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output 'eavg.png'\n", 560 * pc, 400 * pr);
-    gp += fmt::format("set multiplot layout {},{} title 'E_{{avg}}(alpha) = 2 int E(mu) mu dmu, F = 1'\n", pr, pc);
-    gp += "set logscale x\nset key left bottom noenhanced font ',7'\nset xlabel 'alpha (= r^2)'\nset ylabel 'E_avg'\n";
+    gp += fmt::format("set multiplot layout {},{} title 'E_{{avg}}(α) = 2 ∫ E(μ) μ dμ, F = 1'\n", pr, pc);
+    gp += "set logscale x\nset key left bottom noenhanced font ',7'\nset xlabel 'α (= r^2)'\nset ylabel 'E_{avg}'\n";
     for (auto* d : ds) {
       gp += fmt::format("set title 'D = {}' noenhanced\nplot ", d->id);
-      bool first = true;
+      size_t i = 0;
       for (auto& t : rep.tables)
         if (t.d == d) {
-          gp += fmt::format("{}'{}.avg' using 1:2 with linespoints pt 7 ps 0.4 title '{}'", first ? "" : ", ",
-                            file_stem(t), t.g->id);
-          first = false;
+          gp += fmt::format("{}'{}.avg' using 1:2 with linespoints pt 7 ps 0.4 {} title '{}'", i ? ", " : "",
+                            file_stem(t), series_colour(i), t.g->id);
+          ++i;
         }
       gp += "\n";
     }
     gp += "unset multiplot\n";
   }
-  std::ofstream(dir / "plots.gp") << gp;
-  const std::string cmd = fmt::format("cd '{}' && gnuplot plots.gp > gnuplot.log 2>&1", dir.string());
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream log(dir / "gnuplot.log");
-    std::string first;
-    std::getline(log, first);
-    fmt::print("gnuplot failed ({}): plots skipped; tables and report still written\n", first);
-    names.clear();
-  } else {
-    for (auto& n : names) {
-      std::ifstream in(dir / n, std::ios::binary);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      pngs.push_back({n, ss.str()});
-    }
-  }
-  fs::remove_all(dir);
-  return pngs;
+  NamedBytes made = render_gnuplot(data, gp, names);
+  if (made.empty()) names.clear();
+  return made;
 }
 
 std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vector<std::string>& plots,

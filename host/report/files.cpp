@@ -11,10 +11,18 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <unistd.h>
 
 namespace mfv {
+
+std::string read_text_file(const std::string& path, const std::string& option) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  if (!in || !(ss << in.rdbuf())) throw Error(fmt::format("{} {}: cannot read the file", option, path));
+  return ss.str();
+}
 
 void prepare_output_dir(const std::string& dir) {
   namespace fs = std::filesystem;

@@ -3,6 +3,8 @@
 
 #include "checks/suite.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,7 +18,18 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
 std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const Runtime& rt,
                                                                     const SuiteOptions& opt, const std::string& dir);
 
-// results.json as a string (schema_version 1), also used by tests.
+// A group's worst case in words: "0.998 ± 1.2e-02 vs 1 at alpha=0.1 cos_o=0.5".
+std::string worst_text(const SuiteReport& rep, const GroupResult& g);
+
+// A group's pooled test in words (stats/verdict.hpp).
+std::string pooled_text(const GroupResult& g);
+// The same-sample reference comparison in one line.
+std::string reference_line(const SuiteReport& rep);
+
+// One record of results.json's "results": one integral or measured maximum.
+nlohmann::json point_record(const PointResult& p);
+
+// results.json as a string (schema mfv-run/1, schemas/mfv-run-1.schema.json), also used by tests.
 std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt);
 
 }  // namespace mfv

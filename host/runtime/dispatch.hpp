@@ -1,5 +1,5 @@
 // Generates the OpenCL C that routes a term id to its kernel function, for
-// exactly the terms a program needs (DESIGN.md §5: compile only what is
+// exactly the terms a program needs (docs/design.md §5: compile only what is
 // needed). Ids are positions in catalog(); a program with one term of a kind
 // calls it directly, so the switch disappears.
 #pragma once

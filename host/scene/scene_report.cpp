@@ -1,6 +1,7 @@
 // Console, results.json and report.md sections of mfv run --scene: one entry
 // per material, by name; what was left out against the full catalog; time.
 #include "report/files.hpp"
+#include "report/junit.hpp"
 #include "report/suite_report.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -252,10 +253,24 @@ std::string scene_json(const SceneRun& run) {
   return j.dump();
 }
 
+// JUnit testcase names: the materials a group checks ("paint, car body"),
+// not its parameter set.
+static std::vector<std::string> scene_group_names(const SceneRun& run) {
+  std::vector<std::string> names(run.rep.groups.size());
+  for (size_t mi = 0; mi < run.material_groups.size(); ++mi)
+    for (size_t gi : run.material_groups[mi])
+      names[gi] += (names[gi].empty() ? "" : ", ") + run.scene.materials[mi].name;
+  for (size_t gi = 0; gi < names.size(); ++gi)
+    if (names[gi].empty()) names[gi] = run.rep.groups[gi].model;
+  return names;
+}
+
 void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOptions& opt, const std::string& dir) {
   auto files = suite_output_files(run.rep, rt, opt, dir);
   for (auto& [path, text] : files) {
-    if (path == dir + "/results.json") {
+    if (path == dir + "/junit.xml") {
+      text = suite_junit(run.rep, opt, scene_group_names(run));
+    } else if (path == dir + "/results.json") {
       json j = json::parse(text);
       j["scene"] = json::parse(scene_json(run));
       text = j.dump();

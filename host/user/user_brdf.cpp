@@ -33,7 +33,7 @@ std::vector<double> UserBrdf::defaults() const {
 
 namespace {
 
-// The three functions of the contract, as the README states them.
+// The three functions of the contract, as docs/cli/check.md states them.
 struct Contract {
   const char* name;
   const char* ret;
@@ -294,7 +294,7 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   const std::string code = strip_comments(u.text);
   Found fb = find_function(u, code, contracts()[0]);
   if (!fb.defined)
-    throw Error(fmt::format("{} defines no '{}' (the function mfv check verifies; see README 'mfv check')", path,
+    throw Error(fmt::format("{} defines no '{}' (the function mfv check verifies; see docs/cli/check.md)", path,
                             contracts()[0].text));
   Found fd = find_function(u, code, contracts()[1]);
   Found fg = find_function(u, code, contracts()[2]);

@@ -1,5 +1,5 @@
 // mfv check --brdf FILE.cl: the user's OpenCL C file, its functions and its
-// parameters, checked against the contract (README "mfv check") before
+// parameters, checked against the contract (docs/cli/check.md) before
 // anything is built, so that a missing function, a wrong signature or a
 // missing parameter gets one line naming the cause.
 #pragma once
@@ -10,7 +10,7 @@
 namespace mfv {
 
 // How a parameter sets the estimator's proposal width (the estimators use
-// the width, never the formula: DESIGN.md §3).
+// the width, never the formula: docs/design.md §3).
 enum class WidthRole { None, Alpha, Perceptual };  // width = value, value²
 
 struct UserParam {

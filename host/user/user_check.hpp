@@ -26,7 +26,7 @@ struct UserCheckOptions {
 const std::vector<std::string>& user_checks();  // d_norm, masking, furnace, energy, reciprocity, finite, agree
 
 // Relative error beyond input conditioning above which a user BRDF does not
-// implement its claimed model (float code measures ~1e-6; see README).
+// implement its claimed model (float code measures ~1e-6; see docs/cli/check.md).
 constexpr double kAgreeBound = 1e-4;
 // Reciprocity of user code: float code that forms v.h as dot(wo, h) (the
 // common form) on directions unit only to 1e-7 is asymmetric by ~1e-3 at
