@@ -57,10 +57,9 @@ struct PointResult {
   bool bounded = false;
   std::string measure, detail;
   // The same-sample reference comparison (host/checks/reference_compare.hpp),
-  // where this integral was compared: an upper bound on the float
-  // estimator's rounding bias (0 where not measured), and a failure of the
-  // double twin against the reference, which fails the group's verdict.
-  double rounding_bound = 0;
+  // where this integral was compared (its rounding bound is rounding_bound
+  // above), and a failure of the double twin against the reference, which
+  // fails the group's verdict.
   bool reference_compared = false, reference_failed = false;
   std::string reference_detail;  // the comparison, its worst sample and its bound
 };
