@@ -61,18 +61,19 @@ TEST_CASE("F_dielectric as eta*eta - 1 + c*c fails agreement once contraction is
   CHECK_FALSE(rep.results[0].pass());
 }
 
-TEST_CASE("float64 anisotropic D and G1 and the glTF model agree without the normalize() builtin",
+TEST_CASE("float64 anisotropic D and G1 and whole models agree without the normalize() builtin",
           "[device][agree][fp64]") {
   // The records' directions are made unit by correctly rounded operations
   // the host repeats bit for bit (kernels/agree.cl unit_exact); the
-  // anisotropic D is compared at the recorded h (issue 19: 22 ulps before).
+  // anisotropic D is compared at the recorded h (issue 19: 22 ulps before);
+  // torrance_sparrow_003 failed on the reference's log1p(-sin²) at grazing h.
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   if (!rt->device().fp64) {
     WARN("device has no cl_khr_fp64; float64 agreement skipped");
     return;
   }
-  AgreeReport rep = agree_only(*rt, {"D aniso", "G1 smith_aniso", "MODEL gltf"}, 100000, true);
+  AgreeReport rep = agree_only(*rt, {"D aniso", "G1 smith_aniso", "MODEL torrance_sparrow", "MODEL gltf"}, 100000, true);
   CHECK(rep.results.size() >= 5);
   for (auto& r : rep.results) {
     CAPTURE(r.name, r.max_ulps, r.worst);

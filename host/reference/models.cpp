@@ -25,7 +25,14 @@ bool unit_above(glm::dvec3& l, glm::dvec3& v) { return l.z > 0.0 && v.z > 0.0; }
 // from it: 1 - cos² and log(cos) near cos = 1 cancel even in double, and
 // narrow lobes ((n·h)^e with e ~ 1e4, exp(-tan²/ρ²) with ρ ~ 0.01) amplify that.
 double sin2_of(const glm::dvec3& h) { return h.x * h.x + h.y * h.y; }
-double log_cos_of(const glm::dvec3& h) { return 0.5 * std::log1p(-std::min(sin2_of(h), 1.0)); }
+// Far from the normal (sin² >= 1/2) log1p(-sin²) is ill-conditioned instead
+// (its condition number sin²/((1 - sin²)|log cos²|) is ~70 at cos = 0.05: an
+// input rounding became 135 double ulps of a grazing Torrance-Sparrow lobe,
+// issue 19): log(cos) there, as kernels/common.cl log_cos.
+double log_cos_of(const glm::dvec3& h) {
+  const double s2 = sin2_of(h);
+  return s2 < 0.5 ? 0.5 * std::log1p(-s2) : std::log(h.z);
+}
 
 // v·h = l·h = |l + v|/2 for unit l, v (as shading_from in brdf.cpp): dot(v, h)
 // cancels where l and v are nearly opposite and v·h -> 0.
