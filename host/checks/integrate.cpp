@@ -391,20 +391,30 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   return out;
 }
 
-std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
-  std::vector<float> out(specs.size() * n);
+template <class T>
+std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                     uint32_t n, uint64_t seed) {
+  std::vector<T> out(specs.size() * n);
   if (out.empty()) return out;
-  cl::Kernel k(program_, "sample_values");
-  cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+  cl::Kernel k(program, "sample_values");
+  cl::Buffer spec_buf(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer vals(rt_.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(float));
+  cl::Buffer vals(rt.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(T));
   k.setArg(0, spec_buf);
   k.setArg(1, static_cast<cl_uint>(n));
   k.setArg(2, static_cast<cl_ulong>(seed));
   k.setArg(3, vals);
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
-  rt_.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
+  rt.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(T), out.data());
   return out;
+}
+template std::vector<float> program_sample_values<float>(Runtime&, const cl::Program&, const std::vector<IntegralSpec>&,
+                                                         uint32_t, uint64_t);
+template std::vector<double> program_sample_values<double>(Runtime&, const cl::Program&,
+                                                           const std::vector<IntegralSpec>&, uint32_t, uint64_t);
+
+std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
+  return program_sample_values<float>(rt_, program_, specs, n, seed);
 }
 
 std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,

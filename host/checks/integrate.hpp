@@ -77,6 +77,12 @@ ref::IntegralRef reference_of(const IntegralSpec& s);
 // catalog term `original`; nullptr removes the plant. Unset in every run of mfv.
 void plant_reference_term(const Term* original, const Term* planted);
 
+// The `sample_values` kernel of `program` (kernels/integrate.cl): float, or
+// double for a MFV_DOUBLE build (host/checks/reference_compare.cpp).
+template <class T>
+std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                     uint32_t n, uint64_t seed);
+
 class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).

@@ -50,22 +50,6 @@ ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms) : rt_(rt) 
   available_ = true;
 }
 
-std::vector<double> ReferenceTwin::twin_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
-  std::vector<double> out(specs.size() * n);
-  if (out.empty()) return out;
-  cl::Kernel k(program_, "sample_values");
-  cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
-                      const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer vals(rt_.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(double));
-  k.setArg(0, spec_buf);
-  k.setArg(1, static_cast<cl_uint>(n));
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, vals);
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
-  rt_.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(double), out.data());
-  return out;
-}
-
 namespace {
 
 // |a - b| where equal non-finite values agree and any other non-finite pair is infinitely apart.
@@ -81,7 +65,7 @@ std::vector<TwinAgreement> ReferenceTwin::compare(Integrator& in, const std::vec
   std::vector<TwinAgreement> out;
   if (n == 0 || specs.empty() || !available_) return out;
   const std::vector<float> kf = in.sample_values(specs, n, seed);
-  const std::vector<double> kd = twin_values(specs, n, seed);
+  const std::vector<double> kd = program_sample_values<double>(rt_, program_, specs, n, seed);
   for (size_t j = 0; j < specs.size(); ++j) {
     const ref::IntegralRef r = reference_of(specs[j]);
     const uint64_t stride = r.strata >= n ? r.strata / n : 1;  // as kernels/integrate.cl sample_values

@@ -45,7 +45,6 @@ class ReferenceTwin {
   std::vector<TwinAgreement> compare(Integrator& in, const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
  private:
-  std::vector<double> twin_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
   Runtime& rt_;
   cl::Program program_;
   bool available_ = false;

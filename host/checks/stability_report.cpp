@@ -127,6 +127,8 @@ std::string stability_json(const StabilityReport& rep) {
       json jr{{"region", r.region},   {"inputs", r.what},     {"in_domain", r.in_domain}, {"points", r.points},
               {"nan", r.nan},         {"inf", r.inf},         {"negative", r.negative},   {"breaks", r.breaks},
               {"max_rel", r.max_rel}, {"max_ulps", r.max_ulps}, {"worst", r.worst},       {"first_break", r.first_break}};
+      jr["out_of_domain"] = r.out_of_domain;  // outside the value's domain where the reference is inside
+      if (!r.first_out_of_domain.empty()) jr["first_out_of_domain"] = r.first_out_of_domain;
       if (!r.expect.empty()) {
         jr["expect"] = r.expect;
         jr["violations"] = r.violations;

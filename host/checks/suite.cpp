@@ -498,6 +498,7 @@ void compare_with_reference(Integrator& in, Plan& plan, const SuiteOptions& opt,
   ReferenceTwin twin(in.runtime(), plan.terms);
   if (!twin.available()) return compare_float_only(in, subset, which, plan, opt, rep);
   rep.reference_twin = true;
+  rep.reference_builds++;
   rep.reference_bound = 1.0;
   auto agree = twin.compare(in, subset, opt.reference_samples, opt.seed);
   for (size_t j = 0; j < agree.size(); ++j) {
@@ -509,7 +510,7 @@ void compare_with_reference(Integrator& in, Plan& plan, const SuiteOptions& opt,
     p.reference_failed = !a.ok;
     p.reference_detail = fmt::format(
         "double twin vs reference on {} samples: mean |twin - reference| {:.3g} > derived bound {:.3g} (float "
-        "rounding x 2^-19 + 2^-43 of the scale); worst sample {}: twin {:.12g}, reference {:.12g}",
+        "rounding x 2^-19 + 2^-43 of the scale / mu); worst sample {}: twin {:.12g}, reference {:.12g}",
         opt.reference_samples, a.formula_gap, a.formula_bound, a.worst_index, a.worst_twin, a.worst_reference);
     const double ratio = a.formula_bound > 0 ? a.formula_gap / a.formula_bound
                          : a.formula_gap > 0 ? std::numeric_limits<double>::infinity() : 0.0;

@@ -131,6 +131,7 @@ struct SuiteReport {
   // formula gap to its derived bound, and reference_bound 1.
   double reference_bound = 5e-3;
   bool reference_twin = false;
+  int reference_builds = 0;  // double-twin programs built for the comparison (not counted as the check's builds)
   std::string reference_note;  // replaces the reference line where no double twin runs (mfv check)
   std::string title = "mfv run";  // report heading and JUnit suite name
   bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
