@@ -15,7 +15,7 @@ verdict() {  # results.json -> "FAIL z=12.3"
   python3 -c 'import json,sys; g=json.load(open(sys.argv[1]))["groups"][0]; print(g["verdict"], "z=%.1f" % g["pooled"]["z"])' "$1"
 }
 printf "%-7s %-6s %-22s %-22s\n" gain scale "mfv run (ggx/...corr.)" "mfv check (lambert)"
-for gain in 1.001 1.0025 1.005 1.01 1.02; do
+for gain in 1.0025 1.005 1.01 1.02; do
   rm -rf "$tmp/k" && cp -r "$root/kernels" "$tmp/k"
   sed -i "s|return kd \* MFV_INV_PI + spec / (R(4.0) \* NoL) / NoV;|return kd * MFV_INV_PI + R($gain) * spec / (R(4.0) * NoL) / NoV;|" "$tmp/k/brdf.cl"
   grep -q "R($gain) \* spec" "$tmp/k/brdf.cl"

@@ -65,7 +65,8 @@ void attach_furnace_truth(Plan& plan) {
         PointResult& p = plan.points[todo[k]];
         // A value known to worse than kMaxTruthError adds more bias bound to
         // the pool than information (an integral's SE is ~1.7e-2 at default
-        // samples): such points (alpha = 1 at grazing view) stay out of it.
+        // samples): such points stay out of it (none in the catalog today:
+        // the worst estimate is 2e-4).
         p.known = std::isfinite(v.value) && v.error <= kMaxTruthError;
         p.known_value = v.value;
         p.known_error = v.error;
