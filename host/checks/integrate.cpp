@@ -381,28 +381,63 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
   return out;
 }
 
+namespace {
+
+// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each.
+void worst_of(Runtime& rt, cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
+              uint32_t pairs, uint64_t seed, WorstPairs& out) {
+  const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
+  const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
+  size_t local = 1;  // the largest power of two up to 256 that divides pairs
+  const size_t max_wg = rt.device().device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  while (local * 2 <= std::min<size_t>(256, max_wg) && pairs % (local * 2) == 0) local *= 2;
+  for (size_t first = 0; first < at.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, at.size() - first);
+    std::vector<IntegralSpec> batch;
+    for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
+    cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
+    cl::Buffer ab(rt.context(), CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));
+    k.setArg(0, sb);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, ab);
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    std::vector<float> a(count * pairs);
+    rt.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
+    for (size_t i = 0; i < count; ++i) {
+      float worst = 0;
+      uint32_t where = 0;
+      for (uint32_t p = 0; p < pairs; ++p) {
+        const float v = a[i * pairs + p];
+        if (!(v <= worst)) worst = std::isnan(v) ? INFINITY : v, where = p;
+      }
+      out.worst[at[first + i]] = worst;
+      out.at[at[first + i]] = where;
+    }
+  }
+}
+
+}  // namespace
+
+WorstPairs reciprocity_worst_pairs(Runtime& rt, const cl::Program& prog, const std::vector<IntegralSpec>& specs,
+                                   uint32_t pairs, uint64_t seed) {
+  WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
+  if (specs.empty() || pairs == 0) return out;
+  cl::Kernel generic(prog, "reciprocity_values"), microfacet;
+  try {
+    microfacet = cl::Kernel(prog, "reciprocity_values_microfacet");  // not in user programs (mfv check)
+  } catch (const cl::Error&) {
+  }
+  std::vector<size_t> fast, slow;
+  for (size_t i = 0; i < specs.size(); ++i)
+    (microfacet() && specs[i].model == 0 && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
+  if (!fast.empty()) worst_of(rt, microfacet, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(rt, generic, specs, slow, pairs, seed, out);
+  return out;
+}
+
 std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
                                                 uint64_t seed) {
-  std::vector<float> out(specs.size(), 0.0f);
-  if (specs.empty()) return out;
-  const size_t local = 64;  // the kernel indexes pairs by local id
-  cl::Kernel k(program_, "reciprocity");
-  cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
-                const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer wb(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
-  cl::Buffer ib(rt_.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
-  k.setArg(0, sb);
-  k.setArg(1, static_cast<cl_uint>(per_item));
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, wb);
-  k.setArg(4, ib);
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
-  std::vector<float> w(specs.size() * local);
-  rt_.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
-  for (size_t i = 0; i < specs.size(); ++i)
-    for (size_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= out[i])) out[i] = w[i * local + l];
-  return out;
+  return reciprocity_worst_pairs(rt_, program_, specs, 64 * per_item, seed).worst;  // the pairs of 64 x per_item
 }
 
 std::vector<Integrator::Agreement> Integrator::compare_with_reference(const std::vector<IntegralSpec>& specs,

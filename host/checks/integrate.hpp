@@ -72,6 +72,17 @@ IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p,
 // The same integral for the double reference twin (host/reference/estimators).
 ref::IntegralRef reference_of(const IntegralSpec& s);
 
+// The worst asymmetry of each integral's reciprocity pairs 0 .. pairs - 1
+// and the pair where it was (kernels/integrate.cl reciprocity_values: one
+// pair per work-item; the microfacet kernel where `prog` has it and the spec
+// is an isotropic model-0 BRDF). NaN counts as the worst (infinity).
+struct WorstPairs {
+  std::vector<float> worst;
+  std::vector<uint32_t> at;
+};
+WorstPairs reciprocity_worst_pairs(Runtime& rt, const cl::Program& prog, const std::vector<IntegralSpec>& specs,
+                                   uint32_t pairs, uint64_t seed);
+
 class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).
@@ -107,8 +118,8 @@ class Integrator {
   };
   std::vector<Agreement> compare_with_reference(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
-  // The `reciprocity` kernel: 64 work-items per integral, each over per_item
-  // pairs; the worst asymmetry of each integral (mfv bench times it).
+  // reciprocity_worst_pairs over 64 x per_item pairs: the worst asymmetry
+  // of each integral (mfv bench times it).
   std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }

@@ -490,38 +490,20 @@ void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<Integr
                         std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
                         std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
   if (specs.empty()) return;
-  const uint32_t local = 64, per_item = std::max<uint32_t>(1, uint32_t(64 * scale));
+  const uint32_t pairs = 64 * std::max<uint32_t>(1, uint32_t(64 * scale));
   for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
-  cl::Kernel k(prog, "reciprocity");
-  cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec), specs.data());
-  cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
-  cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
-  k.setArg(0, sb);
-  k.setArg(1, per_item);
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, wb);
-  k.setArg(4, ib);
-  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
-  std::vector<float> w(specs.size() * local);
-  std::vector<cl_uint> wi(specs.size() * local);
-  rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
-  rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
-  const uint64_t pairs = uint64_t(local) * per_item;
+  const WorstPairs w = reciprocity_worst_pairs(rt, prog, specs, pairs, seed);  // one pair per work-item
   for (size_t i = 0; i < specs.size(); ++i) {
-    float worst = 0;
-    uint32_t at = 0;
-    for (uint32_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= worst)) worst = w[i * local + l], at = wi[i * local + l];
-    pts[i].estimate = worst;
+    pts[i].estimate = w.worst[i];
     pts[i].samples = pairs;
     pts[i].bounded = true;
     pts[i].bound = bound;
     pts[i].measure = "max asymmetry";
-    pts[i].params["worst_pair"] = at;
+    pts[i].params["worst_pair"] = w.at[i];
     rep.points.push_back(pts[i]);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * pairs * 2, secs});
+  rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(pairs) * 2, secs});
 }
 
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
