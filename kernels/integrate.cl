@@ -332,14 +332,14 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
 // reflecting o about an m from the mixture; the pdf is that of the union.
 // Component arithmetic and sincos_2pi: no float3 operations, no out-of-line
 // calls (measured 1.6x faster on PoCL than float3, length() and sin/cos).
-// The isotropic microfacet BRDF's albedo (albedo_is_microfacet: model 0,
+// The isotropic microfacet BRDF's albedo (spec_is_microfacet: model 0,
 // pd2 = 0, phi_o = 0, one proposal width > 0, no user code) is the case of
 // the conformance suite and of mfv bench. Its sample is computed here by
 // components, in straight-line code over plain arguments (no float3, no
 // loop, no library call: see sincos_2pi), so that PoCL's work-group
 // vectorizer runs eight work-items per AVX2 instruction in albedo_values.
 // The general path below takes the other albedo integrals.
-static inline bool albedo_is_microfacet(__global const IntegralSpec* s) {
+static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
 #ifdef MFV_USER_BRDF
   return false;
 #else
@@ -434,7 +434,7 @@ static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, 
 }
 
 static inline real albedo_value(__global const IntegralSpec* s, real u_branch, real u_pick, real u_phi, real u_r) {
-  if (albedo_is_microfacet(s))
+  if (spec_is_microfacet(s))
     return albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, u_branch,
                                    u_pick, u_phi, u_r);
   real w = s->width;
@@ -564,18 +564,11 @@ static inline real convergence_value(__global const IntegralSpec* s, ulong seed,
   return NAN;
 }
 
-// d_norm and masking samples of an isotropic microfacet integral (model 0,
-// pd2 = 0, one width w > 0, no user code), by components and with selects
-// as albedo_value_microfacet, so that d_norm_values and masking_values
+// d_norm and masking samples of an isotropic microfacet integral
+// (spec_is_microfacet), by components and with selects as
+// albedo_value_microfacet, so that d_norm_values and masking_values
 // vectorize; sample_value takes the same functions, so the general kernel and
 // the fast path give the same samples to the bit.
-static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
-#ifdef MFV_USER_BRDF
-  return false;
-#else
-  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
-#endif
-}
 
 // d_norm, stratified: sample `index` of `strata` (see sample_value).
 static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint index, real u_phi, real u_r) {
@@ -713,7 +706,7 @@ __kernel void integrate(__global const IntegralSpec* specs, uint slices, uint pe
 
 #ifndef MFV_USER_BRDF
 // The fast path of `integrate` for isotropic microfacet albedo integrals
-// (albedo_is_microfacet; host: Integrator::run). One sample per work-item
+// (spec_is_microfacet; host: Integrator::run). One sample per work-item
 // and no barrier: PoCL turns a work-group into a loop over its work-items
 // and vectorizes that loop only where the body has no inner loop and keeps
 // no 64-bit value per work-item across a barrier (a local-memory reduction
