@@ -332,14 +332,14 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
 // reflecting o about an m from the mixture; the pdf is that of the union.
 // Component arithmetic and sincos_2pi: no float3 operations, no out-of-line
 // calls (measured 1.6x faster on PoCL than float3, length() and sin/cos).
-// The isotropic microfacet BRDF's albedo (albedo_is_microfacet: model 0,
+// The isotropic microfacet BRDF's albedo (spec_is_microfacet: model 0,
 // pd2 = 0, phi_o = 0, one proposal width > 0, no user code) is the case of
 // the conformance suite and of mfv bench. Its sample is computed here by
 // components, in straight-line code over plain arguments (no float3, no
 // loop, no library call: see sincos_2pi), so that PoCL's work-group
 // vectorizer runs eight work-items per AVX2 instruction in albedo_values.
 // The general path below takes the other albedo integrals.
-static inline bool albedo_is_microfacet(__global const IntegralSpec* s) {
+static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
 #ifdef MFV_USER_BRDF
   return false;
 #else
@@ -434,7 +434,7 @@ static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, 
 }
 
 static inline real albedo_value(__global const IntegralSpec* s, real u_branch, real u_pick, real u_phi, real u_r) {
-  if (albedo_is_microfacet(s))
+  if (spec_is_microfacet(s))
     return albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, u_branch,
                                    u_pick, u_phi, u_r);
   real w = s->width;
@@ -564,18 +564,11 @@ static inline real convergence_value(__global const IntegralSpec* s, ulong seed,
   return NAN;
 }
 
-// d_norm and masking samples of an isotropic microfacet integral (model 0,
-// pd2 = 0, one width w > 0, no user code), by components and with selects
-// as albedo_value_microfacet, so that d_norm_values and masking_values
+// d_norm and masking samples of an isotropic microfacet integral
+// (spec_is_microfacet), by components and with selects as
+// albedo_value_microfacet, so that d_norm_values and masking_values
 // vectorize; sample_value takes the same functions, so the general kernel and
 // the fast path give the same samples to the bit.
-static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
-#ifdef MFV_USER_BRDF
-  return false;
-#else
-  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
-#endif
-}
 
 // d_norm, stratified: sample `index` of `strata` (see sample_value).
 static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint index, real u_phi, real u_r) {
@@ -713,7 +706,7 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* s
 
 #ifndef MFV_USER_BRDF
 // The fast path of `integrate` for isotropic microfacet albedo integrals
-// (albedo_is_microfacet; host: Integrator::run). One sample per work-item
+// (spec_is_microfacet; host: Integrator::run). One sample per work-item
 // and no barrier: PoCL turns a work-group into a loop over its work-items
 // and vectorizes that loop only where the body has no inner loop and keeps
 // no 64-bit value per work-item across a barrier (a local-memory reduction
@@ -824,51 +817,71 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpe
   out[i] = sample_value(s, seed, (ulong)(i % n) * stride);
 }
 
-// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs drawn
-// by kind (index % 4): uniform hemisphere, grazing, near-retro, near-mirror.
-// Each work-item writes its worst asymmetry and the sample index where it was.
-__kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity(__global const IntegralSpec* specs, uint per_item, ulong seed, __global float* worst,
-                          __global uint* worst_index) {
-  size_t gid = get_global_id(0), lid = get_local_id(0), lsize = get_local_size(0);
-  __global const IntegralSpec* s = specs + get_group_id(0);
-  float w = 0.0f;
-  uint wi = 0;
-  for (uint k = 0; k < per_item; ++k) {
-    uint index = (uint)lid * per_item + k;
-    uint4 r = mfv_philox(seed, s->stream, 1, index);
-    real ca = u01_open(r.x), pa = R(2.0) * MFV_PI * u01_open(r.y);
-    real cb = u01_open(r.z), pb = R(2.0) * MFV_PI * u01_open(r.w);
-    uint kind = index % 4;
-    if (kind == 1) { ca *= R(1e-3); cb *= R(1e-3); }                 // both grazing
-    real sa = sqrt(sin2_from_cos(ca));
-    real3 a = (real3)(sa * cos(pa), sa * sin(pa), ca);
-    real3 b;
-    if (kind == 2 || kind == 3) {
-      // a small offset from the retro (b = a) or mirror (b = reflect a) direction
-      real3 base = kind == 2 ? a : (real3)(-a.x, -a.y, a.z);
-      b = normalize(base + R(1e-3) * (real3)(cb - R(0.5), u01_open(r.w) - R(0.5), R(0.0)));
-      if (b.z <= R(0.0)) b.z = -b.z;
-    } else {
-      real sb = sqrt(sin2_from_cos(cb));
-      b = (real3)(sb * cos(pb), sb * sin(pb), cb);
-    }
-    real f1 = spec_brdf(s, a, b);
-    real f2 = spec_brdf(s, b, a);
-    real m = max(fabs(f1), fabs(f2));
-    // Relative, except below f = 1e-4 /sr (a thousandth of a white Lambertian
-    // surface's 1/π), where float code loses its relative precision without
-    // consequence: F = (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and
-    // intermediates go subnormal.
-    // A NaN or Inf value is no evidence of symmetry (max() and the m > 0 test
-    // would drop a NaN): it is the worst asymmetry.
-    float asym = !(isfinite(f1) && isfinite(f2)) ? INFINITY
-                 : m > R(0.0)                    ? (float)(fabs(f1 - f2) / max(m, R(1e-4)))
-                                                 : 0.0f;
-    if (!(asym <= w)) {
-      w = asym;
-      wi = index;
-    }
-  }
-  worst[gid] = w;
-  worst_index[gid] = wi;
+// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs
+// drawn by kind (index % 4): uniform hemisphere, grazing, near-retro,
+// near-mirror. Pair `index` (Philox draw 1; reference twin: reciprocity_pair
+// in host/reference/estimators.cpp), by components: directions from sincos_2pi, the
+// near-retro/mirror offsets normalised with rsqrt, both sides selected.
+static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay,
+                                      real* az, real* bx, real* by, real* bz) {
+  uint4 r = mfv_philox(seed, s->stream, 1, index);
+  uint kind = index % 4u;
+  real scale = kind == 1u ? R(1e-3) : R(1.0);  // both grazing
+  real ca = u01_open(r.x) * scale, cb = u01_open(r.z) * scale, u_w = u01_open(r.w);
+  real sa = sqrt(sin2_from_cos(ca)), sb = sqrt(sin2_from_cos(cb));
+  real2 pa = sincos_2pi(u01_open(r.y)), pb = sincos_2pi(u_w);
+  *ax = sa * pa.y;
+  *ay = sa * pa.x;
+  *az = ca;
+  // a small offset from the retro (b = a) or mirror (b = reflect a) direction
+  real sign = kind == 3u ? R(-1.0) : R(1.0);
+  real nx = sign * *ax + R(1e-3) * (cb - R(0.5)), ny = sign * *ay + R(1e-3) * (u_w - R(0.5)), nz = ca;
+  real inv = rsqrt(nx * nx + ny * ny + nz * nz);
+  bool near = kind >= 2u;
+  *bx = near ? nx * inv : sb * pb.y;
+  *by = near ? ny * inv : sb * pb.x;
+  *bz = near ? nz * inv : cb;  // nz = ca > 0: above the horizon
 }
+
+// |f1 - f2| / max(|f1|, |f2|, 1e-4), 0 where both vanish: relative, except
+// below f = 1e-4 /sr (a thousandth of a white Lambertian surface's 1/π),
+// where float code loses its relative precision without consequence: F =
+// (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and intermediates go subnormal.
+// (max and min in place of fabs: two fabs feeding a max become a 2-lane SLP
+// vector that stops PoCL vectorizing, see normalize_sum)
+// A NaN or Inf value is no evidence of symmetry (max() would drop a NaN):
+// it is the worst asymmetry.
+static inline float reciprocity_asym(real f1, real f2) {
+  real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
+  real d = max(f1 - f2, f2 - f1);           // |f1 - f2|
+  float a = m > R(0.0) ? (float)(d / max(m, R(1e-4))) : 0.0f;
+  return isfinite(f1) && isfinite(f2) ? a : INFINITY;
+}
+
+// One pair per work-item: work-item (k, j) writes the asymmetry of pair k of
+// integral j (reciprocity_pair_c); the host takes the worst. The
+// generic kernel evaluates spec_brdf (whole models, user code); the
+// microfacet one (model 0, isotropic) brdf_eval_c, which PoCL vectorizes.
+__kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const IntegralSpec* restrict specs, ulong seed,
+                                 __global float* restrict asym) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  real ax, ay, az, bx, by, bz;
+  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
+  real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);
+  asym[j * get_global_size(0) + k] = reciprocity_asym(spec_brdf(s, a, b), spec_brdf(s, b, a));
+}
+
+#ifndef MFV_USER_BRDF
+__kernel void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs, ulong seed,
+                                            __global float* restrict asym) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  real ax, ay, az, bx, by, bz;
+  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
+  real f1 = brdf_eval_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
+  real f2 = brdf_eval_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
+  asym[j * get_global_size(0) + k] = reciprocity_asym(f1, f2);
+}
+#endif
+

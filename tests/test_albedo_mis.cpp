@@ -108,6 +108,18 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
   }
 }
 
+// The verdict of `check` on `model` with one replacement planted in a kernel
+// file; gate_ok: whether the whole run still passed the gate.
+static Verdict planted_verdict(const char* file, const char* from, const char* to, const SuiteOptions& opt, const char* check,
+                        const char* model, bool& gate_ok) {
+  test::PlantedKernelDir dir;
+  REQUIRE(dir.replace(file, from, to));
+  Runtime planted("", dir.path());
+  const SuiteReport bad = run_suite(planted, opt);
+  gate_ok = bad.gate_ok();
+  return test::verdict_of(bad, check, model);
+}
+
 TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that cancels a bug is a defect)",
           "[suite][device][mis][planted]") {
   Runtime* rt = test::device_runtime();
@@ -120,32 +132,22 @@ TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that canc
   SuiteReport good = run_suite(*rt, opt);
   CHECK(test::verdict_of(good, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Pass);
   CHECK(test::verdict_of(good, "masking", "ggx/smith_ggx_correlated") == Verdict::Pass);
-
-  SECTION("D without its 1/pi: the albedo is pi times too large") {
-    test::PlantedKernelDir dir;
-    REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.0) / (a2 * k * k);"));
-    Runtime planted("", dir.path());
-    SuiteReport bad = run_suite(planted, opt);
-    CHECK(test::verdict_of(bad, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Fail);
-    CHECK_FALSE(bad.gate_ok());
-  }
-  SECTION("Lambda with alpha for alpha^2: masking fails (the albedo only loses energy)") {
-    test::PlantedKernelDir dir;
-    REQUIRE(dir.replace("terms_g.cl", "real x = alpha * alpha * tan2_from_cos(NoV);", "real x = alpha * tan2_from_cos(NoV);"));
-    Runtime planted("", dir.path());
-    SuiteReport bad = run_suite(planted, opt);
-    CHECK(test::verdict_of(bad, "masking", "ggx/smith_ggx_correlated") == Verdict::Fail);
-    CHECK_FALSE(bad.gate_ok());
-  }
-  SECTION("D scaled by 1.001: d_norm fails (the upper-only furnace need not: E < 0.999 almost everywhere)") {
-    test::PlantedKernelDir dir;
-    REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.001) / (MFV_PI * a2 * k * k);"));
-    Runtime planted("", dir.path());
-    SuiteOptions o = opt;
-    o.checks = {"d_norm"};
-    o.models = {"ggx"};
-    SuiteReport bad = run_suite(planted, o);
-    CHECK(test::verdict_of(bad, "d_norm", "ggx") == Verdict::Fail);
-    CHECK_FALSE(bad.gate_ok());
-  }
+  const char* ggx_d = "return R(1.0) / (MFV_PI * a2 * k * k);";
+  bool gate_ok = true;
+  // D without its 1/pi: the albedo is pi times too large
+  CHECK(planted_verdict("terms_d.cl", ggx_d, "return R(1.0) / (a2 * k * k);", opt, "furnace",
+                        "ggx/smith_ggx_correlated/none", gate_ok) == Verdict::Fail);
+  CHECK_FALSE(gate_ok);
+  // Lambda with alpha for alpha^2: masking fails (the albedo only loses energy, which the upper-only furnace allows)
+  CHECK(planted_verdict("terms_g.cl", "real x = alpha * alpha * tan2_from_cos(NoV);",
+                        "real x = alpha * tan2_from_cos(NoV);", opt, "masking", "ggx/smith_ggx_correlated",
+                        gate_ok) == Verdict::Fail);
+  CHECK_FALSE(gate_ok);
+  // D scaled by 1.001: d_norm fails (the upper-only furnace need not: E < 0.999 almost everywhere)
+  SuiteOptions norm = opt;
+  norm.checks = {"d_norm"};
+  norm.models = {"ggx"};
+  CHECK(planted_verdict("terms_d.cl", ggx_d, "return R(1.001) / (MFV_PI * a2 * k * k);", norm, "d_norm", "ggx",
+                        gate_ok) == Verdict::Fail);
+  CHECK_FALSE(gate_ok);
 }

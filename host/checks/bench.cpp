@@ -21,39 +21,42 @@
 #include <time.h>
 
 namespace mfv {
+
+double bench_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// CPU time of every thread of this process: on a CPU device PoCL's workers
+// are threads of it, so samples per CPU-second compare engines fairly on a
+// machine other processes share (wall-clock ratios then depend on the load).
+double bench_cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double bench_median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 namespace {
 
 const std::vector<std::string> kIntegrands = {"d_norm", "albedo", "reciprocity"};
 constexpr double kAlpha = 0.3;  // one representative width; the cost of these terms does not depend on it
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-// CPU time of every thread of this process: on a CPU device PoCL's workers
-// are threads of it, so samples per CPU-second compare engines fairly on a
-// machine other processes share (wall-clock ratios then depend on the load).
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 // Wall and CPU seconds of each call of f.
 struct Timings {
   std::vector<double> wall, cpu;
   template <class F>
   void time(F&& f) {
-    const double c0 = cpu_now(), t0 = now();
+    const double c0 = bench_cpu_now(), t0 = bench_now();
     f();
-    wall.push_back(now() - t0);
-    cpu.push_back(cpu_now() - c0);
+    wall.push_back(bench_now() - t0);
+    cpu.push_back(bench_cpu_now() - c0);
   }
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The representative integrands: D alone (GGX d_norm, stratified like the
 // suite's), the full GGX + smith_ggx_correlated + Schlick (F0 = 0.04) albedo
@@ -84,11 +87,11 @@ BenchRow make_row(const std::string& integrand, const std::string& engine, uint6
   r.engine = engine;
   r.integrals = integrals;
   r.samples_per_integral = samples;
-  r.median_seconds = median(tm.wall);
+  r.median_seconds = bench_median(tm.wall);
   r.seconds = tm.wall;
   r.cpu_seconds = tm.cpu;
   r.samples_per_second = double(integrals) * double(samples) / r.median_seconds;
-  r.samples_per_cpu_second = double(integrals) * double(samples) / median(tm.cpu);
+  r.samples_per_cpu_second = double(integrals) * double(samples) / bench_median(tm.cpu);
   r.integrals_per_second = double(integrals) / r.median_seconds;
   r.checksum = checksum;
   return r;

@@ -54,5 +54,8 @@ std::string bench_table(const BenchReport& r);  // console and Markdown
 std::string bench_json(const BenchReport& r);
 void validate_bench_options(const BenchOptions& opt);
 std::string bench_load_average();  // /proc/loadavg's first three fields
+double bench_now();                  // steady clock, seconds
+double bench_cpu_now();              // CPU seconds of every thread of this process
+double bench_median(std::vector<double> v);
 
 }  // namespace mfv

@@ -1,4 +1,5 @@
 #include "checks/bench_case.hpp"
+#include "checks/bench.hpp"
 #include "mfv_git_commit.h"
 
 #include "catalog/catalog.hpp"
@@ -10,28 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
-#include <time.h>
 
 namespace mfv {
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 const Term& term_of(const std::string& id, Kind kind, const char* what) {
   const Term* t = try_find_term(id, kind);
@@ -128,16 +113,16 @@ BenchCaseResult run_bench_case(const std::string& device_selector, const std::st
   double ss = 0;
   in.run({spec}, n, seed);  // warm-up: first launch, allocations
   for (int k = 0; k < repeats; ++k) {
-    const double c0 = cpu_now(), t0 = now();
+    const double c0 = bench_cpu_now(), t0 = bench_now();
     const Estimate e = in.run({spec}, n, seed + uint64_t(k))[0];
-    wall.push_back(now() - t0);
-    cpu.push_back(cpu_now() - c0);
+    wall.push_back(bench_now() - t0);
+    cpu.push_back(bench_cpu_now() - c0);
     if (k == 0) r.estimate = e.mean, r.stderr_ = e.stderr_;
     ss += e.stderr_ * e.stderr_;
   }
   r.rms_stderr = std::sqrt(ss / repeats);
-  r.median_seconds = median(wall);
-  r.median_cpu_seconds = median(cpu);
+  r.median_seconds = bench_median(wall);
+  r.median_cpu_seconds = bench_median(cpu);
   r.samples_per_s = double(r.samples) / r.median_seconds;
   r.variance_per_sample = double(r.samples) * r.rms_stderr * r.rms_stderr;
   const double over = r.rms_stderr / r.target_se;

@@ -417,40 +417,62 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
   return program_sample_values<float>(rt_, program_, specs, n, seed);
 }
 
-std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
-                                                uint64_t seed) {
-  return ::mfv::reciprocity_worst(rt_, program_, specs, uint64_t(64) * per_item, seed).worst;
+namespace {
+
+// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each.
+void worst_of(Runtime& rt, cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
+              uint32_t pairs, uint64_t seed, WorstPairs& out) {
+  const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
+  const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
+  size_t local = fit_local_size(k, rt.device().device, 256);  // the device's and kernel's limits
+  while (pairs % local != 0) local /= 2;                          // a power of two that divides pairs
+  for (size_t first = 0; first < at.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, at.size() - first);
+    std::vector<IntegralSpec> batch;
+    for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
+    cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
+    cl::Buffer ab(rt.context(), CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));
+    k.setArg(0, sb);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, ab);
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    std::vector<float> a(count * pairs);
+    rt.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
+    for (size_t i = 0; i < count; ++i) {
+      float worst = 0;
+      uint32_t where = 0;
+      for (uint32_t p = 0; p < pairs; ++p) {
+        const float v = a[i * pairs + p];
+        if (!(v <= worst)) worst = std::isnan(v) ? INFINITY : v, where = p;
+      }
+      out.worst[at[first + i]] = worst;
+      out.at[at[first + i]] = where;
+    }
+  }
 }
 
-ReciprocityWorst reciprocity_worst(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
-                                   uint64_t pairs, uint64_t seed) {
-  ReciprocityWorst out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0u)};
-  if (specs.empty()) return out;
-  cl::Kernel k(program, "reciprocity");
-  // Work-item l of a group takes pairs l * per_item .. (l + 1) * per_item - 1
-  // (kernels/integrate.cl), so a smaller group with proportionally more pairs
-  // per work-item covers the same pairs; local divides 64, which divides pairs.
-  const size_t local = fit_local_size(k, rt.device().device, 64);
-  const uint64_t per_item = pairs / local;
-  if (pairs % 64 != 0 || per_item > UINT32_MAX) throw Error(fmt::format("internal: {} reciprocity pairs", pairs));
-  cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
-                const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer wb(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(float));
-  cl::Buffer ib(rt.context(), CL_MEM_WRITE_ONLY, specs.size() * local * sizeof(cl_uint));
-  k.setArg(0, sb);
-  k.setArg(1, static_cast<cl_uint>(per_item));
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, wb);
-  k.setArg(4, ib);
-  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(specs.size() * local), cl::NDRange(local));
-  std::vector<float> w(specs.size() * local);
-  std::vector<cl_uint> wi(specs.size() * local);
-  rt.queue().enqueueReadBuffer(wb, CL_TRUE, 0, w.size() * sizeof(float), w.data());
-  rt.queue().enqueueReadBuffer(ib, CL_TRUE, 0, wi.size() * sizeof(cl_uint), wi.data());
+}  // namespace
+
+WorstPairs reciprocity_worst_pairs(Runtime& rt, const cl::Program& prog, const std::vector<IntegralSpec>& specs,
+                                   uint32_t pairs, uint64_t seed) {
+  WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
+  if (specs.empty() || pairs == 0) return out;
+  cl::Kernel generic(prog, "reciprocity_values"), microfacet;
+  try {
+    microfacet = cl::Kernel(prog, "reciprocity_values_microfacet");  // not in user programs (mfv check)
+  } catch (const cl::Error&) {
+  }
+  std::vector<size_t> fast, slow;
   for (size_t i = 0; i < specs.size(); ++i)
-    for (size_t l = 0; l < local; ++l)
-      if (!(w[i * local + l] <= out.worst[i])) out.worst[i] = w[i * local + l], out.at[i] = wi[i * local + l];
+    (microfacet() && specs[i].model == 0 && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
+  if (!fast.empty()) worst_of(rt, microfacet, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(rt, generic, specs, slow, pairs, seed, out);
   return out;
+}
+
+std::vector<float> Integrator::reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                uint64_t seed) {
+  return reciprocity_worst_pairs(rt_, program_, specs, 64 * per_item, seed).worst;  // the pairs of 64 x per_item
 }
 
 std::vector<Integrator::Agreement> Integrator::compare_with_reference(const std::vector<IntegralSpec>& specs,

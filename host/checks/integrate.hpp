@@ -83,6 +83,17 @@ template <class T>
 std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
                                      uint32_t n, uint64_t seed);
 
+// The worst asymmetry of each integral's reciprocity pairs 0 .. pairs - 1
+// and the pair where it was (kernels/integrate.cl reciprocity_values: one
+// pair per work-item; the microfacet kernel where `prog` has it and the spec
+// is an isotropic model-0 BRDF). NaN counts as the worst (infinity).
+struct WorstPairs {
+  std::vector<float> worst;
+  std::vector<uint32_t> at;
+};
+WorstPairs reciprocity_worst_pairs(Runtime& rt, const cl::Program& prog, const std::vector<IntegralSpec>& specs,
+                                   uint32_t pairs, uint64_t seed);
+
 class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).
@@ -118,8 +129,8 @@ class Integrator {
   };
   std::vector<Agreement> compare_with_reference(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
-  // The `reciprocity` kernel over 64 * per_item pairs of each integral; the
-  // worst asymmetry of each integral (mfv bench times it).
+  // reciprocity_worst_pairs over 64 x per_item pairs: the worst asymmetry
+  // of each integral (mfv bench times it).
   std::vector<float> reciprocity_worst(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint64_t seed);
 
   bool double_accumulation() const { return acc_double_; }
@@ -157,14 +168,5 @@ class Integrator {
   uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()
 };
 
-// The `reciprocity` kernel of `program` over pairs 0 .. pairs-1 of each
-// integral (pairs: a multiple of 64), in work-groups of 64 or of what the
-// device and kernel allow: the same pairs whatever the work-group size.
-struct ReciprocityWorst {
-  std::vector<float> worst;  // per integral: the largest asymmetry (NaN as +inf)
-  std::vector<uint32_t> at;  // and the index of the pair where it was
-};
-ReciprocityWorst reciprocity_worst(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
-                                   uint64_t pairs, uint64_t seed);
 
 }  // namespace mfv

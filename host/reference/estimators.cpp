@@ -184,7 +184,7 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
 
 }  // namespace
 
-// Twin of the pair draw in kernels/integrate.cl `reciprocity`.
+// Twin of the pair draw in kernels/integrate.cl reciprocity_pair_c.
 void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b) {
   const auto r = philox(seed, stream, 1, index);
   double ca = u01_open(r[0]), cb = u01_open(r[2]);
