@@ -115,7 +115,7 @@ TEST_CASE("Bad numbers, outputs and directions get one mfv: error line and exit 
   }
 }
 
-TEST_CASE("--device prefers an exact name and lists the devices an ambiguous name matches", "[cli][device-select]") {
+TEST_CASE("Device selection prefers an exact --device name and lists the devices an ambiguous name matches", "[cli][device-select]") {
   auto dev = [](int i, const char* platform, const char* name, const char* type) {
     mfv::DeviceInfo d;
     d.index = i;
