@@ -39,7 +39,7 @@ TEST_CASE("The local size is the largest power of two within the preference, dev
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   cl::Program prog = build_integrate_program(*rt, TermSelection::all());
-  cl::Kernel k(prog, "reciprocity");
+  cl::Kernel k(prog, "reciprocity_values");
   const size_t kernel_max = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(rt->device().device);
   const size_t free = fit_local_size(k, rt->device().device, 64);
   CHECK(free <= 64);
@@ -55,10 +55,10 @@ TEST_CASE("Reciprocity takes the same pairs whatever the work-group size", "[dev
   if (!rt) return;
   cl::Program prog = build_integrate_program(*rt, TermSelection::all());
   std::vector<IntegralSpec> specs{ggx_spec(0), ggx_spec(1), ggx_spec(2)};
-  const ReciprocityWorst free = reciprocity_worst(*rt, prog, specs, 64 * 8, 7);
+  const WorstPairs free = reciprocity_worst_pairs(*rt, prog, specs, 64 * 8, 7);
   for (const char* cap : {"32", "8", "1"}) {
     LocalSizeCap c(cap);
-    const ReciprocityWorst capped = reciprocity_worst(*rt, prog, specs, 64 * 8, 7);
+    const WorstPairs capped = reciprocity_worst_pairs(*rt, prog, specs, 64 * 8, 7);
     CAPTURE(cap);
     CHECK(capped.worst == free.worst);
     CHECK(capped.at == free.at);
