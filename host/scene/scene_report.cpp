@@ -165,11 +165,14 @@ std::string with_skipped_testcases(std::string xml, const Scene& sc) {
   const size_t end = xml.rfind("</testsuite>");
   if (skipped == 0 || end == std::string::npos) return xml;
   xml.insert(end, cases);
-  // the suite's counts: tests="N" grows by the skipped cases, skipped="k" is added
-  const size_t t = xml.find("tests=\"");
-  const size_t q = xml.find('"', t + 7);
-  const size_t n = std::stoul(xml.substr(t + 7, q - t - 7)) + skipped;
-  xml.replace(t, q - t + 1, fmt::format("tests=\"{}\" skipped=\"{}\"", n, skipped));
+  // the counts of <testsuites> and <testsuite> (report/junit.cpp writes both,
+  // each with tests="N" ... skipped="S"): both grow by the skipped cases
+  const size_t header_end = xml.find("<testcase");
+  for (const char* attr : {"tests=\"", "skipped=\""})
+    for (size_t at = xml.find(attr); at != std::string::npos && at < header_end; at = xml.find(attr, at + 1)) {
+      const size_t from = at + std::char_traits<char>::length(attr), q = xml.find('"', from);
+      xml.replace(from, q - from, std::to_string(std::stoul(xml.substr(from, q - from)) + skipped));
+    }
   return xml;
 }
 
