@@ -83,7 +83,16 @@ void conforms(const std::string& name, bool with_integrals) {
 
 TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel", true); }
 
-TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64", "[portability][rusticl]") { conforms("rusticl", false); }
+TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64", "[portability][rusticl]") {
+  // rusticl compiles the agree program (every term and model) for minutes
+  // when Mesa's shader cache is cold (measured > 5 min at load 5): over CI's
+  // share on a fresh machine, so it runs when asked for
+  if (!std::getenv("MFV_PORTABILITY_RUSTICL")) {
+    WARN("rusticl portability test skipped: set MFV_PORTABILITY_RUSTICL=1 (a cold shader cache costs minutes)");
+    return;
+  }
+  conforms("rusticl", false);
+}
 
 TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kernel at a work-group limit of 32",
           "[portability][oclgrind]") {
