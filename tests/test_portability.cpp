@@ -45,7 +45,11 @@ std::string env_for(const std::string& name, const std::string& dir) {
 }
 
 // Small workloads of every command; each must exit 0 (verdicts as expected).
-void conforms(const std::string& name) {
+// with_integrals = false leaves out run and check, whose large integrate
+// program rusticl compiles in ~40 s of CPU (160 s wall under load) when its
+// shader cache is cold: over CI's time share; `mfv run` on rusticl was
+// measured by hand (docs/portability.md).
+void conforms(const std::string& name, bool with_integrals) {
   std::string dir = vendor_dir(name);
   if (dir.empty()) return;
   const std::string env = env_for(name, dir);
@@ -61,6 +65,7 @@ void conforms(const std::string& name) {
            std::string("stability --terms-only --only 'D ggx' --only 'D beckmann' --only 'F dielectric'"),
            "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512",
        }) {
+    if (!with_integrals && (args.rfind("run ", 0) == 0 || args.rfind("check ", 0) == 0)) continue;
     auto r = run_mfv(args, env);
     CAPTURE(name, args, r.out);
     CHECK(r.code == 0);
@@ -76,9 +81,18 @@ void conforms(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel"); }
+TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel", true); }
 
-TEST_CASE("The suite conforms on Mesa rusticl (llvmpipe)", "[portability][rusticl]") { conforms("rusticl"); }
+TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64", "[portability][rusticl]") {
+  // rusticl compiles the agree program (every term and model) for minutes
+  // when Mesa's shader cache is cold (measured > 5 min at load 5): over CI's
+  // share on a fresh machine, so it runs when asked for
+  if (!std::getenv("MFV_PORTABILITY_RUSTICL")) {
+    WARN("rusticl portability test skipped: set MFV_PORTABILITY_RUSTICL=1 (a cold shader cache costs minutes)");
+    return;
+  }
+  conforms("rusticl", false);
+}
 
 TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kernel at a work-group limit of 32",
           "[portability][oclgrind]") {
