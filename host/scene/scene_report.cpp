@@ -272,7 +272,7 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
   auto files = suite_output_files(run.rep, rt, opt, dir);
   for (auto& [path, text] : files) {
     if (path == dir + "/junit.xml") {
-      text = suite_junit(run.rep, opt, scene_group_names(run));
+      text = with_skipped_testcases(suite_junit(run.rep, opt, scene_group_names(run)), run.scene);
     } else if (path == dir + "/results.json") {
       json j = json::parse(text);
       j["scene"] = json::parse(scene_json(run));
@@ -306,8 +306,6 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
       md += fmt::format("\nKernel builds: {} run, {} in a full run. {}.\n", run.scene_builds, run.full_builds,
                         time_text(run));
       text += md;
-    } else if (path == dir + "/junit.xml") {
-      text = with_skipped_testcases(text, run.scene);
     }
   }
   write_files_atomically(files);

@@ -13,8 +13,8 @@ namespace mfv::stats {
 // ---- total uncertainty ----------------------------------------------------
 
 // A bound on the bias float rounding puts into a Monte Carlo mean of
-// non-negative samples, where nothing measured a tighter one (the fp64 twin
-// sets PointResult::rounding_bound).
+// non-negative samples (the suite takes the larger of this and the fp64
+// twin's measurement, PointResult::rounding_bound).
 //
 // Each sample is formed in float32 by at most kFloatOps rounded operations
 // (the longest catalog path: the sample mapping, D, two Smith Lambdas, F and
