@@ -1,0 +1,36 @@
+set terminal svg size 1200,900 dynamic noenhanced
+set output 'error_theta_g1.svg.tmp-mfv'
+reset
+set logscale y
+set format y '1e%L'
+set key outside right
+set ylabel 'ulps vs double reference'
+set yrange [1e-2:1e13]
+set multiplot layout 2,1 title 'Smith GGX Lambda and G1 forms and catalog G1 terms, float32'
+set logscale x
+set format x '1e%L'
+set xlabel 'theta (rad), near the normal'
+set xrange [1e-8:1]
+plot 'error_theta_g1.dat' index 0 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#000000' title 'variant Lambda_ggx via tan2 (alpha 0.3)', 'error_theta_g1.dat' index 1 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#e69f00' title 'variant Lambda_ggx via cos (alpha 0.3)', 'error_theta_g1.dat' index 2 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#56b4e9' title 'variant Lambda_ggx via x/(2(1+sqrt(1+x))) (alpha 0.3)', 'error_theta_g1.dat' index 3 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#009e73' title 'variant G1_smith_ggx via Lambda (alpha 0.3)', 'error_theta_g1.dat' index 4 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#f0e442' title 'variant G1_smith_ggx closed form (alpha 0.3)', 'error_theta_g1.dat' index 5 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#0072b2' title 'G1 smith_beckmann_approx (alpha 0.3)', 'error_theta_g1.dat' index 6 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#d55e00' title 'G1 smith_beckmann (alpha 0.3)', 'error_theta_g1.dat' index 7 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#cc79a7' title 'G1 smith_phong (alpha 0.3)', 'error_theta_g1.dat' index 8 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#7f7f7f' title 'G1 smith_ggx (alpha 0.3)', 'error_theta_g1.dat' index 9 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#8c564b' title 'G1 smith_aniso_ggx (alpha 0.3)', 'error_theta_g1.dat' index 10 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#17becf' title 'G1 smith_aniso_beckmann (alpha 0.3)'
+set xlabel 'pi/2 - theta (rad), near grazing'
+set xrange [1e-8:1]
+plot 'error_theta_g1.dat' index 0 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#000000' title 'variant Lambda_ggx via tan2 (alpha 0.3)', 'error_theta_g1.dat' index 1 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#e69f00' title 'variant Lambda_ggx via cos (alpha 0.3)', 'error_theta_g1.dat' index 2 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#56b4e9' title 'variant Lambda_ggx via x/(2(1+sqrt(1+x))) (alpha 0.3)', 'error_theta_g1.dat' index 3 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#009e73' title 'variant G1_smith_ggx via Lambda (alpha 0.3)', 'error_theta_g1.dat' index 4 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#f0e442' title 'variant G1_smith_ggx closed form (alpha 0.3)', 'error_theta_g1.dat' index 5 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#0072b2' title 'G1 smith_beckmann_approx (alpha 0.3)', 'error_theta_g1.dat' index 6 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#d55e00' title 'G1 smith_beckmann (alpha 0.3)', 'error_theta_g1.dat' index 7 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#cc79a7' title 'G1 smith_phong (alpha 0.3)', 'error_theta_g1.dat' index 8 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#7f7f7f' title 'G1 smith_ggx (alpha 0.3)', 'error_theta_g1.dat' index 9 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#8c564b' title 'G1 smith_aniso_ggx (alpha 0.3)', 'error_theta_g1.dat' index 10 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#17becf' title 'G1 smith_aniso_beckmann (alpha 0.3)'
+unset multiplot
+set terminal pngcairo size 1200,900 noenhanced font ',9'
+set output 'error_theta_g1.png.tmp-mfv'
+reset
+set logscale y
+set format y '1e%L'
+set key outside right
+set ylabel 'ulps vs double reference'
+set yrange [1e-2:1e13]
+set multiplot layout 2,1 title 'Smith GGX Lambda and G1 forms and catalog G1 terms, float32'
+set logscale x
+set format x '1e%L'
+set xlabel 'theta (rad), near the normal'
+set xrange [1e-8:1]
+plot 'error_theta_g1.dat' index 0 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#000000' title 'variant Lambda_ggx via tan2 (alpha 0.3)', 'error_theta_g1.dat' index 1 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#e69f00' title 'variant Lambda_ggx via cos (alpha 0.3)', 'error_theta_g1.dat' index 2 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#56b4e9' title 'variant Lambda_ggx via x/(2(1+sqrt(1+x))) (alpha 0.3)', 'error_theta_g1.dat' index 3 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#009e73' title 'variant G1_smith_ggx via Lambda (alpha 0.3)', 'error_theta_g1.dat' index 4 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#f0e442' title 'variant G1_smith_ggx closed form (alpha 0.3)', 'error_theta_g1.dat' index 5 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#0072b2' title 'G1 smith_beckmann_approx (alpha 0.3)', 'error_theta_g1.dat' index 6 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#d55e00' title 'G1 smith_beckmann (alpha 0.3)', 'error_theta_g1.dat' index 7 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#cc79a7' title 'G1 smith_phong (alpha 0.3)', 'error_theta_g1.dat' index 8 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#7f7f7f' title 'G1 smith_ggx (alpha 0.3)', 'error_theta_g1.dat' index 9 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#8c564b' title 'G1 smith_aniso_ggx (alpha 0.3)', 'error_theta_g1.dat' index 10 using 1:($1 < 1 ? $2 : 1/0) with linespoints lc rgb '#17becf' title 'G1 smith_aniso_beckmann (alpha 0.3)'
+set xlabel 'pi/2 - theta (rad), near grazing'
+set xrange [1e-8:1]
+plot 'error_theta_g1.dat' index 0 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#000000' title 'variant Lambda_ggx via tan2 (alpha 0.3)', 'error_theta_g1.dat' index 1 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#e69f00' title 'variant Lambda_ggx via cos (alpha 0.3)', 'error_theta_g1.dat' index 2 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#56b4e9' title 'variant Lambda_ggx via x/(2(1+sqrt(1+x))) (alpha 0.3)', 'error_theta_g1.dat' index 3 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#009e73' title 'variant G1_smith_ggx via Lambda (alpha 0.3)', 'error_theta_g1.dat' index 4 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#f0e442' title 'variant G1_smith_ggx closed form (alpha 0.3)', 'error_theta_g1.dat' index 5 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#0072b2' title 'G1 smith_beckmann_approx (alpha 0.3)', 'error_theta_g1.dat' index 6 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#d55e00' title 'G1 smith_beckmann (alpha 0.3)', 'error_theta_g1.dat' index 7 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#cc79a7' title 'G1 smith_phong (alpha 0.3)', 'error_theta_g1.dat' index 8 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#7f7f7f' title 'G1 smith_ggx (alpha 0.3)', 'error_theta_g1.dat' index 9 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#8c564b' title 'G1 smith_aniso_ggx (alpha 0.3)', 'error_theta_g1.dat' index 10 using (pi/2 - $1):($1 > 1 ? $2 : 1/0) with linespoints lc rgb '#17becf' title 'G1 smith_aniso_beckmann (alpha 0.3)'
+unset multiplot
