@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages microfacet-verify needs, when missing.
 set -euo pipefail
 packages=(cmake g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers
-          catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libtinygltf-dev libssl-dev
+          catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
           libboost-math-dev libstb-dev
           gnuplot-nox   # gnuplot: optional at run time, for the plots
           python3-jsonschema python3-yaml)  # tests: outputs against schemas/, the CI snippets of docs/ci/
