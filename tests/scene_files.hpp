@@ -3,6 +3,7 @@
 #pragma once
 
 #include "scene/scene.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <unistd.h>
@@ -14,13 +15,6 @@
 #include <string>
 
 namespace mfv::test {
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // A temporary folder for files a test writes.
 struct TempDir {

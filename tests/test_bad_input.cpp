@@ -8,6 +8,7 @@
 #include "runtime/opencl.hpp"
 
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -23,6 +24,8 @@
 #include <string>
 
 using mfv::test::Run;
+using mfv::test::Scratch;
+using mfv::test::slurp;
 using mfv::test::run_mfv;
 namespace fs = std::filesystem;
 
@@ -33,27 +36,6 @@ bool one_error_line(const Run& r) {
 }
 
 bool no_device(const Run& r) { return r.code == 2 && r.out.find("no OpenCL platform") != std::string::npos; }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Scratch {
-  fs::path dir;
-  explicit Scratch(const std::string& name)
-      : dir(fs::temp_directory_path() / ("mfv_bad_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-  std::string file(const std::string& name, const std::string& text) const {
-    std::ofstream(dir / name) << text;
-    return (dir / name).string();
-  }
-};
 
 // The value after `label` in mfv eval's output ("reference 0.123 ...").
 double eval_value(const std::string& out, const std::string& label) {
@@ -184,7 +166,7 @@ TEST_CASE("mfv eval takes a unit direction typed to float precision", "[cli][eva
 // ---- user code ---------------------------------------------------------------
 
 TEST_CASE("mfv check: a BRDF that returns NaN everywhere fails reciprocity", "[check][bad-input][device]") {
-  Scratch s("nan");
+  Scratch s("mfv_bad_nan");
   std::string nan = s.file("nan.cl", "// mfv: param alpha 0.01 1 roughness\n"
                                      "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
   std::string lambert = s.file("lambert.cl", "// mfv: param alpha 0.01 1 roughness\n"
@@ -201,7 +183,7 @@ TEST_CASE("mfv check: a BRDF that returns NaN everywhere fails reciprocity", "[c
 
 TEST_CASE("mfv check: a computed out-of-range params[k] reads NaN and fails, in range it passes",
           "[check][bad-input][device]") {
-  Scratch s("oob");
+  Scratch s("mfv_bad_oob");
   auto file = [&](const char* name, int offset) {
     // the index is computed, so the static check (which reads literal indices) lets it through
     return s.file(name, "// mfv: param kd 0 1 default 0.5\n"
@@ -222,7 +204,7 @@ TEST_CASE("mfv check: a computed out-of-range params[k] reads NaN and fails, in 
 
 TEST_CASE("mfv check: user code that never returns is stopped at --timeout with exit 2 and no process left",
           "[check][timeout][device]") {
-  Scratch s("loop");
+  Scratch s("mfv_bad_loop");
   std::string loop = s.file("loop_forever.cl", "// mfv: param alpha 0.01 1 roughness\n"
                                                "float3 brdf(float3 wi, float3 wo, const float* p) {\n"
                                                "  for (;;) {}\n"
@@ -243,7 +225,7 @@ TEST_CASE("mfv check: user code that never returns is stopped at --timeout with 
 }
 
 TEST_CASE("mfv check: a build error's first line is mfv's error line", "[check][bad-input][device]") {
-  Scratch s("syntax");
+  Scratch s("mfv_bad_syntax");
   std::string bad = s.file("syntax.cl", "// mfv: param alpha 0.01 1 roughness\n"
                                         "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
                                         "  return (float3)(undeclared_name);\n"
@@ -259,7 +241,7 @@ TEST_CASE("mfv check: a build error's first line is mfv's error line", "[check][
 
 TEST_CASE("Every results file records the command line, --kernel-dir, kernel hashes and the device",
           "[provenance][device]") {
-  Scratch s("prov");
+  Scratch s("mfv_bad_prov");
   const fs::path kernels = s.dir / "kernels";
   fs::copy(fs::path(MFV_KERNEL_SOURCE_DIR), kernels);
   const std::string args = " samplers --samples 4096 --bins 8x16 --device-only --out ";

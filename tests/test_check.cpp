@@ -4,6 +4,7 @@
 #include "checks/integrate.hpp"
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -18,16 +19,12 @@
 using mfv::test::Run;
 using mfv::test::run_mfv;
 
+using mfv::test::slurp;
+
 namespace {
 
 const std::string kExamples = std::string(MFV_KERNEL_SOURCE_DIR) + "/../examples/brdf/";
 
-std::string slurp(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // A scratch file for one test.
 struct TempFile {

@@ -5,6 +5,7 @@
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -17,27 +18,10 @@
 
 namespace fs = std::filesystem;
 using mfv::test::run_mfv;
+using mfv::test::Scratch;
+using mfv::test::slurp;
 
 namespace {
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A scratch folder removed at the end of the test.
-struct Scratch {
-  fs::path dir;
-  explicit Scratch(const std::string& name)
-      : dir(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
-};
 
 // Output of a shell command (stdout).
 std::string shell(const std::string& cmd) {
@@ -80,13 +64,13 @@ TEST_CASE("progress appears in a piped run within seconds, on stderr only, and -
   // the first line comes 2 s after the first check starts; allow 20 s for
   // OpenCL start-up and kernel builds on a loaded machine
   const int halves = poll(kLongRun, 40);
-  INFO(read_file(s.dir / "err.txt"));
+  INFO(slurp(s.dir / "err.txt"));
   CHECK(halves < 40);
-  CHECK(read_file(s.dir / "err.txt").find("samples") != std::string::npos);
-  CHECK(read_file(s.dir / "out.txt").find("mfv: ") == std::string::npos);  // stdout keeps the results
+  CHECK(slurp(s.dir / "err.txt").find("samples") != std::string::npos);
+  CHECK(slurp(s.dir / "out.txt").find("mfv: ") == std::string::npos);  // stdout keeps the results
   // --quiet, a global option given after the command: nothing in 6 s
   CHECK(poll(kLongRun + " --quiet", 12) == 12);
-  CHECK(read_file(s.dir / "err.txt").empty());
+  CHECK(slurp(s.dir / "err.txt").empty());
 }
 
 TEST_CASE("on a terminal, progress is a bar with the time left, redrawn in place", "[cli][ux][device]") {
@@ -94,7 +78,7 @@ TEST_CASE("on a terminal, progress is a bar with the time left, redrawn in place
   if (shell("command -v script").empty()) return;  // util-linux script gives the run a terminal
   Scratch s("mfv_tty");
   shell(fmt::format("timeout 8 script -qec '{} {}' /dev/null > {} 2>&1", MFV_BINARY, kLongRun, s / "tty.txt"));
-  const std::string tty = read_file(s.dir / "tty.txt");
+  const std::string tty = slurp(s.dir / "tty.txt");
   INFO(tty.substr(0, 2000));
   CHECK(tty.find("\r\033[K") != std::string::npos);
   CHECK(tty.find("% [") != std::string::npos);
@@ -165,15 +149,15 @@ TEST_CASE("mfv samplers draws an observed/expected/difference image of a failed 
   INFO(bad.out);
   CHECK(bad.code == 1);
   const fs::path png = s.dir / "bad/plots/chi2_cauchy_slopes_w0.3_cos1_device.png";
-  CHECK(is_png(read_file(png)));
-  CHECK(read_file(fs::path(png).replace_extension(".svg")).find("observed") != std::string::npos);
-  CHECK(read_file(s.dir / "bad/samplers.json").find("plots/chi2_cauchy_slopes") != std::string::npos);
+  CHECK(is_png(slurp(png)));
+  CHECK(slurp(fs::path(png).replace_extension(".svg")).find("observed") != std::string::npos);
+  CHECK(slurp(s.dir / "bad/samplers.json").find("plots/chi2_cauchy_slopes") != std::string::npos);
   CHECK(!fs::exists(s.dir / "bad/plots/chi2_cosine_w1_cos1_device.png"));  // passed: no image by default
 
   auto all = run_mfv(small + s / "all --plots");
   INFO(all.out);
   CHECK(all.code == 0);
-  CHECK(is_png(read_file(s.dir / "all/plots/chi2_cosine_w1_cos1_device.png")));
+  CHECK(is_png(slurp(s.dir / "all/plots/chi2_cosine_w1_cos1_device.png")));
 
   auto no_out = run_mfv("samplers --plots");
   CHECK(no_out.code == 2);
@@ -188,14 +172,14 @@ TEST_CASE("energy plots come as PNG and SVG with their labels set as text, not a
   INFO(r.out);
   REQUIRE(r.code == 0);
   for (const char* f : {"heat_ggx", "curves_ggx", "eavg"}) {
-    CHECK(is_png(read_file(s.dir / "e/plots" / (std::string(f) + ".png"))));
+    CHECK(is_png(slurp(s.dir / "e/plots" / (std::string(f) + ".png"))));
     CHECK(fs::exists(s.dir / "e/plots" / (std::string(f) + ".svg")));
   }
   // enhanced text: "E_avg" drew "E" + subscript "a" + "vg"; E_{avg} draws "avg" as one subscript
-  const std::string eavg = read_file(s.dir / "e/plots/eavg.svg");
+  const std::string eavg = slurp(s.dir / "e/plots/eavg.svg");
   CHECK(eavg.find(">avg<") != std::string::npos);
   CHECK(eavg.find(">vg<") == std::string::npos);
-  const std::string heat = read_file(s.dir / "e/plots/heat_ggx.svg");
+  const std::string heat = slurp(s.dir / "e/plots/heat_ggx.svg");
   CHECK(heat.find(">view<") != std::string::npos);
   CHECK(heat.find(">iew") == std::string::npos);
 }

@@ -7,6 +7,7 @@
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -22,14 +23,10 @@ using namespace mfv;
 using mfv::test::run_mfv;
 namespace fs = std::filesystem;
 
+using mfv::test::slurp;
+
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct TempDir {
   fs::path dir = fs::temp_directory_path() / ("mfv_model_reports_" + std::to_string(::getpid()));

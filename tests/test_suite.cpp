@@ -7,6 +7,7 @@
 #include "suite_verdicts.hpp"
 
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -22,6 +23,8 @@
 #include <string>
 
 using namespace mfv;
+
+using mfv::test::slurp;
 
 namespace {
 
@@ -39,12 +42,6 @@ SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> mode
   return o;
 }
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
