@@ -12,6 +12,7 @@
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 #include "runtime/dispatch.hpp"
+#include "stats/normal.hpp"
 #include "suite_verdicts.hpp"
 
 #include <catch2/catch.hpp>
@@ -81,7 +82,7 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
   struct Case { double alpha, mu, truth; };
   const Case cases[] = {{0.5, 0.5, 0.6982507}, {0.1, 0.1, 0.8834550}};
   // t at a two-sided 1e-3 with 31 degrees of freedom (student_t_two_sided_quantile)
-  const double t3 = student_t_two_sided_quantile(1e-3, kMisReplicates - 1);
+  const double t3 = stats::student_t_two_sided_quantile(1e-3, kMisReplicates - 1);
   for (const Case& c : cases) {
     std::vector<IntegralSpec> specs;
     for (uint32_t k = 0; k < 48; ++k) specs.push_back(mis_spec("ggx", "smith_ggx_correlated", "none", c.alpha, c.mu, 0, 0, k));

@@ -1,5 +1,7 @@
 #include "checks/baseline.hpp"
 
+#include "stats/normal.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -18,7 +20,7 @@ void judge_baseline(const std::vector<BaselineValue>& values, double alpha_fw, B
     else {
       // Welch-Satterthwaite degrees of freedom of the combined standard error
       const double df = (v1 + v2) * (v1 + v2) / (v1 * v1 / t.before_df + v2 * v2 / t.after_df);
-      p = student_t_two_sided_p((t.after - t.before) / se, std::isfinite(df) ? df : std::min(t.before_df, t.after_df));
+      p = stats::student_t_two_sided_p((t.after - t.before) / se, std::isfinite(df) ? df : std::min(t.before_df, t.after_df));
     }
     if (p < out.threshold_p) out.moved.push_back({t.where, t.before, t.after, se, p});
   }

@@ -32,7 +32,4 @@ struct BaselineValue {
 // on both is skipped. Fills compared, threshold_p and moved; keeps notes.
 void judge_baseline(const std::vector<BaselineValue>& values, double alpha_fw, BaselineDiff& out);
 
-// Two-sided p-value of Student's t with `df` degrees of freedom.
-double student_t_two_sided_p(double t, double df);
-
 }  // namespace mfv

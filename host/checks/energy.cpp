@@ -5,10 +5,10 @@
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "util/progress.hpp"
 
-#include <boost/math/special_functions/beta.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -145,7 +145,7 @@ void judge_model_gains(EnergyReport& rep) {
       double p;
       const double one = 1.0 + float_rounding_of_mean(*me.point.model, c.mean);
       if (!std::isfinite(c.mean)) p = c.mean > 0 || std::isnan(c.mean) ? 0 : 1;
-      else if (c.se > 0) p = c.mean > one ? 0.5 * student_t_two_sided_p((c.mean - one) / c.se, df) : 1;
+      else if (c.se > 0) p = c.mean > one ? 0.5 * stats::student_t_two_sided_p((c.mean - one) / c.se, df) : 1;
       else p = c.mean > one ? 0 : 1;
       me.excess_p = std::min(me.excess_p, p);
       if (c.se > rep.opt.target && c.mean + 3.0 * c.se > one) me.unresolved = true;
@@ -419,13 +419,6 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
 }
 
 // ---- baseline --------------------------------------------------------------
-
-double student_t_two_sided_p(double t, double df) {
-  if (std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
-  if (std::isinf(t)) return 0.0;
-  // P(|T_df| > |t|) = I_{df/(df+t²)}(df/2, 1/2), the regularized incomplete beta (Boost.Math)
-  return boost::math::ibeta(df / 2, 0.5, df / (df + t * t));
-}
 
 BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string& text, double alpha_fw) {
   using nlohmann::json;

@@ -48,9 +48,7 @@ const std::vector<std::string>& suite_checks() {
   return c;
 }
 
-double normal_two_sided_quantile(double p) { return stats::normal_two_sided_quantile(p); }
 
-double student_t_two_sided_quantile(double p, double dof) { return stats::student_t_two_sided_quantile(p, dof); }
 
 namespace {
 
@@ -377,7 +375,7 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     if (dof == 0) return rep.z_threshold;
     auto it = t_threshold.find(dof);
     if (it == t_threshold.end())
-      it = t_threshold.emplace(dof, student_t_two_sided_quantile(split.per_integral / double(std::max<size_t>(rep.tests, 1)), dof)).first;
+      it = t_threshold.emplace(dof, stats::student_t_two_sided_quantile(split.per_integral / double(std::max<size_t>(rep.tests, 1)), dof)).first;
     return it->second;
   };
   auto noise = [&](const PointResult& q) { return threshold(q.dof) * q.stderr_ + q.bias; };

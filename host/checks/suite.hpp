@@ -145,11 +145,6 @@ const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
-// z such that P(|N(0,1)| > z) = p (two-sided), for the Bonferroni threshold (stats/normal.hpp).
-double normal_two_sided_quantile(double p);
-// The t with P(|T| > t) = p for Student's t with `dof` degrees of freedom.
-double student_t_two_sided_quantile(double p, double dof);
-
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
 
 // One check's integrals, run through one program.

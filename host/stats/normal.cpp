@@ -3,6 +3,7 @@
 #include <boost/math/distributions/binomial.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
+#include <boost/math/special_functions/beta.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +20,13 @@ double student_t_two_sided_quantile(double p, double dof) {
   const double q = 0.5 * std::min(p, 1.0);
   if (q >= 0.5) return 0;
   return boost::math::quantile(boost::math::complement(boost::math::students_t_distribution<double>(dof), q));
+}
+
+double student_t_two_sided_p(double t, double dof) {
+  if (std::isnan(t)) return NAN;
+  if (std::isinf(t)) return 0.0;
+  // P(|T_dof| > |t|) = I_{dof/(dof+t²)}(dof/2, 1/2), the regularized incomplete beta
+  return boost::math::ibeta(dof / 2, 0.5, dof / (dof + t * t));
 }
 
 double normal_upper_quantile(double p) {

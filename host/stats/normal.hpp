@@ -14,6 +14,8 @@ double normal_upper_quantile(double p);
 double normal_two_sided_tail(double z);
 // t with P(|T| > t) = p for Student's t with dof degrees of freedom.
 double student_t_two_sided_quantile(double p, double dof);
+// P(|T| > |t|) for Student's t with dof degrees of freedom (NaN for NaN, 0 for +-inf).
+double student_t_two_sided_p(double t, double dof);
 
 // The smallest k with P(Binomial(n, p) > k) <= q: a count of events of
 // probability at most p that exceeds it has chance at most q.
