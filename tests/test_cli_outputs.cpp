@@ -56,9 +56,12 @@ TEST_CASE("progress appears in a piped run within seconds, on stderr only, and -
   // for the first progress line, print the half-seconds it took, stop the run.
   auto poll = [&](const std::string& args, int max_halves) {
     const std::string cmd = fmt::format(
-        "{} {} > {} 2> {} & pid=$!; t=0; while [ $t -lt {} ]; do "
-        "if grep -q '^mfv: ' {}; then break; fi; sleep 0.5; t=$((t+1)); done; kill $pid 2>/dev/null; wait $pid; echo $t",
-        MFV_BINARY, args, s / "out.txt", s / "err.txt", max_halves, s / "err.txt");
+        // empty both files here first: the background run's own redirections
+        // may open them only after the first grep, which would then read the
+        // previous run's progress
+        ": > {2}; : > {3}; {0} {1} > {2} 2> {3} & pid=$!; t=0; while [ $t -lt {4} ]; do "
+        "if grep -q '^mfv: ' {3}; then break; fi; sleep 0.5; t=$((t+1)); done; kill $pid 2>/dev/null; wait $pid; echo $t",
+        MFV_BINARY, args, s / "out.txt", s / "err.txt", max_halves);
     return std::stoi(shell(cmd));
   };
   // the first line comes 2 s after the first check starts; allow 20 s for
@@ -77,7 +80,12 @@ TEST_CASE("on a terminal, progress is a bar with the time left, redrawn in place
   if (!mfv::test::device_runtime()) return;
   if (shell("command -v script").empty()) return;  // util-linux script gives the run a terminal
   Scratch s("mfv_tty");
-  shell(fmt::format("timeout 8 script -qec '{} {}' /dev/null > {} 2>&1", MFV_BINARY, kLongRun, s / "tty.txt"));
+  // stop the run once the bar has been drawn twice (or after 30 s on a
+  // loaded machine); timeout passes the kill on to script and its child
+  shell(fmt::format("timeout 30 script -qec '{0} {1}' /dev/null > {2} 2>&1 & pid=$!; t=0; while [ $t -lt 60 ]; do "
+                    "if [ $(grep -o '% \\[' {2} | wc -l) -ge 2 ]; then break; fi; sleep 0.5; t=$((t+1)); done; "
+                    "kill $pid 2>/dev/null; wait $pid",
+                    MFV_BINARY, kLongRun, s / "tty.txt"));
   const std::string tty = slurp(s.dir / "tty.txt");
   INFO(tty.substr(0, 2000));
   CHECK(tty.find("\r\033[K") != std::string::npos);
