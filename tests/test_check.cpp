@@ -119,7 +119,7 @@ TEST_CASE("The mixture of widths is the same estimator in the kernel and the ref
     s.stream = uint32_t(kind);
     specs.push_back(s);
   }
-  for (auto& a : in.compare_with_reference(specs, 512, 3)) CHECK(a.disagreement < 1e-5);
+  for (auto& a : compare_with_reference(in, specs, 512, 3)) CHECK(a.disagreement < 1e-5);
   auto est = in.run(specs, 1 << 16, 3);
   CHECK(est[0].mean == Approx(1.0).margin(6 * est[0].stderr_));  // d_norm, iid under the mixture
 }

@@ -151,7 +151,7 @@ TEST_CASE("mfv samplers draws an observed/expected/difference image of a failed 
   const std::string small = " samplers --samples 65536 --bins 16x32 --device-only --out ";
   // the Cauchy slopes' inverse CDF turned into GGX's (as tests/test_samplers.cpp)
   mfv::test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("integrate.cl", "sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))"));
+  REQUIRE(dir.replace("estimators.cl", "sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))"));
   // the sizes of tests/test_samplers.cpp, where this plant is known to fail
   auto bad = run_mfv("--kernel-dir " + dir.path() + " samplers --samples 262144 --device-only --out " + s / "bad");
   INFO(bad.out);

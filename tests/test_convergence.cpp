@@ -107,7 +107,7 @@ TEST_CASE("device estimators and their reference twins agree on the same samples
         s.stream = stream++;
         specs.push_back(s);
       }
-  const auto agree = in.compare_with_reference(specs, 512, 7);
+  const auto agree = compare_with_reference(in, specs, 512, 7);
   for (size_t j = 0; j < specs.size(); ++j) {
     INFO("spec " << j << " estimator " << specs[j].estimator << " kernel " << agree[j].kernel_mean << " reference "
                  << agree[j].reference_mean);
@@ -136,7 +136,7 @@ TEST_CASE("RQMC converges faster than MC on a smooth albedo", "[convergence]") {
 TEST_CASE("a planted wrong pdf makes its estimator inconsistent with the truth", "[convergence]") {
   mfv::test::PlantedKernelDir dir;
   // uniform hemisphere weighted by π instead of 2π: the pdf of a unit disk, not of the hemisphere
-  REQUIRE(dir.replace("integrate.cl", "real inv_pdf = est == EST_UNIFORM ? R(2.0) * MFV_PI", "real inv_pdf = est == EST_UNIFORM ? MFV_PI"));
+  REQUIRE(dir.replace("convergence.cl", "real inv_pdf = est == MFV_EST_UNIFORM ? R(2.0) * MFV_PI", "real inv_pdf = est == MFV_EST_UNIFORM ? MFV_PI"));
   Runtime rt("", dir.path());
   ConvergenceOptions o;
   o.cases = {{"ggx", 0.5, 0.5}};

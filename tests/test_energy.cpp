@@ -178,7 +178,7 @@ TEST_CASE("the visible-normal proposal is unbiased for Ds of other shapes, and a
   };
   CHECK(worst_z(*rt) < 5);
   test::PlantedKernelDir k;  // the proposal's pdf 3 % too high: E 3 % too low
-  REQUIRE(k.replace("integrate.cl", "return w2 / (MFV_PI * k * k) / (R(2.0)",
+  REQUIRE(k.replace("estimators.cl", "return w2 / (MFV_PI * k * k) / (R(2.0)",
                     "return R(1.03) * w2 / (MFV_PI * k * k) / (R(2.0)"));
   Runtime planted("", k.path());
   CHECK(worst_z(planted) > 5);

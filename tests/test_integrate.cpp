@@ -20,8 +20,12 @@ namespace {
 IntegralSpec albedo(const std::string& d, const std::string& g, const std::string& f, double alpha, double cos_o,
                     double f0, double kd, uint32_t stream) {
   const Term &td = find_term(d), &tg = find_term(g), &tf = find_term(f);
-  IntegralSpec s = make_spec(IntegralKind::Albedo, &td, &tg, &tf, native_from_alpha(td.roughness, alpha),
-                             native_from_alpha(tg.roughness, alpha), f0, 1.0, kd, alpha, cos_o);
+  MicrofacetIntegral m;
+  m.d = &td, m.g = &tg, m.f = &tf;
+  m.pd = native_from_alpha(td.roughness, alpha), m.pg = native_from_alpha(tg.roughness, alpha);
+  m.f0 = f0, m.f1 = 1.0, m.kd = kd;
+  m.width = alpha, m.cos_o = cos_o;
+  IntegralSpec s = spec_of(m);
   s.stream = stream;
   return s;
 }
@@ -72,8 +76,12 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
     std::vector<IntegralSpec> norms;
     for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"ggx", 1.5}}) {
       const Term& t = find_term(d);
-      norms.push_back(make_spec(IntegralKind::DNorm, &t, nullptr, nullptr, native_from_alpha(t.roughness, a), 0, 0, 0, 0,
-                                a, 1.0));
+      MicrofacetIntegral m;
+      m.kind = IntegralKind::DNorm;
+      m.d = &t;
+      m.pd = native_from_alpha(t.roughness, a);
+      m.width = a;
+      norms.push_back(spec_of(m));
       norms.back().stream = uint32_t(norms.size());
     }
     in.set_albedo_fast_path(true);

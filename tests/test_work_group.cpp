@@ -53,12 +53,12 @@ TEST_CASE("The local size is the largest power of two within the preference, dev
 TEST_CASE("Reciprocity takes the same pairs whatever the work-group size", "[device][work_group]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  cl::Program prog = build_integrate_program(*rt, TermSelection::all());
+  Integrator in(*rt, TermSelection::all());
   std::vector<IntegralSpec> specs{ggx_spec(0), ggx_spec(1), ggx_spec(2)};
-  const WorstPairs free = reciprocity_worst_pairs(*rt, prog, specs, 64 * 8, 7);
+  const WorstPairs free = in.reciprocity(specs, 64 * 8, 7);
   for (const char* cap : {"32", "8", "1"}) {
     LocalSizeCap c(cap);
-    const WorstPairs capped = reciprocity_worst_pairs(*rt, prog, specs, 64 * 8, 7);
+    const WorstPairs capped = in.reciprocity(specs, 64 * 8, 7);
     CAPTURE(cap);
     CHECK(capped.worst == free.worst);
     CHECK(capped.at == free.at);

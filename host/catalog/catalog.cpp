@@ -201,16 +201,20 @@ std::vector<Term> build_catalog() {
   };
   F("none", "F_none", "white furnace", "1", {}, ref_::F_none);
   F("schlick", "F_schlick", "seed 000; Schlick 1994", "F0 + (1-F0)(1-l.h)^5",
-    {{"f0", 0.0, 1.0, 0.04, "reflectance at normal incidence (per channel)"}}, ref_::F_schlick);
+    {{"f0", 0.0, 1.0, 0.04, "reflectance at normal incidence (per channel)"}}, ref_::F_schlick)
+      ->check_points = {{0.0, 0, "f0=0"}, {0.04, 0, "f0=0.04"}, {0.5, 0, "f0=0.5"}, {1.0, 0, "f0=1"}};
   F("dielectric", "F_dielectric", "seed 000 exact (seed 001's form has sign typos)",
     "1/2 (g-c)^2/(g+c)^2 (1 + ((c(g+c)-1)/(c(g-c)+1))^2), g^2 = eta^2-1+c^2",
     {{"eta", 0.1, 10.0, 1.5, "relative index eta_t/eta_i; < 1 gives total internal reflection"}},
-    ref_::F_dielectric)
-      ->ulp_budget = 24;  // ~20 roundings, squared twice; measured worst 19 ulps at grazing, eta ~ 3
+    ref_::F_dielectric);
+  c.back().ulp_budget = 24;  // ~20 roundings, squared twice; measured worst 19 ulps at grazing, eta ~ 3
+  c.back().check_points = {{1 / 1.5, 0, "eta=0.667"}, {1.33, 0, "eta=1.33"}, {1.5, 0, "eta=1.5"}, {3.0, 0, "eta=3"}};
   F("conductor", "F_conductor", "Born and Wolf 14.2 (complex index n + ik)", "(|r_s|^2 + |r_p|^2)/2",
     {{"n", 0.01, 10.0, 0.2, "real part of the index"}, {"k", 0.0, 20.0, 3.0, "extinction coefficient"}},
-    ref_::F_conductor)
-      ->ulp_budget = 16;  // ~40 operations with three square roots; measured worst 8.6 ulps at grazing
+    ref_::F_conductor);
+  c.back().ulp_budget = 16;  // ~40 operations with three square roots; measured worst 8.6 ulps at grazing
+  // silver, aluminium, gold, iron at ~550 nm (Palik)
+  c.back().check_points = {{0.059, 3.6, "Ag"}, {0.96, 6.69, "Al"}, {0.43, 2.45, "Au"}, {2.87, 3.0, "Fe"}};
   return c;
 }
 
@@ -274,6 +278,12 @@ void validate_param(const Term& t, size_t index, double value) {
   validate_value(t.id, t.params[index], value);
 }
 
+double alpha_from_native(Roughness r, double native) {
+  if (r == Roughness::PhongExponent) return alpha_from_phong_exponent(native);
+  if (r == Roughness::Perceptual) return alpha_from_perceptual(native);
+  return native;
+}
+
 double native_from_alpha(Roughness r, double alpha) {
   switch (r) {
     case Roughness::None: return 0.0;
@@ -281,6 +291,7 @@ double native_from_alpha(Roughness r, double alpha) {
     case Roughness::PhongExponent: return phong_exponent_from_alpha(alpha);
     case Roughness::Rho: return alpha;
     case Roughness::BeckmannM: return alpha;
+    case Roughness::Perceptual: return std::sqrt(alpha);  // the inverse of alpha_from_perceptual
   }
   return alpha;
 }

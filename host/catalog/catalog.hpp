@@ -17,8 +17,16 @@ enum class Kind { D, G, F };
 const char* kind_name(Kind k);
 
 // How the shared microfacet width alpha (GGX/Beckmann slope RMS) maps onto a
-// term's native parameter; see roughness.hpp.
-enum class Roughness { None, Alpha, PhongExponent, Rho, BeckmannM };
+// term's native parameter (and a user BRDF's roughness parameter, mfv
+// check); see roughness.hpp. Perceptual: r with alpha = r² (Burley 2012).
+enum class Roughness { None, Alpha, PhongExponent, Rho, BeckmannM, Perceptual };
+
+// One parameter point of a term that mfv run checks (F: F0 or eta, and a
+// conductor's k), with the label its points show.
+struct ParamPoint {
+  double p0 = 0, p1 = 0;
+  std::string label;
+};
 
 struct Param {
   std::string name;  // alpha, alpha_p, rho, m, f0, eta, n, k
@@ -55,6 +63,9 @@ struct Term {
   std::string formula;    // one line, for the listing
   std::vector<Param> params;  // D and G: one (roughness), two for anisotropic terms; F: up to two
   Roughness roughness = Roughness::None;
+  // F terms: the points of F's parameters mfv run checks each D x G at
+  // (none: one point, no parameters).
+  std::vector<ParamPoint> check_points = {{0, 0, ""}};
 
   RefD ref_d = nullptr;  // exactly one of these is set, by kind
   // D: the same from cos²θ and sin²θ (where the form has tan²θ or (n·h)^e), which the

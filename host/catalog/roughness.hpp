@@ -16,7 +16,8 @@ inline double alpha_from_perceptual(double r) { return r * r; }
 inline double phong_exponent_from_alpha(double alpha) { return 2.0 / (alpha * alpha) - 2.0; }
 inline double alpha_from_phong_exponent(double alpha_p) { return std::sqrt(2.0 / (alpha_p + 2.0)); }
 
-// The native parameter of a term for a given shared width alpha.
+// The native parameter of a term for a given shared width alpha, and back.
 double native_from_alpha(Roughness r, double alpha);
+double alpha_from_native(Roughness r, double native);
 
 }  // namespace mfv

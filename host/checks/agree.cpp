@@ -3,6 +3,7 @@
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "reference/brdf.hpp"
+#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "util/progress.hpp"
@@ -378,9 +379,7 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl", "brdf.cl",
-                   "agree.cl"},
-                  defines, generate_dispatch(TermSelection::all()), "brdf.cl");
+  return rt.build(catalog_sources({"agree.cl"}), defines, generate_dispatch(TermSelection::all()), kDispatchBefore);
 }
 }  // namespace
 

@@ -118,7 +118,7 @@ void bench_device(const DeviceInfo& dev, const std::string& kernel_dir, const Be
       auto pass = [&] {
         double sum = 0;
         if (recip) {
-          for (float w : in.reciprocity_worst(specs, per_item, opt.seed + rep_i + 1)) sum += w;
+          for (float w : in.reciprocity(specs, 64 * per_item, opt.seed + rep_i + 1).worst) sum += w;
         } else {
           for (const auto& e : in.run(specs, opt.samples, opt.seed + rep_i + 1)) sum += e.mean;
         }

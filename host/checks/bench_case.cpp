@@ -39,8 +39,13 @@ double number(const std::string& s, const char* what) {
 IntegralSpec case_spec(const BenchCase& c) {
   const Term &d = find_term(c.d), &g = find_term(c.g), &f = find_term(c.f);
   const double pg = g.params.empty() ? 0.0 : std::min(native_from_alpha(g.roughness, c.alpha), g.params[0].hi);
-  IntegralSpec s = make_spec(IntegralKind::AlbedoMis, &d, &g, &f, native_from_alpha(d.roughness, c.alpha), pg, c.f0,
-                             c.f1, 0.0, c.alpha, c.mu);
+  MicrofacetIntegral m;
+  m.kind = IntegralKind::AlbedoMis;
+  m.d = &d, m.g = &g, m.f = &f;
+  m.pd = native_from_alpha(d.roughness, c.alpha), m.pg = pg;
+  m.f0 = c.f0, m.f1 = c.f1;
+  m.width = c.alpha, m.cos_o = c.mu;
+  IntegralSpec s = spec_of(m);
   s.stream = 0;
   return s;
 }

@@ -284,7 +284,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     stream += uint32_t(R);
   }
   // R replicates (randomizations) per unit; an E/A/B cell's kernel integral
-  // yields E and, on the same points, B (kernels/integrate.cl albedo_rqmc_value).
+  // yields E and, on the same points, B (kernels/albedo.cl albedo_rqmc_value).
   auto specs_of = [&](const Unit& u) {
     std::vector<IntegralSpec> v;
     for (size_t r = 0; r < R; ++r) {
@@ -398,7 +398,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
           }
         }
     in.stratify(subset, opt.min_points);  // E_avg's view cosines are spaced by the point count
-    auto agree = in.compare_with_reference(subset, opt.reference_samples, opt.seed);
+    auto agree = compare_with_reference(in, subset, opt.reference_samples, opt.seed);
     for (size_t j = 0; j < agree.size(); ++j) {
       rep.reference_compared++;
       if (agree[j].disagreement <= rep.reference_worst) continue;

@@ -44,9 +44,7 @@ double derived_formula_bound(double float_rounding_l1, double reference_l1, doub
 
 ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms) : rt_(rt) {
   if (!rt.device().fp64) return;
-  program_ = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl",
-                       "brdf.cl", "integrate.cl"},
-                      {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms), "brdf.cl");
+  program_ = rt.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms), kDispatchBefore);
   available_ = true;
 }
 

@@ -6,6 +6,7 @@
 #include "reference/estimators.hpp"
 #include "report/files.hpp"
 #include "rng/philox.hpp"
+#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
@@ -198,15 +199,16 @@ std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt)
   const auto cases = default_sampler_cases();
   const int tests = int(cases.size()) * (opt.reference ? 2 : 1);
   const double level = sidak_level(opt.significance, tests);
-  // integrate.cl holds the routines; it needs some D, G and F to compile
+  // estimators.cl holds the routines; it needs some D, G and F to compile
   TermSelection sel;
   sel.d = {&find_term("ggx")};
   sel.g = {&find_term("smith_ggx")};
   sel.f = {&find_term("none")};
-  cl::Program prog = rt.build({"common.cl", "rng.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "brdf.cl",
-                               "integrate.cl", "samplers.cl"},
+  std::vector<std::string> files = integration_files();  // the proposals' routines
+  files.push_back("samplers.cl");
+  cl::Program prog = rt.build(catalog_sources(files),
                               rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
-                              generate_dispatch(sel), "brdf.cl");
+                              generate_dispatch(sel), kDispatchBefore);
   cl::Kernel k(prog, "draw_samples");
   cl::Buffer buf(rt.context(), CL_MEM_WRITE_ONLY, opt.samples * 3 * sizeof(float));
   std::vector<float> host(opt.samples * 3);

@@ -2,7 +2,7 @@
 // §3): its pdf integrates to 1 (deterministic quadrature) and a histogram of
 // its draws matches the pdf (chi-square, Šidák-corrected over all tests).
 // Draws come from the device (kernels/samplers.cl, which calls the very
-// routines of integrate.cl) and from the double reference twin
+// routines of kernels/estimators.cl) and from the double reference twin
 // (host/reference/estimators.cpp); expected cell masses always come from the
 // reference pdf, by quadrature.
 #pragma once

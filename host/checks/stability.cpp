@@ -6,6 +6,7 @@
 #include "checks/agree.hpp"
 #include "reference/brdf.hpp"
 #include "reference/reference.hpp"
+#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
 #include "runtime/work_group.hpp"
@@ -869,9 +870,8 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
   rep.precision = opt.fp64 ? "float64" : "float32";
   rep.build_options = rt.base_options() + (opt.fp64 ? " -DMFV_DOUBLE" : "");
   auto build0 = rt.build_stats().seconds;
-  cl::Program prog = rt.build({"common.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl", "models.cl", "model_gltf.cl",
-                               "brdf.cl", "stability_variants.cl", "stability.cl"},
-                              defines, dispatch, "brdf.cl");
+  cl::Program prog =
+      rt.build(catalog_sources({"stability_variants.cl", "stability.cl"}), defines, dispatch, kDispatchBefore);
   rep.build_seconds = rt.build_stats().seconds - build0;
   cl::Kernel kern(prog, "stability_eval");
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
 #include "catalog/models.hpp"
@@ -85,10 +86,6 @@ struct CheckStats {
   double seconds = 0;
 };
 
-// Samples per masking or furnace integral at scale 1; every check's count is
-// proportional to the scale.
-constexpr uint64_t kSuiteBaseSamples = 4096;
-
 // max(64, n * scale) samples for one integral; throws mfv::Error when that
 // does not fit a 64-bit count (a double cast there would be undefined).
 uint64_t scaled_samples(uint64_t n, double scale);
@@ -161,6 +158,8 @@ struct Plan {
 const std::vector<double>& suite_norm_alphas();
 const std::vector<double>& suite_alphas();
 std::vector<double> view_cosines(int n);
+// An empty plan of `check` whose integrals take scaled_samples(base_samples, scale).
+Plan new_plan(const std::string& check, uint64_t base_samples, double scale);
 
 // Runs the plan's integrals (streams numbered on from `stream`), records
 // estimates, timing and, when opt.reference_samples > 0, the same-sample
@@ -184,11 +183,10 @@ Plan reciprocity_plan(const SuiteOptions& opt);         // every reciprocity bat
 // Builds the plan's program (terms without G1) and records one bounded point per batch.
 void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 
-// The reciprocity kernel of `prog` (kernels/integrate.cl) over `specs`, 64 x
-// per_item pairs each (per_item from the scale): one bounded point per spec
+// Integrator::reciprocity over `specs`, 64 x per_item pairs each (per_item from the scale): one bounded point per spec
 // (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
 // and the check's timing since t0 go into `rep`.
-void record_reciprocity(Runtime& rt, const cl::Program& prog, std::vector<IntegralSpec> specs,
+void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs,
                         std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
                         std::chrono::steady_clock::time_point t0, SuiteReport& rep);
 constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6

@@ -41,18 +41,14 @@ double masking_closed_form(const Term& d, const Term& g, const glm::dvec3& o, co
 
 IntegralSpec aniso_spec(IntegralKind kind, const Term& d, const Term* g, const Term* f, const Widths& w, double co,
                         double phi) {
-  IntegralSpec s;
-  s.check = static_cast<int32_t>(kind);
-  s.d = term_index(d);
-  s.g = g ? term_index(*g) : 0;
-  s.f = f ? term_index(*f) : 0;
-  s.pd = float(w.ax);
-  s.pd2 = float(w.ay);
-  s.pg = float(w.ax);
-  s.width = float(w.ax);
-  s.cos_o = float(co);
-  s.phi_o = float(phi);
-  return s;
+  MicrofacetIntegral m;
+  m.kind = kind;
+  m.d = &d, m.g = g, m.f = f;
+  m.pd = m.pg = w.ax;
+  m.pd2 = m.pg2 = w.ay;
+  m.width = w.ax;
+  m.cos_o = co, m.phi_o = phi;
+  return spec_of(m);
 }
 
 PointResult aniso_point(const std::string& check, const Term& d, const Term* g, const Term* f, const Widths& w) {
@@ -106,11 +102,10 @@ std::vector<std::string> aniso_model_names() {
 }
 
 void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
-  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   const Term* none = try_find_term("none", Kind::F);
   if (suite_check_wanted(opt, "d_norm")) {
     // ∫ D(m) (m·n) dm = 1, stratified in (stretched radius, azimuth)
-    Plan p{"d_norm", {}, {}, scaled(256 * kSuiteBaseSamples), {}};
+    Plan p = new_plan("d_norm", check_row("d_norm").base_samples, opt.scale);
     for (auto* d : aniso_terms_of(Kind::D)) {
       if (!suite_model_wanted(opt.models, d->id)) continue;
       p.terms.d.push_back(d);
@@ -122,7 +117,7 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
     plans.push_back(p);
   }
   if (suite_check_wanted(opt, "masking")) {
-    Plan p{"masking", {}, {}, scaled(kSuiteBaseSamples), {}};
+    Plan p = new_plan("masking", check_row("masking").base_samples, opt.scale);
     p.terms.d = aniso_terms_of(Kind::D);
     p.terms.g = masking_gs();
     for (auto* d : p.terms.d)
@@ -145,7 +140,7 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
   }
   if (suite_check_wanted(opt, "furnace")) {
     // white furnace (F = 1): albedo <= 1 for the matched anisotropic pairs
-    Plan p{"furnace", {}, {}, scaled(kSuiteBaseSamples), {}};
+    Plan p = new_plan("furnace", check_row("furnace").base_samples, opt.scale);
     p.terms.d = aniso_terms_of(Kind::D);
     p.terms.g = aniso_terms_of(Kind::G);
     p.terms.f = {none};

@@ -57,7 +57,7 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
 
 // Anisotropic widths (wx, wy) along (t, b) = (+x, +y): the Cauchy slopes
 // stretched, slope density (1/(2π wx wy)) (1 + sx²/wx² + sy²/wy²)^(-3/2),
-// over solid angle divided by cos³θ (twin of pdf_slope_aniso in integrate.cl).
+// over solid angle divided by cos³θ (twin of pdf_slope_aniso in kernels/estimators.cl).
 double pdf_m_aniso(const glm::dvec3& m, double wx, double wy) {
   const double c = m.z, sx = m.x / c, sy = m.y / c;
   const double slope = std::pow(1.0 + sx * sx / (wx * wx) + sy * sy / (wy * wy), -1.5) / (2.0 * M_PI * wx * wy);
@@ -74,7 +74,7 @@ glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, do
 }
 
 namespace {
-// Twin of spec_brdf in kernels/integrate.cl: a whole model is evaluated with
+// Twin of spec_brdf in kernels/estimators.cl: a whole model is evaluated with
 // the fixed direction o as the light and the sampled i as the view.
 double spec_brdf(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o) {
   if (b.model) {
@@ -97,12 +97,12 @@ double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o
 }
 
 // Roberts 2018 Kronecker sequence in 2D, g_j = frac(1/φ^j) for the plastic
-// number φ³ = φ + 1, in 32-bit fixed point (twin of RQMC_G* in kernels/integrate.cl).
+// number φ³ = φ + 1, in 32-bit fixed point (twin of RQMC_G* in kernels/estimators.cl).
 constexpr uint32_t kRqmcG[2] = {3242174889u, 2447445414u};
 
 }  // namespace
 
-// mfv energy's proposal (twin of energy_weight in kernels/integrate.cl): o
+// mfv energy's proposal (twin of energy_weight in kernels/albedo.cl): o
 // reflected about a visible normal of the GGX shape of width w.
 // The GGX shape, written from Walter et al. 2007 eq. 33 as a function of the
 // angle: D_w(h) = 1 / (π w² cos⁴θ (1 + tan²θ / w²)²); Smith G1 of Heitz 2014
@@ -152,7 +152,7 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
   return m.z > 0.0 ? energy_weight(s.brdf, m, o, s.width) : 0.0;
 }
 
-// mfv run's albedo (twin of albedo_mis_microfacet in kernels/integrate.cl):
+// mfv run's albedo (twin of albedo_mis_microfacet in kernels/albedo.cl):
 // point k of replicate r (index = r n + k, n = strata) on the 2D Kronecker
 // points of its own run j, shifted by Philox draw 3 at counter r; k < n/2:
 // o reflected about a visible normal of the GGX shape, k < 3n/4: about a
@@ -184,7 +184,7 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
 
 }  // namespace
 
-// Twin of the pair draw in kernels/integrate.cl reciprocity_pair_c.
+// Twin of the pair draw in kernels/reciprocity.cl reciprocity_pair_c.
 void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b) {
   const auto r = philox(seed, stream, 1, index);
   double ca = u01_open(r[0]), cb = u01_open(r[2]);

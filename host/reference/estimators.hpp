@@ -2,6 +2,7 @@
 // the same Philox uniforms, the same proposal, written from the formulas.
 #pragma once
 
+#include "abi/integral.h"
 #include "reference/brdf.hpp"
 
 #include <glm/vec3.hpp>
@@ -15,7 +16,14 @@ namespace mfv::ref {
 // AlbedoMis (mfv run's albedo): visible normals of the GGX shape, Cauchy
 // slopes and the cosine lobe by multi-sample MIS, strata = points per
 // randomized-QMC replicate (twin of albedo_mis in kernels/integrate.cl).
-enum class Integral { DNorm = 0, Masking = 1, Albedo = 2, AlbedoRqmc = 3, EavgRqmc = 4, AlbedoMis = 6 };
+enum class Integral {
+  DNorm = MFV_CHECK_D_NORM,
+  Masking = MFV_CHECK_MASKING,
+  Albedo = MFV_CHECK_ALBEDO,
+  AlbedoRqmc = MFV_CHECK_ALBEDO_RQMC,
+  EavgRqmc = MFV_CHECK_EAVG_RQMC,
+  AlbedoMis = MFV_CHECK_ALBEDO_MIS
+};
 
 struct IntegralRef {
   Integral kind = Integral::DNorm;
@@ -28,8 +36,16 @@ struct IntegralRef {
   uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
 };
 
-// mfv convergence's estimators (twins of EST_* in kernels/integrate.cl).
-enum class Estimator : uint32_t { Own = 0, Uniform = 1, Cosine = 2, DSampleGgx = 3, DSampleBeckmann = 4, Vndf = 5, Rqmc = 6 };
+// mfv convergence's estimators (MFV_EST_* in kernels/abi/integral.h).
+enum class Estimator : uint32_t {
+  Own = MFV_EST_OWN,
+  Uniform = MFV_EST_UNIFORM,
+  Cosine = MFV_EST_COSINE,
+  DSampleGgx = MFV_EST_DSAMPLE_GGX,
+  DSampleBeckmann = MFV_EST_DSAMPLE_BECKMANN,
+  Vndf = MFV_EST_VNDF,
+  Rqmc = MFV_EST_RQMC
+};
 
 // The index-th sample of the estimator: its mean over samples is the integral.
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);

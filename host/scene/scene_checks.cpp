@@ -40,6 +40,26 @@ std::string dgf(const Term* d, const Term* g, const Term* f) {
   return d->id + (g ? "/" + g->id : "") + (f ? "/" + f->id : "");
 }
 
+// A microfacet integral of kind `kind` over D x G x F at the native
+// parameters (pd, pg), the proposal width alpha and the view cos_o; the
+// caller names the rest (F's parameters, kd).
+MicrofacetIntegral dgf_integral(IntegralKind kind, const Term* d, const Term* g, const Term* f, double pd, double pg,
+                                double alpha, double cos_o) {
+  MicrofacetIntegral mi;
+  mi.kind = kind;
+  mi.d = d, mi.g = g, mi.f = f;
+  mi.pd = pd, mi.pg = pg;
+  mi.width = alpha, mi.cos_o = cos_o;
+  return mi;
+}
+
+// The material's own D x G x F BRDF (F's parameters, kd) at the view cos_o.
+IntegralSpec material_spec(const SceneMaterial& m, double cos_o) {
+  MicrofacetIntegral mi = dgf_integral(IntegralKind::Albedo, m.d, m.g, m.f, m.pd, m.pg, m.alpha, cos_o);
+  mi.f0 = m.f0, mi.f1 = m.f1, mi.kd = m.kd;
+  return spec_of(mi);
+}
+
 // One point of a set: a spec and its expectation.
 void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term* d, const Term* g, const Term* f,
          std::map<std::string, double> params, const Expectation& e, bool upper) {
@@ -76,24 +96,189 @@ struct SceneSets {
   std::vector<std::set<std::string>> material_keys;  // per material: "check|key"
 };
 
-SetPlan& plan_for(SceneSets& s, const std::string& check, uint64_t samples) {
+SetPlan& plan_for(SceneSets& s, const std::string& check, uint64_t base_samples, const SuiteOptions& opt) {
   auto it = s.plans.find(check);
   if (it == s.plans.end()) {
     SetPlan sp;
-    sp.plan.check = check;
-    sp.plan.samples = samples;
+    sp.plan = new_plan(check, base_samples, opt.scale);
+    if (base_samples == 0) sp.plan.samples = 0;  // reciprocity: pairs, not samples (record_reciprocity)
     it = s.plans.emplace(check, sp).first;
   }
   return it->second;
 }
 
-bool wants(const SuiteOptions& opt, const std::string& check) {
-  return opt.checks.empty() || std::find(opt.checks.begin(), opt.checks.end(), check) != opt.checks.end();
+// One material's share of the scene's sets (make_sets): the D and G it is
+// checked with (glTF: GGX with the height-correlated Smith G), their
+// parameters, the views, and the keys it claims.
+struct MaterialSets {
+  SceneSets& s;
+  const SceneMaterial& m;
+  const SuiteOptions& opt;
+  std::set<std::string>& mine;
+  const std::vector<double>& views;
+  const Term *d, *g, *ggx, *smith, *none;
+  double pd, pg;
+  // Registers `key` under the plan's check for this material; true when the set is new.
+  bool claim(SetPlan& sp, const std::string& key, const std::string& model) {
+    mine.insert(sp.plan.check + "|" + key);
+    sp.models.insert(model);
+    return sp.keys.emplace(key, true).second;
+  }
+  void add_width_checks();  // d_norm and masking at every width the material has
+  void add_furnace();       // the material's D and G (glTF: its lobes) with F = 1
+  void add_energy();        // energy (energy_diffuse with a Lambert kd): the material's own BRDF
+  void add_reciprocity();   // reciprocity of the material's own BRDF
+};
+
+// d_norm and masking at every width the material has.
+void MaterialSets::add_width_checks() {
+  // the widths the material's D and G are checked at: every roughness point of a glTF range
+  std::vector<std::pair<double, double>> widths;  // (pD, pG) with alpha = pD for glTF
+  if (m.gltf) {
+    for (double a : m.alphas()) widths.push_back({a, a});
+    for (double a : m.coat_alphas()) widths.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
+  }
+  else widths.push_back({pd, pg});
+  for (auto [wd, wg] : widths) {
+    const double a = m.gltf ? wd : m.alpha;
+    if (suite_check_wanted(opt, "d_norm")) {
+      SetPlan& sp = plan_for(s, "d_norm", check_row("d_norm").base_samples, opt);
+      std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, wd);
+      if (claim(sp, key, d->id)) {
+        IntegralSpec is = spec_of(dgf_integral(IntegralKind::DNorm, d, nullptr, nullptr, wd, 0, a, 1.0));
+        add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, wd}}, expect("d_norm", d, nullptr, a, 0, 0), false);
+        sp.add_terms(d, nullptr, nullptr);
+      }
+    }
+    if (suite_check_wanted(opt, "masking")) {
+      SetPlan& sp = plan_for(s, "masking", check_row("masking").base_samples, opt);
+      std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, a, wd, wg);
+      if (claim(sp, key, dgf(d, g, nullptr))) {
+        for (double co : views) {
+          IntegralSpec is = spec_of(dgf_integral(IntegralKind::Masking, d, g, nullptr, wd, wg, a, co));
+          add(sp, key, is, d, g, nullptr, {{"alpha", a}, {"cos_o", co}}, expect("masking", d, g, a, 0, 0), false);
+        }
+        sp.add_terms(d, g, nullptr);
+      }
+    }
+  }
+}
+
+// furnace: the material's D and G (glTF: its lobes) with F = 1.
+void MaterialSets::add_furnace() {
+  if (suite_check_wanted(opt, "furnace")) {
+    // F = 1: for glTF the model itself as a white metal (base colour 1 makes
+    // conductor_fresnel 1), so the energy loss 1 - E is the material's
+    // specular lobe at its roughness.
+    SetPlan& sp = plan_for(s, "furnace", check_row("furnace").base_samples, opt);
+    if (m.gltf) {
+      // every specular lobe of the material's range (alpha_t, alpha_b under KHR_materials_anisotropy)
+      auto lobes = m.lobes();
+      for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // the coat's lobe, F = 1
+      for (auto [at, ab] : lobes) {
+        GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
+        std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", at, ab);
+        if (!claim(sp, key, "gltf")) continue;
+        for (double co : views)
+          add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}},
+              {}, true);
+        sp.add_model(gltf_model());
+      }
+    } else {
+      std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
+      if (claim(sp, key, dgf(d, g, none))) {
+        for (double co : views) {
+          IntegralSpec is = spec_of(dgf_integral(IntegralKind::Albedo, d, g, none, pd, pg, m.alpha, co));
+          add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect("furnace", d, g, m.alpha, 1, 0),
+              true);
+        }
+        sp.add_terms(d, g, none);
+      }
+    }
+  }
+}
+
+// energy (energy_diffuse with a Lambert kd): the material's own BRDF.
+void MaterialSets::add_energy() {
+  // the material's own BRDF: "energy", or "energy_diffuse" for a D/G/F with a Lambert kd
+  const std::string energy_check = !m.gltf && m.kd > 0 ? "energy_diffuse" : "energy";
+  if (suite_check_wanted(opt, energy_check)) {
+    SetPlan& sp = plan_for(s, energy_check, kSuiteBaseSamples, opt);  // a material has few points: the furnace budget
+    if (m.gltf) {
+      for (auto& w : m.whole_points()) {
+        std::string key = w.key();
+        if (!claim(sp, key, w.model->id)) continue;
+        for (double co : views) {
+          std::map<std::string, double> ps = whole_params(w);
+          ps["cos_l"] = co;
+          add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, co), nullptr, nullptr, nullptr, ps,
+              {w.energy, w.energy_why, 0}, true);
+        }
+        sp.add_model(*w.model);
+      }
+      // KHR_materials_ior: the specular lobe also with the exact dielectric
+      // Fresnel at eta = ior (Walter et al. 2007 eq. 22), not Schlick's
+      // approximation from f0, at every roughness point
+      if (m.ior_exact) {
+        const Term* exact = &term("dielectric", Kind::F);
+        for (double a : m.alphas()) {
+          std::string key = fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
+          if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
+          for (double co : views) {
+            MicrofacetIntegral mi = dgf_integral(IntegralKind::Albedo, ggx, smith, exact, a, a, a, co);
+            mi.f0 = m.factors.ior;  // eta
+            IntegralSpec is = spec_of(mi);
+            add(sp, key, is, ggx, smith, exact, {{"alpha", a}, {"cos_o", co}, {"eta", m.factors.ior}},
+                expect(sp.plan.check, ggx, smith, a, m.factors.ior, 0), true);
+          }
+          sp.add_terms(ggx, smith, exact);
+        }
+      }
+    } else if (m.f != none || m.kd > 0) {
+      const bool diffuse = m.kd > 0;
+      SetPlan& dp = sp;
+      std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
+                                    m.f1, m.kd);
+      if (claim(dp, key, m.model())) {
+        for (double co : views) {
+          IntegralSpec is = material_spec(m, co);
+          std::map<std::string, double> ps{{"alpha", m.alpha}, {"cos_o", co}};
+          for (size_t i = 0; i < m.f->params.size(); ++i) ps[m.f->params[i].name] = i ? m.f1 : m.f0;
+          if (diffuse) ps["kd"] = m.kd;
+          add(dp, key, is, d, g, m.f, ps, expect(dp.plan.check, d, g, m.alpha, m.f0, m.kd), true);
+        }
+        dp.add_terms(d, g, m.f);
+      }
+    }
+  }
+}
+
+// reciprocity of the material's own BRDF.
+void MaterialSets::add_reciprocity() {
+  if (suite_check_wanted(opt, "reciprocity")) {
+    SetPlan& sp = plan_for(s, "reciprocity", 0, opt);
+    if (m.gltf) {
+      for (auto& w : m.whole_points()) {
+        std::string key = w.key();
+        if (!claim(sp, key, w.model->id)) continue;
+        add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, 1.0), nullptr, nullptr, nullptr, whole_params(w),
+            {w.reciprocity, w.reciprocity_why, 0}, false);
+        sp.add_model(*w.model);
+      }
+    } else {
+      std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
+                                    m.f1, m.kd);
+      if (claim(sp, key, m.model())) {
+        IntegralSpec is = material_spec(m, 1.0);
+        add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
+        sp.add_terms(d, g, m.f);
+      }
+    }
+  }
 }
 
 SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   SceneSets s;
-  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   const std::vector<double> views = view_cosines(32);
   const Term* ggx = &term("ggx", Kind::D);
   const Term* smith = &term("smith_ggx_correlated", Kind::G);
@@ -101,146 +286,13 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   s.material_keys.resize(scene.materials.size());
   for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
     const SceneMaterial& m = scene.materials[mi];
-    auto& mine = s.material_keys[mi];
-    // Registers `key` under `check` for this material; true when the set is new.
-    auto claim = [&](SetPlan& sp, const std::string& key, const std::string& model) {
-      mine.insert(sp.plan.check + "|" + key);
-      sp.models.insert(model);
-      return sp.keys.emplace(key, true).second;
-    };
     if (!m.not_checked.empty()) continue;  // accounted for in the report (skipped), never checked as something else
-    const Term* d = m.gltf ? ggx : m.d;
-    const Term* g = m.gltf ? smith : m.g;
-    const double pd = m.gltf ? m.alpha : m.pd, pg = m.gltf ? m.alpha : m.pg;
-    // the widths the material's D and G are checked at: every roughness point of a glTF range
-    std::vector<std::pair<double, double>> widths;  // (pD, pG) with alpha = pD for glTF
-    if (m.gltf) {
-      for (double a : m.alphas()) widths.push_back({a, a});
-      for (double a : m.coat_alphas()) widths.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
-    }
-    else widths.push_back({pd, pg});
-    for (auto [wd, wg] : widths) {
-      const double a = m.gltf ? wd : m.alpha;
-      if (wants(opt, "d_norm")) {
-        SetPlan& sp = plan_for(s, "d_norm", scaled(256 * kSuiteBaseSamples));
-        std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, wd);
-        if (claim(sp, key, d->id)) {
-          IntegralSpec is = make_spec(IntegralKind::DNorm, d, nullptr, nullptr, wd, 0, 0, 0, 0, a, 1.0);
-          add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, wd}}, expect("d_norm", d, nullptr, a, 0, 0), false);
-          sp.add_terms(d, nullptr, nullptr);
-        }
-      }
-      if (wants(opt, "masking")) {
-        SetPlan& sp = plan_for(s, "masking", scaled(kSuiteBaseSamples));
-        std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, a, wd, wg);
-        if (claim(sp, key, dgf(d, g, nullptr))) {
-          for (double co : views) {
-            IntegralSpec is = make_spec(IntegralKind::Masking, d, g, nullptr, wd, wg, 0, 0, 0, a, co);
-            add(sp, key, is, d, g, nullptr, {{"alpha", a}, {"cos_o", co}}, expect("masking", d, g, a, 0, 0), false);
-          }
-          sp.add_terms(d, g, nullptr);
-        }
-      }
-    }
-    if (wants(opt, "furnace")) {
-      // F = 1: for glTF the model itself as a white metal (base colour 1 makes
-      // conductor_fresnel 1), so the energy loss 1 - E is the material's
-      // specular lobe at its roughness.
-      SetPlan& sp = plan_for(s, "furnace", scaled(kSuiteBaseSamples));
-      if (m.gltf) {
-        // every specular lobe of the material's range (alpha_t, alpha_b under KHR_materials_anisotropy)
-        auto lobes = m.lobes();
-        for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // the coat's lobe, F = 1
-        for (auto [at, ab] : lobes) {
-          GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
-          std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", at, ab);
-          if (!claim(sp, key, "gltf")) continue;
-          for (double co : views)
-            add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}},
-                {}, true);
-          sp.add_model(gltf_model());
-        }
-      } else {
-        std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
-        if (claim(sp, key, dgf(d, g, none))) {
-          for (double co : views) {
-            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, none, pd, pg, 0, 0, 0, m.alpha, co);
-            add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect("furnace", d, g, m.alpha, 1, 0),
-                true);
-          }
-          sp.add_terms(d, g, none);
-        }
-      }
-    }
-    // the material's own BRDF: "energy", or "energy_diffuse" for a D/G/F with a Lambert kd
-    const std::string energy_check = !m.gltf && m.kd > 0 ? "energy_diffuse" : "energy";
-    if (wants(opt, energy_check)) {
-      SetPlan& sp = plan_for(s, energy_check, scaled(kSuiteBaseSamples));
-      if (m.gltf) {
-        for (auto& w : m.whole_points()) {
-          std::string key = w.key();
-          if (!claim(sp, key, w.model->id)) continue;
-          for (double co : views) {
-            std::map<std::string, double> ps = whole_params(w);
-            ps["cos_l"] = co;
-            add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, co), nullptr, nullptr, nullptr, ps,
-                {w.energy, w.energy_why, 0}, true);
-          }
-          sp.add_model(*w.model);
-        }
-        // KHR_materials_ior: the specular lobe also with the exact dielectric
-        // Fresnel at eta = ior (Walter et al. 2007 eq. 22), not Schlick's
-        // approximation from f0, at every roughness point
-        if (m.ior_exact) {
-          const Term* exact = &term("dielectric", Kind::F);
-          for (double a : m.alphas()) {
-            std::string key = fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
-            if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
-            for (double co : views) {
-              IntegralSpec is = make_spec(IntegralKind::Albedo, ggx, smith, exact, a, a, m.factors.ior, 0, 0, a, co);
-              add(sp, key, is, ggx, smith, exact, {{"alpha", a}, {"cos_o", co}, {"eta", m.factors.ior}},
-                  expect(sp.plan.check, ggx, smith, a, m.factors.ior, 0), true);
-            }
-            sp.add_terms(ggx, smith, exact);
-          }
-        }
-      } else if (m.f != none || m.kd > 0) {
-        const bool diffuse = m.kd > 0;
-        SetPlan& dp = sp;
-        std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
-                                      m.f1, m.kd);
-        if (claim(dp, key, m.model())) {
-          for (double co : views) {
-            IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, co);
-            std::map<std::string, double> ps{{"alpha", m.alpha}, {"cos_o", co}};
-            for (size_t i = 0; i < m.f->params.size(); ++i) ps[m.f->params[i].name] = i ? m.f1 : m.f0;
-            if (diffuse) ps["kd"] = m.kd;
-            add(dp, key, is, d, g, m.f, ps, expect(dp.plan.check, d, g, m.alpha, m.f0, m.kd), true);
-          }
-          dp.add_terms(d, g, m.f);
-        }
-      }
-    }
-    if (wants(opt, "reciprocity")) {
-      SetPlan& sp = plan_for(s, "reciprocity", 0);
-      if (m.gltf) {
-        for (auto& w : m.whole_points()) {
-          std::string key = w.key();
-          if (!claim(sp, key, w.model->id)) continue;
-          add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, 1.0), nullptr, nullptr, nullptr, whole_params(w),
-              {w.reciprocity, w.reciprocity_why, 0}, false);
-          sp.add_model(*w.model);
-        }
-      } else {
-        std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
-                                      m.f1, m.kd);
-        if (claim(sp, key, m.model())) {
-          IntegralSpec is = make_spec(IntegralKind::Albedo, d, g, m.f, pd, pg, m.f0, m.f1, m.kd, m.alpha, 1.0);
-          add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
-          sp.add_terms(d, g, m.f);
-        }
-      }
-    }
+    MaterialSets c{s,     m,     opt,  s.material_keys[mi], views, m.gltf ? ggx : m.d, m.gltf ? smith : m.g,
+                   ggx,   smith, none, m.gltf ? m.alpha : m.pd, m.gltf ? m.alpha : m.pg};
+    c.add_width_checks();
+    c.add_furnace();
+    c.add_energy();
+    c.add_reciprocity();
   }
   return s;
 }
@@ -290,7 +342,7 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
   SuiteOptions full = opt;
   full.models.clear();
   std::vector<Plan> full_plans = make_plans(full);
-  if (wants(opt, "reciprocity")) full_plans.push_back(reciprocity_plan(full));
+  if (suite_check_wanted(opt, "reciprocity")) full_plans.push_back(reciprocity_plan(full));
   SuiteReport full_rep;
   if (compare_full) {
     const auto f0 = std::chrono::steady_clock::now();

@@ -1,5 +1,6 @@
 #include "user/user_brdf.hpp"
 
+#include "catalog/roughness.hpp"
 #include "runtime/error.hpp"
 #include "util/parse.hpp"
 
@@ -22,7 +23,7 @@ std::vector<double> UserParam::ends() const {
 double UserBrdf::width(const std::vector<double>& values) const {
   if (roughness < 0) return 0.0;  // no declared roughness: the estimators' mixture of widths
   double v = values[size_t(roughness)];
-  return params[size_t(roughness)].role == WidthRole::Perceptual ? v * v : v;
+  return alpha_from_native(params[size_t(roughness)].role, v);
 }
 
 std::vector<double> UserBrdf::defaults() const {
@@ -159,15 +160,15 @@ UserParam parse_declaration(const UserBrdf& u, int line, const std::string& body
   p.value = 0.5 * (p.lo + p.hi);
   for (size_t i = 4; i < t.size(); ++i) {
     if (t[i] == "default" && i + 1 < t.size()) p.value = parse_number(where + ": " + p.name + " default", t[++i]);
-    else if (t[i] == "roughness") p.role = WidthRole::Alpha;
-    else if (t[i] == "perceptual") p.role = WidthRole::Perceptual;
+    else if (t[i] == "roughness") p.role = Roughness::Alpha;
+    else if (t[i] == "perceptual") p.role = Roughness::Perceptual;
     else throw Error(fmt::format("{}: unexpected '{}' in '{}' (the form is '{}')", where, t[i], body, form));
   }
   if (!std::isfinite(p.lo) || !std::isfinite(p.hi) || p.lo > p.hi)
     throw Error(fmt::format("{}: {} has the range [{}, {}]; give finite LO <= HI", where, p.name, p.lo, p.hi));
   if (!(p.value >= p.lo && p.value <= p.hi))
     throw Error(fmt::format("{}: {} default {} is outside [{}, {}]", where, p.name, p.value, p.lo, p.hi));
-  if (p.role != WidthRole::None && !(p.lo > 0))
+  if (p.role != Roughness::None && !(p.lo > 0))
     throw Error(fmt::format("{}: roughness {} must be positive (range [{}, {}]); a zero width is a mirror", where,
                             p.name, p.lo, p.hi));
   return p;
@@ -199,7 +200,7 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
       p->fixed = true;
       return;
     }
-    u.params.push_back({name, v, v, v, true, WidthRole::None, 0});
+    u.params.push_back({name, v, v, v, true, Roughness::None, 0});
     return;
   }
   if (range.size() != 2) throw Error(fmt::format("{}: '{}' is neither a value nor LO:HI", what, val));
@@ -215,7 +216,7 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
     p->value = std::clamp(p->value, lo, hi);
     return;
   }
-  u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, WidthRole::None, 0});
+  u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, Roughness::None, 0});
 }
 
 // `text` with every `NAME[k]` read (NAME: a function's params argument)
@@ -271,15 +272,15 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   for (auto& a : args.params) apply_cli_param(u, a);
   if (!args.roughness.empty()) {
     std::string name = args.roughness;
-    WidthRole role = WidthRole::Alpha;
-    if (name.size() > 2 && name.compare(name.size() - 2, 2, "^2") == 0) name.resize(name.size() - 2), role = WidthRole::Perceptual;
+    Roughness role = Roughness::Alpha;
+    if (name.size() > 2 && name.compare(name.size() - 2, 2, "^2") == 0) name.resize(name.size() - 2), role = Roughness::Perceptual;
     UserParam* p = find_param(u, name);
     if (!p) throw Error(fmt::format("--roughness {}: no parameter of that name (declare it in the file or with --param)", name));
-    for (auto& q : u.params) q.role = WidthRole::None;
+    for (auto& q : u.params) q.role = Roughness::None;
     p->role = role;
   }
   for (size_t i = 0; i < u.params.size(); ++i) {
-    if (u.params[i].role == WidthRole::None) continue;
+    if (u.params[i].role == Roughness::None) continue;
     if (u.roughness >= 0)
       throw Error(fmt::format("{}: both {} and {} are marked as the roughness; mark one", path, u.params[size_t(u.roughness)].name,
                               u.params[i].name));

@@ -4,20 +4,22 @@
 // missing parameter gets one line naming the cause.
 #pragma once
 
+#include "catalog/catalog.hpp"
+
 #include <string>
 #include <vector>
 
 namespace mfv {
 
-// How a parameter sets the estimator's proposal width (the estimators use
-// the width, never the formula: docs/design.md §3).
-enum class WidthRole { None, Alpha, Perceptual };  // width = value, value²
 
 struct UserParam {
   std::string name;
   double lo = 0, hi = 0, value = 0;  // range and default
   bool fixed = false;                // --param NAME=V: this value in every check
-  WidthRole role = WidthRole::None;
+  // How the parameter sets the estimator's proposal width (the estimators
+  // use the width, never the formula: docs/design.md §3): None, Alpha
+  // (width = value) or Perceptual (width = value²).
+  Roughness role = Roughness::None;
   int line = 0;  // line of its `// mfv: param` declaration; 0 = from the command line
   // The values the checks use: the default, or the grid of a swept parameter.
   std::vector<double> ends() const;  // lo and hi (one value if fixed or lo == hi)

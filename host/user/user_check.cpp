@@ -1,5 +1,6 @@
 #include "user/user_check.hpp"
 
+#include "catalog/roughness.hpp"
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
 #include "runtime/error.hpp"
@@ -46,8 +47,12 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
   if (u.has_d) defines.push_back("MFV_USER_HAS_D");
   if (u.has_g1) defines.push_back("MFV_USER_HAS_G1");
   try {
-    return rt.build({"common.cl", "rng.cl", "brdf.cl", "integrate.cl", "user_guard.cl", "user_brdf.cl"}, defines,
-                    generate_dispatch(TermSelection{}), "brdf.cl", {{u.path, u.guarded_text, "user_brdf.cl"}});
+    // no catalog terms or models: the user's names must not clash with them
+    std::vector<std::string> files = {"common.cl", "rng.cl", kDispatchBefore};
+    for (auto& f : integration_files()) files.push_back(f);
+    for (const char* f : {"user_guard.cl", "user_brdf.cl"}) files.push_back(f);
+    return rt.build(files, defines,
+                    generate_dispatch(TermSelection{}), kDispatchBefore, {{u.path, u.guarded_text, "user_brdf.cl"}});
   } catch (const Error& e) {
     std::string log = e.what(), first;
     size_t errors = 0;
@@ -76,7 +81,7 @@ std::vector<Values> roughness_grid(const UserBrdf& u, const std::vector<double>&
   const UserParam& p = u.params[size_t(u.roughness)];
   std::vector<double> vals;
   for (double a : alphas) {
-    double v = p.role == WidthRole::Perceptual ? std::sqrt(a) : a;
+    double v = native_from_alpha(p.role, a);
     if (v >= p.lo && v <= p.hi) vals.push_back(v);
   }
   if (vals.empty()) vals = {p.lo, p.value, p.hi};
@@ -120,7 +125,7 @@ std::string named_text(const UserBrdf& u, const Values& v) {
   return s;
 }
 
-IntegralSpec spec_of(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel) {
+IntegralSpec user_spec(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel) {
   IntegralSpec s;
   s.check = static_cast<int32_t>(kind);
   float* p[kUserMaxParams] = {&s.pd, &s.pg, &s.f0, &s.f1, &s.kd, &s.p5};
@@ -145,10 +150,9 @@ const char* kChannel = "rgb";
 
 std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, const std::vector<std::string>& checks) {
   auto wanted = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
-  auto scaled = [&](uint64_t n) { return scaled_samples(n, opt.scale); };
   std::vector<Plan> plans;
   auto add = [&](Plan& plan, IntegralKind kind, const Values& v, double co, int ch, bool upper) {
-    plan.specs.push_back(spec_of(u, kind, v, co, ch));
+    plan.specs.push_back(user_spec(u, kind, v, co, ch));
     PointResult p = point_of(u, plan.check, v);
     if (kind != IntegralKind::DNorm) p.params["cos_o"] = co;
     if (ch >= 0 && kind == IntegralKind::Albedo) p.params["channel"] = ch;  // 0 r, 1 g, 2 b
@@ -157,12 +161,12 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
     plan.points.push_back(p);
   };
   if (wanted("d_norm")) {
-    Plan p{"d_norm", {}, {}, scaled(256 * kSuiteBaseSamples), {}};
+    Plan p = new_plan("d_norm", check_row("d_norm").base_samples, opt.scale);
     for (auto& v : roughness_grid(u, suite_norm_alphas(), 64)) add(p, IntegralKind::DNorm, v, 1.0, 0, false);
     plans.push_back(p);
   }
   if (wanted("masking")) {
-    Plan p{"masking", {}, {}, scaled(kSuiteBaseSamples), {}};
+    Plan p = new_plan("masking", check_row("masking").base_samples, opt.scale);
     for (auto& v : roughness_grid(u, suite_alphas(), 64))
       for (double co : view_cosines(32)) add(p, IntegralKind::Masking, v, co, 0, false);
     plans.push_back(p);
@@ -173,14 +177,14 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
     // that the pooled test finds a 1 % gain (docs/statistics.md).
     const auto grid = roughness_grid(u, suite_alphas(), 64);
     const double share = double(suite_alphas().size()) / double(std::max<size_t>(grid.size(), 1));
-    Plan p{"furnace", {}, {}, scaled(uint64_t(double(kSuiteBaseSamples) * std::max(1.0, share))), {}};
+    Plan p = new_plan("furnace", uint64_t(double(check_row("furnace").base_samples) * std::max(1.0, share)), opt.scale);
     for (auto& v : grid)
       for (double co : view_cosines(32))
         for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, true);
     plans.push_back(p);
   }
   if (wanted("energy")) {
-    Plan p{"energy", {}, {}, scaled(kSuiteBaseSamples / 2), {}};
+    Plan p = new_plan("energy", check_row("energy").base_samples, opt.scale);
     for (auto& r : roughness_grid(u, suite_alphas(), 6))
       for (auto& v : corners(u, r))
         for (double co : view_cosines(16))
@@ -315,7 +319,7 @@ void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const U
 
 // ---- reciprocity -------------------------------------------------------------
 
-void run_user_reciprocity(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt,
+void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOptions& opt,
                           SuiteReport& rep) {
   auto t0 = Clock::now();
   std::vector<IntegralSpec> specs;
@@ -323,12 +327,12 @@ void run_user_reciprocity(Runtime& rt, const cl::Program& prog, const UserBrdf& 
   for (auto& r : roughness_grid(u, {1e-4, 1e-2, 0.1, 0.3, 1.0}, 64))
     for (auto& v : corners(u, r))
       for (int ch : opt.channels) {
-        specs.push_back(spec_of(u, IntegralKind::Albedo, v, 1.0, ch));
+        specs.push_back(user_spec(u, IntegralKind::Albedo, v, 1.0, ch));
         PointResult p = point_of(u, "reciprocity", v);
         p.params["channel"] = ch;
         pts.push_back(p);
       }
-  record_reciprocity(rt, prog, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
+  record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
 // ---- pointwise agreement with a claimed model --------------------------------
@@ -465,7 +469,7 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   uint32_t stream = 0;
   for (auto& plan : make_plans(u, opt, checks)) run_plan(in, plan, sopt, stream, rep);
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
-  if (has("reciprocity")) run_user_reciprocity(rt, prog, u, opt, rep);
+  if (has("reciprocity")) run_user_reciprocity(in, u, opt, rep);
   if (has("finite")) run_census(rt, prog, u, opt, rep);
   if (has("agree")) run_agreement(rt, prog, u, *claim, opt, rep);
   judge(rep, sopt);

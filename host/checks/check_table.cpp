@@ -1,0 +1,35 @@
+#include "checks/check_table.hpp"
+
+#include "runtime/error.hpp"
+
+#include <fmt/format.h>
+
+namespace mfv {
+
+const std::vector<CheckRow>& dgf_check_rows() {
+  // furnace and energy: the albedo by mfv run's MIS estimator on RQMC
+  // replicates (IntegralKind::AlbedoMis, kernels/albedo.cl albedo_mis_microfacet)
+  static const std::vector<CheckRow> rows = {
+      {"d_norm", IntegralKind::DNorm, 256 * kSuiteBaseSamples, 0, 0, FSet::None, {0.0}, false,
+       "holds for every D but those the catalog marks known_bad"},
+      {"masking", IntegralKind::Masking, kSuiteBaseSamples, 12, 32, FSet::None, {0.0}, false,
+       "holds where G's Smith G1 belongs to D (Term::smith_for, within its tolerance and alpha_max) or G is "
+       "normalised against every D (masking_exact); fails otherwise"},
+      {"furnace", IntegralKind::AlbedoMis, kSuiteBaseSamples, 12, 32, FSet::None, {0.0}, true,
+       "holds for Smith Gs (and non-Smith Gs); fails where G's G1 under-masks D's tails (under_masks) or beyond "
+       "the fit's alpha_max"},
+      {"energy", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 6, 24, FSet::Real, {0.0}, true,
+       "as furnace, but F <= 1 may hide a gain: may fail where furnace must"},
+      {"energy_diffuse", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 3, 8, FSet::Schlick, {0.5, 1.0}, true,
+       "seed 000's kd/pi + specular: fails at kd = 1 and F0 = 1, may fail below"},
+  };
+  return rows;
+}
+
+const CheckRow& check_row(const std::string& check) {
+  for (auto& r : dgf_check_rows())
+    if (check == r.check) return r;
+  throw Error(fmt::format("internal: no check row named '{}'", check));
+}
+
+}  // namespace mfv

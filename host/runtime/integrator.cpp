@@ -1,0 +1,413 @@
+#include "runtime/integrator.hpp"
+
+#include "runtime/error.hpp"
+#include "runtime/work_group.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+namespace mfv {
+
+std::vector<std::string> catalog_sources(const std::vector<std::string>& then) {
+  std::vector<std::string> files = {"common.cl", "rng.cl",   "terms_d.cl",    "terms_g.cl",
+                                    "terms_f.cl", "models.cl", "model_gltf.cl", kDispatchBefore};
+  files.insert(files.end(), then.begin(), then.end());
+  return files;
+}
+
+const std::vector<std::string>& integration_files() {
+  static const std::vector<std::string> files = {"estimators.cl", "albedo.cl", "convergence.cl", "integrate.cl",
+                                                 "reciprocity.cl"};
+  return files;
+}
+
+const std::vector<std::string>& integrate_sources() {
+  static const std::vector<std::string> files = catalog_sources(integration_files());
+  return files;
+}
+
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
+  std::vector<std::string> defines;
+  if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore);
+}
+
+Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
+  fast_albedo_ = fast_albedo_available_ = true;  // the catalog's program defines albedo_values (a user program does not)
+}
+
+// The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
+Integrator::Integrator(Runtime& rt, cl::Program program)
+    : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
+  local_size_ = fit_local_size(cl::Kernel(program_, "integrate"), rt.device().device, 64);
+}
+
+void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
+  if (samples == 0) throw Error("samples per integral must be at least 1");
+  per_item = static_cast<uint32_t>(std::clamp<uint64_t>((samples + local_size_ - 1) / local_size_, 1, 64));
+  per_item += per_item & 1u;  // even, so stratified pairs stay within a work-item
+  uint64_t per_slice = local_size_ * per_item;
+  uint64_t s = (samples + per_slice - 1) / per_slice;
+  if (s > (1u << 24)) throw Error(fmt::format("{} samples per integral is too many", samples));
+  slices = static_cast<uint32_t>(s);
+}
+
+uint64_t Integrator::samples_used(uint64_t requested) const {
+  uint32_t per_item, slices;
+  layout(requested, per_item, slices);
+  return uint64_t(slices) * local_size_ * per_item;
+}
+
+uint32_t Integrator::mis_points(uint64_t requested) const {
+  const uint64_t n = (samples_used(requested) + kMisReplicates - 1) / kMisReplicates;
+  if (n > (uint64_t(1) << 26)) throw Error(fmt::format("{} samples per integral is too many", requested));
+  return uint32_t(std::max<uint64_t>(4, (n + 3) / 4 * 4));
+}
+
+void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
+  const uint64_t n = samples_used(samples);
+  if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
+  // d_norm: stratified radius; E_avg (RQMC): stratified view cosine² (the
+  // point count fixes the spacing, see kernels/integrate.cl). A mixture of
+  // widths (width <= 0) draws its component from u_pick, which
+  // stratification fixes: those d_norm integrals stay iid.
+  const uint32_t mis = mis_points(samples);  // AlbedoMis: points per replicate
+  for (auto& s : specs)
+    s.strata = s.check == static_cast<int32_t>(IntegralKind::AlbedoMis) ? mis
+               : s.estimator != 0 ? 0u  // mfv convergence's estimators are iid or RQMC
+               : (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
+                       s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
+                   ? uint32_t(n)
+                   : 0u;
+}
+
+// kernels/integrate.cl spec_is_microfacet: the integrals a *_values kernel
+// takes (one sample per work-item, vectorized on PoCL): iid albedo and
+// masking, stratified d_norm. Returns the kernel, or nullptr.
+static const char* values_kernel(const IntegralSpec& s) {
+  if (s.estimator != 0 || s.model != 0 || s.pd2 > 0 || s.phi_o != 0 || !(s.width > 0)) return nullptr;
+  if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_values";
+  return nullptr;
+}
+
+std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+                                                         uint32_t slices, uint64_t seed, uint64_t first_index) {
+  std::vector<Sums> out(specs.size());
+  if (specs.empty()) return out;
+  cl::Kernel k(program_, "integrate");
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  // Batches of at most ~2^15 work-groups keep buffers small and launches
+  // short, and at least 16 of them let progress (util/progress.hpp) advance
+  // during a check; the samples and sums do not depend on the batching.
+  const size_t per_batch =
+      std::max<size_t>(1, std::min((size_t(1) << 15) / slices, (specs.size() + 15) / 16));
+  for (size_t first = 0; first < specs.size(); first += per_batch) {
+    size_t count = std::min(per_batch, specs.size() - first);
+    size_t groups = count * slices;
+    cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
+                        const_cast<IntegralSpec*>(specs.data() + first));
+    cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, groups * MFV_SUM_SLOTS * acc);
+    k.setArg(0, spec_buf);
+    k.setArg(1, static_cast<cl_uint>(slices));
+    k.setArg(2, static_cast<cl_uint>(per_item));
+    k.setArg(3, static_cast<cl_ulong>(seed));
+    k.setArg(4, sums);
+    k.setArg(5, cl::Local(MFV_SUM_SLOTS * local_size_ * acc));
+    k.setArg(6, static_cast<cl_ulong>(first_index));
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(groups * local_size_), cl::NDRange(local_size_));
+    add_sums(sums, count, slices, out.data() + first);
+  }
+  return out;
+}
+
+// The same sums for albedo_fast_path integrals through albedo_values (one
+// sample per work-item, stored) and sum_values (the per-slice sums of
+// `integrate`): the samples of `integrate`, reduced in the same slices.
+std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<IntegralSpec>& specs, const char* kernel,
+                                                      uint32_t per_item, uint32_t slices, uint64_t seed,
+                                                      uint64_t first_index) {
+  std::vector<Sums> out(specs.size());
+  if (specs.empty()) return out;
+  const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
+  const uint64_t kMaxValues = uint64_t(1) << 22;               // 16 MiB of samples a launch
+  // A launch takes `count` integrals over slices [s0, s0 + nslices).
+  const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
+  const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
+  // stratified d_norm: neighbouring strata's squared differences, as `integrate`
+  const bool pairs = std::string(kernel) == "d_norm_values";
+  cl::Kernel values_k(program_, kernel), sum_k(program_, pairs ? "sum_pairs" : "sum_values");
+  const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice;
+  cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  for (size_t first = 0; first < specs.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, specs.size() - first);
+    cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
+                        const_cast<IntegralSpec*>(specs.data() + first));
+    for (uint32_t s0 = 0; s0 < slices; s0 += nslices) {
+      const uint32_t ns = std::min(nslices, slices - s0);
+      const size_t m = size_t(ns) * per_slice, groups = count * ns;
+      // the largest power of two up to 1024 that divides m and that the device and kernel allow
+      size_t local = fit_local_size(values_k, rt_.device().device, 1024);
+      while (m % local != 0) local /= 2;
+      values_k.setArg(0, spec_buf);
+      values_k.setArg(1, static_cast<cl_ulong>(seed));
+      values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
+      values_k.setArg(3, values);
+      rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
+      cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, groups * MFV_SUM_SLOTS * acc);
+      sum_k.setArg(0, values);
+      sum_k.setArg(1, static_cast<cl_uint>(per_slice));
+      sum_k.setArg(2, sums);
+      rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(groups));
+      add_sums(sums, count, ns, out.data() + first);
+    }
+  }
+  return out;
+}
+
+// sum_values over `rows` consecutive runs of per_row values (a multiple of 4).
+void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out) {
+  cl::Kernel sum_k(program_, "sum_values");
+  const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
+  cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, rows * MFV_SUM_SLOTS * acc);
+  sum_k.setArg(0, values);
+  sum_k.setArg(1, static_cast<cl_uint>(per_row));
+  sum_k.setArg(2, sums);
+  rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(rows));
+  add_sums(sums, rows, 1, out);
+}
+
+// AlbedoMis integrals through albedo_mis_values (one point per work-item,
+// one row per replicate) and sum_values (one sum per row).
+std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
+  const size_t rows = specs.size() * kMisReplicates;
+  std::vector<Sums> out(rows);
+  if (specs.empty()) return out;
+  const uint32_t n = specs.front().strata;  // points per replicate, the same for every spec of a run
+  for (const auto& s : specs)
+    if (s.strata != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
+  const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
+  const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
+  cl::Kernel k(program_, "albedo_mis_values");
+  size_t local = fit_local_size(k, rt_.device().device, 1024);  // the device's and kernel's limits
+  while (n % local != 0) local /= 2;                              // a power of two that divides n
+  cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                      const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
+  for (size_t row0 = 0; row0 < rows; row0 += per_launch) {
+    const size_t count = std::min(per_launch, rows - row0);
+    k.setArg(0, spec_buf);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, static_cast<cl_uint>(kMisReplicates));
+    k.setArg(3, static_cast<cl_uint>(row0));
+    k.setArg(4, values);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, 1));
+    sum_rows(values, count, n, out.data() + row0);
+  }
+  return out;
+}
+
+// Mean and standard error of an AlbedoMis integral from its replicates' sums
+// of n points each: the replicate means are iid, so SE = sd / sqrt(R) with
+// R - 1 degrees of freedom.
+static Estimate replicate_estimate(const double* sums, uint32_t replicates, uint32_t n) {
+  Estimate e;
+  e.samples = uint64_t(replicates) * n;
+  double mean = 0;
+  for (uint32_t r = 0; r < replicates; ++r) mean += sums[r] / n;
+  mean /= replicates;
+  double ss = 0;
+  for (uint32_t r = 0; r < replicates; ++r) ss += (sums[r] / n - mean) * (sums[r] / n - mean);
+  e.mean = mean;
+  e.stderr_ = std::sqrt(ss / double(replicates - 1) / double(replicates));
+  e.dof = replicates - 1;
+  if (!std::isfinite(mean)) e.mean = e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+  return e;
+}
+
+// Adds the (sum, sum of squares) pairs of `count` integrals x `slices`
+// work-groups (integral-major, in acc_t) to out[0 .. count).
+void Integrator::add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out) {
+  const size_t groups = count * slices;
+  std::vector<double> host(groups * MFV_SUM_SLOTS);
+  if (acc_double_) {
+    rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * MFV_SUM_SLOTS * sizeof(double), host.data());
+  } else {
+    std::vector<float> f(groups * MFV_SUM_SLOTS);
+    rt_.queue().enqueueReadBuffer(sums, CL_TRUE, 0, groups * MFV_SUM_SLOTS * sizeof(float), f.data());
+    std::copy(f.begin(), f.end(), host.begin());
+  }
+  for (size_t i = 0; i < count; ++i)
+    for (uint32_t j = 0; j < slices; ++j) {
+      out[i].sum += host[MFV_SUM_SLOTS * (i * slices + j) + MFV_SLOT_SUM];
+      out[i].sumsq += host[MFV_SUM_SLOTS * (i * slices + j) + MFV_SLOT_SUMSQ];
+    }
+  if (task_) task_->advance(groups * group_samples_);
+}
+
+std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
+                                     uint64_t first_index) {
+  uint32_t per_item, slices;
+  layout(samples, per_item, slices);
+  const uint64_t n = uint64_t(slices) * local_size_ * per_item;
+  std::vector<IntegralSpec> specs = specs_in;
+  stratify(specs, samples);
+  if (first_index > 0)
+    for (auto& s : specs)
+      if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
+  // isotropic microfacet integrals take the vectorizable fast paths
+  std::vector<IntegralSpec> general, mis;
+  std::vector<size_t> general_at, mis_at;
+  std::map<std::string, std::vector<size_t>> fast_at;  // by values kernel
+  for (size_t j = 0; j < specs.size(); ++j) {
+    if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
+      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) || !fast_albedo_available_)
+        throw Error("internal: AlbedoMis takes isotropic microfacet integrals of the catalog's program only");
+      mis.push_back(specs[j]);
+      mis_at.push_back(j);
+      continue;
+    }
+    // sum_values takes runs of a multiple of 4 (per_item is even)
+    const char* fast = fast_albedo_ && local_size_ % 2 == 0 ? values_kernel(specs[j]) : nullptr;
+    if (fast) {
+      fast_at[fast].push_back(j);
+    } else {
+      general.push_back(specs[j]);
+      general_at.push_back(j);
+    }
+  }
+  std::vector<Sums> sums(specs.size());
+  progress::Task task("samples", specs.size() * n);
+  task_ = &task;
+  group_samples_ = uint64_t(local_size_) * per_item;
+  for (const auto& [kernel, at] : fast_at) {
+    std::vector<IntegralSpec> fast;
+    for (size_t j : at) fast.push_back(specs[j]);
+    const auto fs = sums_values(fast, kernel.c_str(), per_item, slices, seed, first_index);
+    for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
+  }
+  const auto gs = sums_integrate(general, per_item, slices, seed, first_index);
+  task_ = nullptr;
+  for (size_t j = 0; j < general.size(); ++j) sums[general_at[j]] = gs[j];
+  std::vector<Estimate> out(specs.size());
+  const auto ms = sums_mis(mis, seed);
+  for (size_t j = 0; j < mis.size(); ++j) {
+    std::vector<double> rep(kMisReplicates);
+    for (uint32_t r = 0; r < kMisReplicates; ++r) rep[r] = ms[j * kMisReplicates + r].sum;
+    out[mis_at[j]] = replicate_estimate(rep.data(), kMisReplicates, mis[j].strata);
+  }
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) continue;
+    const double s = sums[i].sum, ss = sums[i].sumsq;
+    Estimate& e = out[i];
+    e.samples = n;
+    e.mean = s / double(n);
+    if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoRqmc)) {
+      e.b_mean = ss / double(n);  // the kernel's second accumulator holds B here
+      e.stderr_ = std::numeric_limits<double>::quiet_NaN();
+    } else if (specs[i].strata > 0) {
+      // pairs of neighbouring strata as strata of two: Var = sum (y_a - y_b)^2 / n^2
+      e.stderr_ = std::sqrt(ss) / double(n);
+    } else {
+      double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
+      e.stderr_ = std::sqrt(var / double(n));
+    }
+    if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
+  }
+  return out;
+}
+
+template <class T>
+std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                     uint32_t n, uint64_t seed) {
+  std::vector<T> out(specs.size() * n);
+  if (out.empty()) return out;
+  cl::Kernel k(program, "sample_values");
+  cl::Buffer spec_buf(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                      const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer vals = nan_filled_buffer(rt, CL_MEM_WRITE_ONLY, out.size() * sizeof(T));
+  k.setArg(0, spec_buf);
+  k.setArg(1, static_cast<cl_uint>(n));
+  k.setArg(2, static_cast<cl_ulong>(seed));
+  k.setArg(3, vals);
+  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
+  rt.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(T), out.data());
+  return out;
+}
+template std::vector<float> program_sample_values<float>(Runtime&, const cl::Program&, const std::vector<IntegralSpec>&,
+                                                         uint32_t, uint64_t);
+template std::vector<double> program_sample_values<double>(Runtime&, const cl::Program&,
+                                                           const std::vector<IntegralSpec>&, uint32_t, uint64_t);
+
+std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
+  return program_sample_values<float>(rt_, program_, specs, n, seed);
+}
+
+// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each.
+void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
+                          uint32_t pairs, uint64_t seed, WorstPairs& out) {
+  const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
+  const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
+  size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
+  while (pairs % local != 0) local /= 2;                        // a power of two that divides pairs
+  for (size_t first = 0; first < at.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, at.size() - first);
+    std::vector<IntegralSpec> batch;
+    for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
+    cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
+    cl::Buffer ab = nan_buffer(CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));  // an unwritten pair is the worst
+    k.setArg(0, sb);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, ab);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    std::vector<float> a(count * pairs);
+    rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
+    for (size_t i = 0; i < count; ++i) {
+      float worst = 0;
+      uint32_t where = 0;
+      for (uint32_t p = 0; p < pairs; ++p) {
+        const float v = a[i * pairs + p];
+        if (!(v <= worst)) worst = std::isnan(v) ? INFINITY : v, where = p;
+      }
+      out.worst[at[first + i]] = worst;
+      out.at[at[first + i]] = where;
+    }
+  }
+}
+
+WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint32_t pairs, uint64_t seed) {
+  WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
+  if (specs.empty() || pairs == 0) return out;
+  cl::Kernel generic(program_, "reciprocity_values"), microfacet;
+  // not in user programs (mfv check): asked by name, since a failed
+  // clCreateKernel is an API error to checkers such as Oclgrind
+  const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
+  if (names.find(";reciprocity_values_microfacet;") != std::string::npos)
+    microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
+  std::vector<size_t> fast, slow;
+  for (size_t i = 0; i < specs.size(); ++i)
+    (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
+  if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(generic, specs, slow, pairs, seed, out);
+  return out;
+}
+
+cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
+
+cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
+  cl::Buffer b(rt.context(), flags, bytes);
+  // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
+  // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
+  const cl_uint pattern = 0x7fffffffu;
+  if (bytes > 0) rt.queue().enqueueFillBuffer(b, pattern, 0, bytes / sizeof(pattern) * sizeof(pattern));
+  return b;
+}
+
+}  // namespace mfv

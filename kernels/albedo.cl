@@ -1,0 +1,175 @@
+// The albedo estimators: mfv energy's randomized-QMC visible-normal
+// estimator (with the split sum's B), the isotropic microfacet albedo by
+// components (the vectorized fast path), mfv run's multi-sample MIS on RQMC
+// replicates, and the general albedo sample. Needs estimators.cl.
+// Reference twins: host/reference/estimators.cpp.
+#include "abi/integral.h"  // IntegralSpec, MFV_CHECK_*, MFV_EST_*, MFV_SLOT_* (shared with the host)
+
+// f(i,o) (n·i) / pdf(i) for i = reflect(o, m), m a visible normal of D_w;
+// *schlick0 = (1 - o·h)^5, Schlick's F at F0 = 0 (the split sum's B weight).
+static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 o, real so2, real w,
+                                 real* schlick0) {
+  *schlick0 = R(0.0);
+  real om2 = R(2.0) * (o.x * m.x + o.y * m.y + o.z * m.z);
+  real3 i = (real3)(om2 * m.x - o.x, om2 * m.y - o.y, om2 * m.z - o.z);
+  if (i.z <= R(0.0)) return R(0.0);
+  real hx, hy, hz;  // h = m up to rounding; formed as brdf_eval forms it
+  real len = normalize_sum(i.x + o.x, i.y + o.y, i.z + o.z, &hx, &hy, &hz);
+  real c = R(1.0) - min(R(0.5) * len, R(1.0));  // 1 - o·h as brdf_eval's VoH
+  *schlick0 = c * c * c * c * c;
+  return spec_brdf(s, i, o) * i.z / vis_pdf_i(hz, hx * hx + hy * hy, o.z, so2, w);
+}
+
+static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, 2, 0); }
+
+// One point of MFV_CHECK_ALBEDO_RQMC / MFV_CHECK_EAVG_RQMC: the albedo integrand and,
+// on the same direction, that of the split sum's B (the same BRDF with F
+// multiplied by (1 - o·h)^5: B is defined with F = none, kd = 0).
+// `shift` is the integral's Cranley-Patterson shift, rqmc_shift(s, seed):
+// one Philox draw per integral, taken by the caller outside its sample loop.
+static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shift, ulong index) {
+  uint k = (uint)index;
+  real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
+  real co = s->cos_o;
+  if (s->check == MFV_CHECK_EAVG_RQMC) {
+    // density 2μ: μ² stratified over the integral's `strata` points with one
+    // random shift (a rank-1 lattice with the 2D sequence), N^-1 like the rest
+    real u = u01_open(shift.z) + (real)k / (real)s->strata;
+    co = sqrt(u - floor(u));
+  }
+  real so2 = sin2_from_cos(co);
+  real3 o = (real3)(sqrt(so2), R(0.0), co);
+  real3 m = sample_vis(o, u_phi, u_r, s->width);
+  if (!(m.z > R(0.0))) return (real2)(R(0.0), R(0.0));
+  real b;
+  real e = energy_weight(s, m, o, so2, s->width, &b);
+  return (real2)(e, e * b);
+}
+
+// One sample of the directional albedo E(o) = ∫ f(i,o) (n·i) di
+// (MFV_CHECK_ALBEDO) from its four uniforms: i from a cosine lobe or by
+// reflecting o about an m from the mixture; the pdf is that of the union.
+// Component arithmetic and sincos_2pi: no float3 operations, no out-of-line
+// calls (measured 1.6x faster on PoCL than float3, length() and sin/cos).
+// The isotropic microfacet BRDF's albedo (spec_is_microfacet: model 0,
+// pd2 = 0, phi_o = 0, one proposal width > 0, no user code) is the case of
+// the conformance suite and of mfv bench. Its sample is computed here by
+// components, in straight-line code over plain arguments (no float3, no
+// loop, no library call: see sincos_2pi), so that PoCL's work-group
+// vectorizer runs eight work-items per AVX2 instruction in albedo_values.
+// The general path below takes the other albedo integrals.
+static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
+#ifdef MFV_USER_BRDF
+  return false;
+#else
+  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
+#endif
+}
+
+static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                           real co, real u_branch, real u_pick, real u_phi, real u_r) {
+  real ox = sqrt(sin2_from_cos(co)), oz = co;  // spec_view at phi_o = 0
+  // both candidates, one selected (as in sample_m_c)
+  real cx, cy, cz;
+  cosine_direction(u_phi, u_r, &cx, &cy, &cz);
+  real mx, my, c, s2;
+  sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
+  real om2 = R(2.0) * (ox * mx + oz * c);  // o reflected about m
+  bool lobe = u_branch < MIX_I_COS;
+  real rx = om2 * mx - ox, ry = om2 * my, rz = om2 * c - oz;
+  real ix = lobe ? cx : rx, iy = lobe ? cy : ry, iz = lobe ? cz : rz;
+  if (iz <= R(0.0)) return R(0.0);
+  real hx, hy, hz;
+  // o·h; the arguments are brdf_eval_c's own (iy + 0: the view's y), so the
+  // compiler forms the half vector once for both
+  real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);
+  real pm = pdf_mix(hz, pdf_slope(hz, hx * hx + hy * hy, w));
+  return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / albedo_pdf(iz, oh, pm);
+}
+
+// ---- mfv run's albedo (MFV_CHECK_ALBEDO_MIS; host: IntegralKind::AlbedoMis) --
+// Three proposals of the light direction i, none of which calls a term under
+// test (DESIGN.md §3): (a) o reflected about a visible normal of the GGX
+// *shape* of width w (sample_vis_c, vis_pdf_i: Heitz 2018, written here, never
+// D_*/G1_*), the low-variance one; (b) o reflected about Cauchy slopes of
+// width w and (c) the cosine lobe, the defensive pair whose tails cover every
+// catalog D (see the top of this file). Combined by the multi-sample model of
+// MIS with the balance heuristic (Veach 1997 §9.2.2, eq. 9.13): with shares
+// c = (1/2, 1/4, 1/4) of the points, every point contributes
+// f(i,o) (n·i) / (Σ_t c_t p_t(i)), whichever proposal drew it, and the mean
+// is unbiased. A wrong D or G under test only enters the numerator, so it
+// cannot cancel (tests/test_suite.cpp plants three).
+// Points: index = r n + k with n = strata points per replicate; replicate r
+// has its own Cranley-Patterson shift (Philox draw 3, counter r); k < n/2
+// takes proposal (a), k < 3n/4 (b), the rest (c), each on its own run
+// j = 0, 1, ... of the 2D Kronecker sequence (RQMC_G1, RQMC_G2). Replicates
+// are independent, so their spread gives an honest standard error (host:
+// Integrator::run, Student t with R - 1 degrees of freedom).
+// Reference twin: albedo_mis in host/reference/estimators.cpp.
+#define MIS_C_VIS R(0.5)
+#define MIS_C_SLOPE R(0.25)
+#define MIS_C_COS R(0.25)
+#define MIS_DRAW 3u  // the Philox draw of the replicates' shifts
+
+static inline uint4 mis_shift(uint stream, ulong seed, uint replicate) { return mfv_philox(seed, stream, MIS_DRAW, replicate); }
+
+// Point k of n of a replicate with shift `shift`, by components and with
+// selects (no branch, no float3: albedo_mis_values vectorizes, see
+// albedo_values); the three candidates share one (u_phi, u_r).
+static inline real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                         real co, uint4 shift, uint k, uint n) {
+  uint n_vis = n / 2u, n_slope = n / 4u;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_slope;
+  uint j = vis ? k : cosine ? k - n_vis - n_slope : k - n_vis;
+  real u_phi = u01_open(shift.x + j * RQMC_G1), u_r = u01_open(shift.y + j * RQMC_G2);
+  real so2 = sin2_from_cos(co), ox = sqrt(so2), oz = co;  // the view in the xz-plane
+  real vx, vy, vz, sx, sy, sz, s2;
+  sample_vis_c(ox, R(0.0), oz, u_phi, u_r, w, &vx, &vy, &vz);
+  sample_m_c(false, u_phi, u_r, w, &sx, &sy, &sz, &s2);
+  real mx = vis ? vx : sx, my = vis ? vy : sy, mz = vis ? vz : sz;
+  real om2 = R(2.0) * (ox * mx + oz * mz);  // o reflected about m (m = 0, a degenerate visible normal: i = -o)
+  real cx, cy, cz;
+  cosine_direction(u_phi, u_r, &cx, &cy, &cz);
+  real ix = cosine ? cx : om2 * mx - ox, iy = cosine ? cy : om2 * my, iz = cosine ? cz : om2 * mz - oz;
+  if (iz <= R(0.0)) return R(0.0);
+  real hx, hy, hz;
+  real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);  // as brdf_eval_c forms it
+  real hs2 = hx * hx + hy * hy;
+  // the pdfs of i under each proposal: (a) vis_pdf_i; (b) the slope density
+  // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
+  real q = MIS_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + MIS_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
+           MIS_C_COS * iz * MFV_INV_PI;
+  return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
+}
+
+static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+#ifdef MFV_USER_BRDF
+  return NAN;  // the host sends no AlbedoMis integral to user code (mfv check)
+#else
+  uint n = s->strata;
+  return albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o,
+                               mis_shift(s->stream, seed, (uint)(index / n)), (uint)(index % n), n);
+#endif
+}
+
+static inline real albedo_value(__global const IntegralSpec* s, real u_branch, real u_pick, real u_phi, real u_r) {
+  if (spec_is_microfacet(s))
+    return albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, u_branch,
+                                   u_pick, u_phi, u_r);
+  real w = s->width;
+  real3 o = spec_view(s);
+  real3 i;
+  if (u_branch < MIX_I_COS) {
+    real ix, iy, iz;
+    cosine_direction(u_phi, u_r, &ix, &iy, &iz);
+    i = (real3)(ix, iy, iz);
+  } else {
+    real c, s2;
+    real3 m = spec_aniso(s) ? sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2)
+                            : sample_m(u_pick, u_phi, u_r, w, &c, &s2);
+    real om2 = R(2.0) * (o.x * m.x + o.y * m.y + o.z * m.z);
+    i = (real3)(om2 * m.x - o.x, om2 * m.y - o.y, om2 * m.z - o.z);
+  }
+  return albedo_weight(s, i, o, w);
+}
+

@@ -1,0 +1,257 @@
+// The integrals' proposals and integrands (docs/design.md §3): what each
+// IntegralSpec integrates (spec_brdf, spec_D, spec_G1, the view) and the
+// proposals, which use a model's width only, never its formula: the
+// microfacet normal m comes from a defensive mixture of a cosine lobe (weight
+// MIX_COS) and 2D Cauchy slopes of width w (Student-t with one degree of
+// freedom, heavier-tailed than GGX and Beckmann, so D(m)(m·n)/pdf stays
+// bounded), and mfv energy's visible normals of the GGX *shape*.
+// Reference twins: host/reference/estimators.cpp. Built before albedo.cl,
+// convergence.cl, integrate.cl and reciprocity.cl (runtime/integrator.cpp).
+
+#include "abi/integral.h"  // IntegralSpec, MFV_CHECK_*, MFV_EST_*, MFV_SLOT_* (shared with the host)
+
+#define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
+#define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
+
+
+#ifdef MFV_USER_BRDF
+// mfv check --brdf: the user's functions, through adapters defined in
+// kernels/user_brdf.cl, which is built after the user's file (host/user/).
+static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, real3 o);
+static inline real user_D_adapter(__global const IntegralSpec* s, real3 m);
+static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m);
+#endif
+
+// Anisotropic integrals (pd2 > 0; 0 is every isotropic spec, untouched):
+// D and an anisotropic G take the widths (pd, pd2) and (pg, pg2) along t = +x
+// and b = +y, the view lies at azimuth phi_o, and the proposals are stretched to (width, pd2).
+static inline bool spec_aniso(__global const IntegralSpec* s) { return s->pd2 > 0.0f; }
+
+// The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
+// brdf.cl (with kd/π); whole models and user code plug in here, reading their
+// parameters p[0..6] from pd, pg, f0, f1, kd, p5, pd2 (pd2 > 0 also stretches
+// the proposals to (width, pd2), as for an anisotropic D).
+static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
+#ifdef MFV_USER_BRDF
+  return user_brdf_adapter(s, i, o);
+#endif
+  if (s->model > 0u && s->model < MFV_MODEL_CATALOG_END) {
+    // Whole models need not be reciprocal, so the albedo is taken per light:
+    // the estimator's fixed direction o is the light, the sampled i the
+    // view, and the integral is E(l) = ∫ f(l, v) (n·v) dv, the energy a beam
+    // from l reflects (twin: spec_brdf in host/reference/estimators.cpp).
+    real p[7] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5, s->pd2};  // p[6]: a second width (0: isotropic)
+    return eval_model((int)s->model, o, i, p);
+  }
+  if (spec_aniso(s)) return brdf_eval_aniso(s->d, s->g, s->f, i, o, s->pd, s->pd2, s->pg, s->pg2, s->f0, s->f1, s->kd);
+  return brdf_eval(s->d, s->g, s->f, i, o, s->pd, s->pg, s->f0, s->f1, s->kd);
+}
+
+// The D of d_norm and masking at microfacet normal m (cos θ = c, sin²θ = s2).
+static inline real spec_D(__global const IntegralSpec* s, real3 m, real c, real s2) {
+#ifdef MFV_USER_BRDF
+  return user_D_adapter(s, m);
+#endif
+  if (spec_aniso(s)) return eval_D_aniso(s->d, c, s2, m.x, m.y, s->pd, s->pd2);
+  return eval_D(s->d, c, s2, s->pd);
+}
+
+// The Smith G1(o, m) of masking: the G2 with the light at the normal.
+static inline real spec_G1(__global const IntegralSpec* s, real3 o, real3 m, real co, real c, real om) {
+#ifdef MFV_USER_BRDF
+  return user_G1_adapter(s, o, m);
+#endif
+  // anisotropic: the Smith G1 of the view's own azimuth, G1(o) (Heitz 2014)
+  if (spec_aniso(s)) return eval_G1_aniso(s->g, co, o.x, o.y, s->pg, s->pg2);
+  return eval_G(s->g, R(1.0), co, c, om, s->pg);
+}
+
+// Cauchy slopes in solid angle: p_slope(s) / cos³θ with
+// p_slope = 1/(2πw²) (1 + tan²θ/w²)^(-3/2), which simplifies to
+// 1 / (2π w² (cos² + sin²/w²)^(3/2)): no singularity at the normal or horizon.
+static inline real pdf_slope(real c, real s2, real w) {
+  real w2 = w * w;
+  real k = c * c + s2 / w2;
+  return R(1.0) / (R(2.0) * MFV_PI * w2 * k * sqrt(k));
+}
+
+// Width w <= 0 (mfv check on code that declares no roughness): a defensive
+// mixture of Cauchy slopes of widths 4^-k, k = 0..MIX_WIDTHS-1 (1 down to
+// 1/256), in equal shares, so any width from ~1e-3 to a few has a component
+// within a factor of 4 of it. Twin: kMixWidths in estimators.cpp.
+#define MIX_WIDTHS 5
+static inline real mix_width(int k) { return ldexp(R(1.0), -2 * k); }
+
+static inline real pdf_cauchy(real c, real s2, real w) {
+  if (w > R(0.0)) return pdf_slope(c, s2, w);
+  real p = R(0.0);
+  for (int k = 0; k < MIX_WIDTHS; ++k) p += pdf_slope(c, s2, mix_width(k));
+  return p / (real)MIX_WIDTHS;
+}
+
+// The mixture's pdf from its Cauchy part pc
+static inline real pdf_mix(real c, real pc) { return MIX_COS * c * MFV_INV_PI + (R(1.0) - MIX_COS) * pc; }
+
+static inline real pdf_m(real c, real s2, real w) { return pdf_mix(c, pdf_cauchy(c, s2, w)); }
+
+// m from the cosine lobe or from Cauchy slopes of one width w > 0, by
+// components (m = (*mx, *my, *c)), with cos θ and sin²θ formed without
+// cancellation (sin² from the sampled radius, not from 1 - cos²).
+// Both candidates are formed and one selected (no branch whose two sides
+// PoCL's SLP pass would pair into 2-lane vectors; see albedo_values).
+static inline void sample_m_c(bool cosine, real u_phi, real u_r, real w, real* mx, real* my, real* c, real* s2) {
+  // Cauchy slopes: inverse CDF of |slope| gives tanθ
+  real t = w * sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);
+  real t2 = t * t;
+  real ct = R(1.0) / sqrt(R(1.0) + t2);
+  real s2t = t2 / (R(1.0) + t2), stt = t * ct;
+  // cosine lobe (Malley): disk radius² = sin²θ
+  real cc = sqrt(R(1.0) - u_r), stc = sqrt(u_r);
+  *c = cosine ? cc : ct;
+  *s2 = cosine ? u_r : s2t;
+  real st = cosine ? stc : stt;
+  real2 sc = sincos_2pi(u_phi);
+  *mx = st * sc.y;
+  *my = st * sc.x;
+}
+
+// Draws m from the mixture (sample_m_c; u_pick picks the component).
+static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c, real* s2) {
+  // mixture of widths: u_pick, rescaled to [0, 1), picks the component
+  if (u_pick >= MIX_COS && w <= R(0.0))
+    w = mix_width(min((int)((u_pick - MIX_COS) / (R(1.0) - MIX_COS) * MIX_WIDTHS), MIX_WIDTHS - 1));
+  real mx, my;
+  sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, c, s2);
+  return (real3)(mx, my, *c);
+}
+
+// Anisotropic proposal (spec_aniso): the Cauchy slopes stretched by (wx, wy)
+// along (t, b), slope density 1/(2π wx wy) (1 + sx²/wx² + sy²/wy²)^(-3/2), in
+// solid angle 1 / (2π wx wy (c² + (m.x/wx)² + (m.y/wy)²)^(3/2)) for unit m.
+// In the stretched slopes an anisotropic GGX or Beckmann of widths (wx, wy)
+// is radially symmetric, as the isotropic terms are in the plain ones; the
+// D's formula is never sampled.
+static inline real pdf_slope_aniso(real3 m, real wx, real wy) {
+  real tx = m.x / wx, ty = m.y / wy;
+  real k = m.z * m.z + tx * tx + ty * ty;
+  return R(1.0) / (R(2.0) * MFV_PI * wx * wy * k * sqrt(k));
+}
+
+static inline real pdf_m_aniso(real3 m, real wx, real wy) {
+  return MIX_COS * m.z * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_slope_aniso(m, wx, wy);
+}
+
+static inline real3 sample_m_aniso(real u_pick, real u_phi, real u_r, real wx, real wy, real* c, real* s2) {
+  if (u_pick < MIX_COS) return sample_m(u_pick, u_phi, u_r, wx, c, s2);  // the cosine lobe, as isotropic
+  real phi = R(2.0) * MFV_PI * u_phi;
+  real t = sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // |slope| of unit width, as sample_m
+  real sx = wx * t * cos(phi), sy = wy * t * sin(phi);
+  real t2 = sx * sx + sy * sy;
+  *c = R(1.0) / sqrt(R(1.0) + t2);
+  *s2 = t2 / (R(1.0) + t2);
+  return (real3)(sx * *c, sy * *c, *c);
+}
+
+// Stratum k of n equal cells of the unit square (anisotropic d_norm, whose
+// integrand depends on the azimuth too): n_phi columns, n_phi the largest
+// power of 2 with n_phi² <= n that divides n; neighbouring k share a row.
+static inline void stratum_2d(ulong k, ulong n, real* u_r, real* u_phi) {
+  ulong n_phi = 1;
+  while (4u * n_phi * n_phi <= n && n % (2u * n_phi) == 0) n_phi *= 2u;
+  *u_r = min(((real)(k / n_phi) + *u_r) / (real)(n / n_phi), R(0x1.fffffep-1));
+  *u_phi = ((real)(k % n_phi) + *u_phi) / (real)n_phi;
+}
+
+// The view of masking and albedo: cos θ = cos_o at azimuth phi_o (in the
+// xz-plane, phi_o = 0, for every isotropic spec).
+static inline real3 spec_view(__global const IntegralSpec* s) {
+  real co = s->cos_o, so = sqrt(sin2_from_cos(co));
+  if (s->phi_o == 0.0f) return (real3)(so, R(0.0), co);
+  return (real3)(so * cos((real)s->phi_o), so * sin((real)s->phi_o), co);
+}
+
+// The albedo proposal's pdf of light direction i (n·i = iz, o·h = oh) where
+// the mixture's pdf of its half vector is pm: the union of a cosine lobe and
+// o reflected about an m from the mixture (reflection Jacobian 1 / (4 o·h)).
+static inline real albedo_pdf(real iz, real oh, real pm) {
+  return MIX_I_COS * iz * MFV_INV_PI + (R(1.0) - MIX_I_COS) * pm / (R(4.0) * oh);
+}
+
+// Light direction i of the cosine lobe from its two uniforms, by components.
+static inline void cosine_direction(real u_phi, real u_r, real* ix, real* iy, real* iz) {
+  real st = sqrt(u_r);
+  real2 sc = sincos_2pi(u_phi);
+  *ix = st * sc.y;
+  *iy = st * sc.x;
+  *iz = sqrt(R(1.0) - u_r);
+}
+
+// f(i,o) (n·i) / pdf(i) for the albedo proposal (albedo_pdf).
+static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 o, real w) {
+  if (i.z <= R(0.0)) return R(0.0);
+  real hx, hy, hz;
+  real oh = R(0.5) * normalize_sum(i.x + o.x, i.y + o.y, i.z + o.z, &hx, &hy, &hz);  // o·h, as in brdf_eval
+  real hs2 = hx * hx + hy * hy;
+  real pm = spec_aniso(s) ? pdf_m_aniso((real3)(hx, hy, hz), w, s->pd2) : pdf_m(hz, hs2, w);
+  return spec_brdf(s, i, o) * i.z / albedo_pdf(i.z, oh, pm);
+}
+
+// Kronecker (additive recurrence) sequence of Roberts 2018 in 2D: point k is
+// frac(shift + k·g), g_j = 1/φ^j with φ the plastic number (x³ = x + 1), in
+// 32-bit fixed point so that k·g mod 1 is exact. (The 3D generators' first
+// two coordinates are a much worse 2D set: measured N^-1/2 instead of N^-1
+// at grazing view.) Cranley-Patterson shift from Philox draw 2 of the
+// integral's stream. Host twin: kRqmcG in estimators.cpp.
+#define RQMC_G1 3242174889u
+#define RQMC_G2 2447445414u
+
+// mfv energy's proposal (MFV_CHECK_ALBEDO_RQMC / MFV_CHECK_EAVG_RQMC): o reflected
+// about a visible normal of the GGX *shape* of width w. The proposal is its
+// own code (not the catalog's D_ggx, whose value only appears in the
+// numerator), so a wrong D under test still shows. It covers every light
+// direction (every h with o·h > 0 has D_w(h) > 0) and takes the 1/cos_o
+// growth of the integrand at grazing view; the weight D G / (D_w G1_w(o)) is
+// bounded for every D of the catalog (Beckmann, Phong and ρ tails are no
+// heavier than GGX's once masked). Measured against the conformance
+// proposal's cosine + Cauchy mixture: the same error per point with one
+// BRDF evaluation instead of three. Twin: albedo_rqmc in estimators.cpp.
+
+// pdf over light directions of i = reflect(o, h) when h is a visible normal of
+// D_w(h) = w² / (π (h_c² w² + h_s²)²) (Walter et al. 2007 eq. 33, with
+// h_s² = |n×h|² so it has no cancellation): G1(o) (o·h) D_w(h) / cos_o
+// (Heitz 2018 eq. 3) times the reflection Jacobian 1 / (4 o·h), with Smith
+// G1(o) = 2 cos_o / (cos_o + sqrt(cos_o² + w² sin_o²)) (Heitz 2014 eq. 72):
+// D_w(h) / (2 (cos_o + sqrt(cos_o² + w² sin_o²))), finite at cos_o = 0.
+static inline real vis_pdf_i(real hc, real hs2, real co, real so2, real w) {
+  real w2 = w * w;
+  real k = hc * hc * w2 + hs2;
+  return w2 / (MFV_PI * k * k) / (R(2.0) * (co + sqrt(co * co + w2 * so2)));
+}
+
+// A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
+// Listing 3, isotropic). Returns 0 where the sample degenerates (h = 0).
+static inline void sample_vis_c(real vx, real vy, real vz, real u_phi, real u_r, real w, real* mx, real* my,
+                                real* mz) {
+  // component arithmetic and sincos_2pi, as albedo_value
+  real ox = w * vx, oy = w * vy, oz = vz;  // o in the stretched (w = 1) configuration
+  real inv = rsqrt(ox * ox + oy * oy + oz * oz);
+  ox *= inv;
+  oy *= inv;
+  oz *= inv;
+  real z = (R(1.0) - u_r) * (R(1.0) + oz) - oz;
+  real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
+  real2 sc = sincos_2pi(u_phi);
+  real hx = w * (st * sc.y + ox), hy = w * (st * sc.x + oy), hz = z + oz;
+  real len2 = hx * hx + hy * hy + hz * hz;
+  real r = len2 > R(0.0) ? rsqrt(len2) : R(0.0);
+  *mx = hx * r;
+  *my = hy * r;
+  *mz = hz * r;
+}
+
+static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
+  real mx, my, mz;
+  sample_vis_c(o.x, o.y, o.z, u_phi, u_r, w, &mx, &my, &mz);
+  return (real3)(mx, my, mz);
+}
+

@@ -1,0 +1,72 @@
+// The reciprocity check's pairs and kernels (one pair per work-item; host:
+// Integrator::reciprocity). Needs estimators.cl (spec_brdf).
+#include "abi/integral.h"  // IntegralSpec, MFV_CHECK_*, MFV_EST_*, MFV_SLOT_* (shared with the host)
+
+// Reciprocity: |f(i,o) - f(o,i)| / max(|f(i,o)|, |f(o,i)|, 1e-4) over pairs
+// drawn by kind (index % 4): uniform hemisphere, grazing, near-retro,
+// near-mirror. Pair `index` (Philox draw 1; reference twin: reciprocity_pair
+// in host/reference/estimators.cpp), by components: directions from sincos_2pi, the
+// near-retro/mirror offsets normalised with rsqrt, both sides selected.
+static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay,
+                                      real* az, real* bx, real* by, real* bz) {
+  uint4 r = mfv_philox(seed, s->stream, 1, index);
+  uint kind = index % 4u;
+  real scale = kind == 1u ? R(1e-3) : R(1.0);  // both grazing
+  real ca = u01_open(r.x) * scale, cb = u01_open(r.z) * scale, u_w = u01_open(r.w);
+  real sa = sqrt(sin2_from_cos(ca)), sb = sqrt(sin2_from_cos(cb));
+  real2 pa = sincos_2pi(u01_open(r.y)), pb = sincos_2pi(u_w);
+  *ax = sa * pa.y;
+  *ay = sa * pa.x;
+  *az = ca;
+  // a small offset from the retro (b = a) or mirror (b = reflect a) direction
+  real sign = kind == 3u ? R(-1.0) : R(1.0);
+  real nx = sign * *ax + R(1e-3) * (cb - R(0.5)), ny = sign * *ay + R(1e-3) * (u_w - R(0.5)), nz = ca;
+  real inv = rsqrt(nx * nx + ny * ny + nz * nz);
+  bool near = kind >= 2u;
+  *bx = near ? nx * inv : sb * pb.y;
+  *by = near ? ny * inv : sb * pb.x;
+  *bz = near ? nz * inv : cb;  // nz = ca > 0: above the horizon
+}
+
+// |f1 - f2| / max(|f1|, |f2|, 1e-4), 0 where both vanish: relative, except
+// below f = 1e-4 /sr (a thousandth of a white Lambertian surface's 1/π),
+// where float code loses its relative precision without consequence: F =
+// (1 - v·h)^5 at F0 = 0 cancels when v·h -> 1, and intermediates go subnormal.
+// (max and min in place of fabs: two fabs feeding a max become a 2-lane SLP
+// vector that stops PoCL vectorizing, see normalize_sum)
+// A NaN or Inf value is no evidence of symmetry (max() would drop a NaN):
+// it is the worst asymmetry.
+static inline float reciprocity_asym(real f1, real f2) {
+  real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
+  real d = max(f1 - f2, f2 - f1);           // |f1 - f2|
+  float a = m > R(0.0) ? (float)(d / max(m, R(1e-4))) : 0.0f;
+  return isfinite(f1) && isfinite(f2) ? a : INFINITY;
+}
+
+// One pair per work-item: work-item (k, j) writes the asymmetry of pair k of
+// integral j (reciprocity_pair_c); the host takes the worst. The
+// generic kernel evaluates spec_brdf (whole models, user code); the
+// microfacet one (model 0, isotropic) brdf_eval_c, which PoCL vectorizes.
+__kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const IntegralSpec* restrict specs, ulong seed,
+                                 __global float* restrict asym) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  real ax, ay, az, bx, by, bz;
+  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
+  real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);
+  asym[j * get_global_size(0) + k] = reciprocity_asym(spec_brdf(s, a, b), spec_brdf(s, b, a));
+}
+
+#ifndef MFV_USER_BRDF
+__kernel void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs, ulong seed,
+                                            __global float* restrict asym) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  real ax, ay, az, bx, by, bz;
+  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
+  real f1 = brdf_eval_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
+  real f2 = brdf_eval_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
+  asym[j * get_global_size(0) + k] = reciprocity_asym(f1, f2);
+}
+#endif
+

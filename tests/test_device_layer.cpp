@@ -1,0 +1,85 @@
+// The device layer (host/runtime/integrator.*) and the table of checks
+// (host/checks/check_table.*): buffers start as NaN, so a result no kernel
+// wrote fails instead of passing; the table's rows are what the plan builder
+// integrates.
+#include "checks/suite.hpp"
+#include "device_fixture.hpp"
+#include "kernel_dir.hpp"
+#include "runtime/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace mfv;
+
+namespace {
+
+TermSelection ggx_selection() {
+  TermSelection sel;
+  sel.d = {&find_term("ggx")};
+  sel.g = {&find_term("smith_ggx")};
+  sel.f = {&find_term("schlick")};
+  return sel;
+}
+
+IntegralSpec ggx_albedo(uint32_t stream) {
+  MicrofacetIntegral m;
+  m.d = &find_term("ggx"), m.g = &find_term("smith_ggx"), m.f = &find_term("schlick");
+  m.pd = m.pg = m.width = 0.3;
+  m.f0 = 0.04, m.cos_o = 0.5;
+  IntegralSpec s = spec_of(m);
+  s.stream = stream;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[device][device_layer]") {
+  if (!test::device_runtime()) return;
+  test::PlantedKernelDir dir;
+  REQUIRE(dir.replace("reciprocity.cl", "  asym[j * get_global_size(0) + k] = reciprocity_asym(f1, f2);",
+                      "  if (k > 0) asym[j * get_global_size(0) + k] = reciprocity_asym(f1, f2);"));
+  Runtime planted("", dir.path());
+  Integrator bad(planted, ggx_selection());
+  const WorstPairs w = bad.reciprocity({ggx_albedo(0)}, 64, 7);
+  CHECK(std::isinf(w.worst[0]));
+  CHECK(w.at[0] == 0);
+  Integrator good(*test::device_runtime(), ggx_selection());
+  CHECK(good.reciprocity({ggx_albedo(0)}, 64, 7).worst[0] < 1e-4);
+}
+
+TEST_CASE("An integral whose sums no kernel wrote is NaN, not zero", "[device][device_layer]") {
+  if (!test::device_runtime()) return;
+  test::PlantedKernelDir dir;
+  // the first work-group of every launch (here: each integral's only slice) leaves its sums unwritten
+  REQUIRE(dir.replace("integrate.cl", "  if (lid == 0) {", "  if (lid == 0 && group > 0) {"));
+  Runtime planted("", dir.path());
+  for (bool plant : {true, false}) {
+    Integrator in(plant ? planted : *test::device_runtime(), ggx_selection());
+    in.set_albedo_fast_path(false);  // every integral through `integrate`
+    const auto est = in.run({ggx_albedo(0), ggx_albedo(1)}, 4096, 3);
+    CAPTURE(plant, est[0].mean, est[1].mean);
+    for (const auto& e : est) CHECK(std::isnan(e.mean) == plant);
+  }
+}
+
+TEST_CASE("The table of checks gives each D x G x F check its kind, samples and grid", "[suite][check_table]") {
+  CHECK(check_row("d_norm").kind == IntegralKind::DNorm);
+  CHECK(check_row("masking").kind == IntegralKind::Masking);
+  CHECK(!check_row("masking").upper_only);
+  CHECK(check_row("furnace").upper_only);
+  CHECK(check_row("energy").base_samples == kSuiteBaseSamples / 2);
+  CHECK_THROWS_AS(check_row("no_such_check"), Error);
+  // the plan builder takes the row's grid: widths x views per D x G
+  SuiteOptions opt;
+  opt.checks = {"masking"};
+  const std::vector<Plan> plans = make_plans(opt);
+  REQUIRE(!plans.empty());
+  const CheckRow& row = check_row("masking");
+  CHECK(plans[0].check == "masking");
+  CHECK(plans[0].samples == scaled_samples(row.base_samples, 1.0));
+  CHECK(plans[0].specs.size() ==
+        terms_of(Kind::D).size() * terms_of(Kind::G).size() * size_t(row.n_alpha) * size_t(row.n_view));
+  for (const auto& s : plans[0].specs) CHECK(s.check == MFV_CHECK_MASKING);
+}
