@@ -243,7 +243,7 @@ TEST_CASE("Every results file records the command line, --kernel-dir, kernel has
           "[provenance][device]") {
   Scratch s("mfv_bad_prov");
   const fs::path kernels = s.dir / "kernels";
-  fs::copy(fs::path(MFV_KERNEL_SOURCE_DIR), kernels);
+  fs::copy(fs::path(MFV_KERNEL_SOURCE_DIR), kernels, fs::copy_options::recursive);  // with abi/
   const std::string args = " samplers --samples 4096 --bins 8x16 --device-only --out ";
   Run plain = run_mfv(args + (s.dir / "plain").string());
   if (no_device(plain)) return;
@@ -262,6 +262,7 @@ TEST_CASE("Every results file records the command line, --kernel-dir, kernel has
   CHECK_FALSE(p["device"].get<std::string>().empty());
   CHECK(p["driver"].is_string());
   REQUIRE(p["kernel_sources"].contains("rng.cl"));
+  CHECK(p["kernel_sources"].contains("abi/integral.h"));  // the included layout header is recorded too
   CHECK(p["kernel_sources"]["common.cl"] == m["kernel_sources"]["common.cl"]);
   CHECK(p["kernel_sources"]["rng.cl"] != m["kernel_sources"]["rng.cl"]);
   CHECK(p["kernel_sha256"] != m["kernel_sha256"]);
