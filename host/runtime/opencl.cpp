@@ -2,6 +2,7 @@
 
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
+#include "runtime/kernel_includes.hpp"
 #include "runtime/provenance.hpp"
 #include "util/parse.hpp"
 #include "runtime/work_group.hpp"
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -181,19 +183,25 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
   if (!generated.empty()) inserts.insert(inserts.begin(), {"<generated>", generated, insert_before});
   std::vector<bool> done(inserts.size(), false);
   std::string source;
+  // Each file, and each file it includes (kernels/abi/), recorded once with
+  // its hash, without the #line mfv puts first.
+  std::set<std::string> seen;
+  auto load = [&](const std::string& f) {
+    std::string text = kernel_text(f);
+    record_kernel_source(f, text.substr(text.find('\n') + 1));
+    return text;
+  };
   auto insert = [&](const std::string& before) {
     for (size_t i = 0; i < inserts.size(); ++i)
       if (!done[i] && (inserts[i].before == before || before.empty())) {
-        source += "#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text + "\n";
+        source += expand_kernel_includes("#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text, load, seen) + "\n";
         if (inserts[i].name != "<generated>") record_kernel_source(inserts[i].name, inserts[i].text);
         done[i] = true;
       }
   };
   for (auto& f : files) {
     insert(f);
-    std::string text = kernel_text(f);
-    record_kernel_source(f, text.substr(text.find('\n') + 1));  // the file, without the #line mfv puts first
-    source += text;
+    source += expand_kernel_includes(load(f), load, seen);
     source += "\n";
   }
   insert("");  // those whose file is not in the list, or that asked for the end
