@@ -252,6 +252,33 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
   }
 }
 
+// One thread's statistics added to the case's.
+void merge(Stats& total, const Stats& p) {
+  total.rel.insert(total.rel.end(), p.rel.begin(), p.rel.end());
+  total.max_rel = std::max(total.max_rel, p.max_rel);
+  total.max_ulps = std::max(total.max_ulps, p.max_ulps);
+  total.failures += p.failures;
+  if (p.worst_score > total.worst_score) {
+    total.worst_score = p.worst_score;
+    total.worst = p.worst;
+  }
+}
+
+AgreeResult result_of(const Case& c, Stats& total, uint64_t samples) {
+  AgreeResult r;
+  r.name = c.name;
+  r.samples = samples;
+  r.ulp_budget = c.ulp_budget;
+  r.max_rel = total.max_rel;
+  r.max_ulps = total.max_ulps;
+  r.failures = total.failures;
+  r.worst = total.worst;
+  auto mid = total.rel.begin() + total.rel.size() / 2;
+  std::nth_element(total.rel.begin(), mid, total.rel.end());
+  r.median_rel = *mid;
+  return r;
+}
+
 }  // namespace
 
 namespace {
@@ -312,29 +339,9 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       auto t2 = std::chrono::steady_clock::now();
       rep.kernel_seconds += std::chrono::duration<double>(t1 - t0).count();
       rep.reference_seconds += std::chrono::duration<double>(t2 - t1).count();
-      for (auto& p : part) {
-        total.rel.insert(total.rel.end(), p.rel.begin(), p.rel.end());
-        total.max_rel = std::max(total.max_rel, p.max_rel);
-        total.max_ulps = std::max(total.max_ulps, p.max_ulps);
-        total.failures += p.failures;
-        if (p.worst_score > total.worst_score) {
-          total.worst_score = p.worst_score;
-          total.worst = p.worst;
-        }
-      }
+      for (auto& p : part) merge(total, p);
     }
-    AgreeResult r;
-    r.name = c.name;
-    r.samples = opt.samples;
-    r.ulp_budget = c.ulp_budget;
-    r.max_rel = total.max_rel;
-    r.max_ulps = total.max_ulps;
-    r.failures = total.failures;
-    r.worst = total.worst;
-    auto mid = total.rel.begin() + total.rel.size() / 2;
-    std::nth_element(total.rel.begin(), mid, total.rel.end());
-    r.median_rel = *mid;
-    rep.results.push_back(r);
+    rep.results.push_back(result_of(c, total, opt.samples));
     rep.samples += opt.samples;
     task.advance(1);
   }

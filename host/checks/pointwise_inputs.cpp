@@ -11,7 +11,6 @@
 namespace mfv {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const double* const kTiny = kTinyCos;
 
 // Sampling range of one parameter: log-uniform where it spans decades.
@@ -115,7 +114,7 @@ std::vector<PairSet> pair_sets(bool fp64) {
     std::vector<double> cs = {kTiny[2], 1e-7, 1e-4, 1e-2};
     for (double a : cs)
       for (double b : {a, 0.5})
-        for (double phi : {0.0, kPi / 2, kPi}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
+        for (double phi : {0.0, M_PI / 2, M_PI}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
     out.push_back(s);
   }
   {
@@ -123,14 +122,14 @@ std::vector<PairSet> pair_sets(bool fp64) {
     std::vector<double> cs = {1.0, one_minus_ulp(fp64), 1 - 1e-7, 1 - 1e-4};
     for (double a : cs)
       for (double b : cs)
-        for (double phi : {0.0, kPi}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
+        for (double phi : {0.0, M_PI}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
     out.push_back(s);
   }
   {
     PairSet s{"mid", "cos in {0.2, 0.5, 0.8} pairwise, azimuth 0, pi/2, pi", "", {}};
     for (double a : {0.2, 0.5, 0.8})
       for (double b : {0.2, 0.5, 0.8})
-        for (double phi : {0.0, kPi / 2, kPi}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
+        for (double phi : {0.0, M_PI / 2, M_PI}) s.pairs.push_back({dir(a, az + phi), dir(b, az)});
     out.push_back(s);
   }
   {
@@ -146,9 +145,9 @@ std::vector<PairSet> pair_sets(bool fp64) {
     PairSet s{"below_horizon", "wi or wo (or both) below the horizon, and wi = -wo through the surface", "0", {}};
     glm::dvec3 up = dir(0.5, az);
     for (double z : {-kTiny[0], -1e-7, -0.5}) {
-      s.pairs.push_back({dir(z, az + kPi), up});
-      s.pairs.push_back({up, dir(z, az + kPi)});
-      s.pairs.push_back({dir(z, az + kPi), dir(z, az)});
+      s.pairs.push_back({dir(z, az + M_PI), up});
+      s.pairs.push_back({up, dir(z, az + M_PI)});
+      s.pairs.push_back({dir(z, az + M_PI), dir(z, az)});
     }
     s.pairs.push_back({{0, 0, -1}, {0, 0, 1}});
     s.pairs.push_back({{0, 0, 1}, {0, 0, -1}});

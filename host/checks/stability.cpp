@@ -85,7 +85,7 @@ void account_domain(RegionResult& R, const CaseDef& c, const In& in, double k, d
     wrong_value = !(k == e) && ref == e;
   }
   const bool neg = k < 0 && ref >= 0;
-  const bool is_g = c.mode == kG || c.mode == kG1;
+  const bool is_g = c.mode == PW_G || c.mode == PW_G1;
   const bool above_one = is_g && k > 1 + kGOvershoot && !(ref > 1 + kGOvershoot);
   if (!std::isnan(k) && (wrong_value || neg || above_one)) {
     R.out_of_domain++;
@@ -203,7 +203,7 @@ std::vector<In> rounded_points(const CaseDef& c, bool fp64) {
   std::vector<In> rounded(c.points.size());
   for (size_t i = 0; i < c.points.size(); ++i) {
     for (int k = 0; k < kIn; ++k) rounded[i][size_t(k)] = round_to(c.points[i].in[size_t(k)], fp64);
-    if (c.mode == kD) {
+    if (c.mode == PW_D) {
       double cn = std::clamp(rounded[i][PW_NOH], -1.0, 1.0);
       rounded[i][PW_SIN2H] = round_to((1.0 - cn) * (1.0 + cn), fp64);
     }

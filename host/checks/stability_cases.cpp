@@ -151,11 +151,66 @@ std::vector<std::pair<double, double>> scan_angles() {  // (theta, cos theta)
   }
   for (int k = 30; k >= 0; --k) {
     double d = std::pow(10.0, -8.0 + 0.25 * k);
-    out.push_back({kPi / 2 - d, std::sin(d)});
+    out.push_back({M_PI / 2 - d, std::sin(d)});
   }
   return out;
 }
 const std::vector<double> kScanAlphas = {1e-4, 1e-3, 1e-2, 0.1, 0.3, 1.0};
+
+namespace {
+
+// Scan for the plots: D and G1 over θ (their one angle) at each alpha.
+void add_scan(CaseDef& c, const Term& t) {
+  if ((c.mode == PW_D || c.mode == PW_G1) && t.roughness != Roughness::None) {
+    int r = c.add_region({"scan", "dense theta x alpha in {1e-4 .. 1} (plots)", true, ""});
+    for (double alpha : kScanAlphas) {
+      double native = native_from_alpha(t.roughness, alpha);
+      if (native < t.params[0].lo || native > t.params[0].hi) continue;
+      for (auto [th, cth] : scan_angles()) {
+        Point pt;
+        pt.region = r;
+        pt.theta = th;
+        pt.alpha = alpha;
+        pt.in[c.mode == PW_D ? PW_NOH : PW_NOV] = cth;
+        pt.in[c.mode == PW_D ? PW_PD : PW_PG] = native;
+        c.points.push_back(pt);
+      }
+    }
+  }
+}
+
+// A G2 term: pairs of cosines, one from the region, the other from the
+// region or 0.5, light and view on the same side (φ = 0) or on opposite
+// sides (φ = π).
+void g_term(CaseDef& c, const Term& t, bool fp64) {
+  c.mode = PW_G;
+  c.g = &t;
+  auto ref = t.ref_g;
+  c.ref = [ref](const In& r) { return ref(r[PW_NOL], r[PW_NOV], r[PW_NOH], r[PW_VOH], r[PW_PG]); };
+  c.describe = [&t](const In& r) {
+    return fmt::format("NoL={} NoV={} NoH={} VoH={}", hx(r[PW_NOL]), hx(r[PW_NOV]), hx(r[PW_NOH]), hx(r[PW_VOH])) +
+           describe_params(r, nullptr, &t, nullptr);
+  };
+  // Pairs: one cosine from the region, the other from the region or 0.5,
+  // light and view on the same side (φ = 0) or on opposite sides (φ = π).
+  add_term_regions(c, t, fp64, false, [&](int reg, double a, const std::vector<double>& cls, std::array<double, 2> p) {
+    std::vector<double> others = cls;
+    others.push_back(0.5);
+    for (double b : others)
+      for (double phi : {0.0, M_PI})
+        for (int swap = 0; swap < 2; ++swap) {
+          if (swap && a == b) continue;
+          auto cs = swap ? pair_cosines(b, a, phi) : pair_cosines(a, b, phi);
+          Point pt;
+          pt.region = reg;
+          for (int k = 0; k < 4; ++k) pt.in[size_t(PW_NOL + k)] = cs[size_t(k)];
+          pt.in[PW_PG] = p[0];
+          c.points.push_back(pt);
+        }
+  });
+}
+
+}  // namespace
 
 CaseDef term_case(const Term& t, bool g1, bool fp64) {
   CaseDef c;
@@ -165,7 +220,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
   c.info.formula = g1 ? t.g1_kernel_fn : t.formula;
   c.info.stable = t.stable;
   if (g1) {
-    c.mode = kG1;
+    c.mode = PW_G1;
     c.g = &t;
     auto ref = t.ref_g1;
     c.ref = [ref](const In& r) { return ref(r[PW_NOV], r[PW_PG]); };
@@ -178,7 +233,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
       c.points.push_back(pt);
     });
   } else if (t.kind == Kind::D) {
-    c.mode = kD;
+    c.mode = PW_D;
     c.d = &t;
     auto ref = t.ref_d;
     c.ref = [ref](const In& r) { return ref(r[PW_NOH], r[PW_PD]); };
@@ -193,33 +248,9 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
       c.points.push_back(pt);
     });
   } else if (t.kind == Kind::G) {
-    c.mode = kG;
-    c.g = &t;
-    auto ref = t.ref_g;
-    c.ref = [ref](const In& r) { return ref(r[PW_NOL], r[PW_NOV], r[PW_NOH], r[PW_VOH], r[PW_PG]); };
-    c.describe = [&t](const In& r) {
-      return fmt::format("NoL={} NoV={} NoH={} VoH={}", hx(r[PW_NOL]), hx(r[PW_NOV]), hx(r[PW_NOH]), hx(r[PW_VOH])) +
-             describe_params(r, nullptr, &t, nullptr);
-    };
-    // Pairs: one cosine from the region, the other from the region or 0.5,
-    // light and view on the same side (φ = 0) or on opposite sides (φ = π).
-    add_term_regions(c, t, fp64, false, [&](int reg, double a, const std::vector<double>& cls, std::array<double, 2> p) {
-      std::vector<double> others = cls;
-      others.push_back(0.5);
-      for (double b : others)
-        for (double phi : {0.0, kPi})
-          for (int swap = 0; swap < 2; ++swap) {
-            if (swap && a == b) continue;
-            auto cs = swap ? pair_cosines(b, a, phi) : pair_cosines(a, b, phi);
-            Point pt;
-            pt.region = reg;
-            for (int k = 0; k < 4; ++k) pt.in[k] = cs[k];
-            pt.in[PW_PG] = p[0];
-            c.points.push_back(pt);
-          }
-    });
+    g_term(c, t, fp64);
   } else {
-    c.mode = kF;
+    c.mode = PW_F;
     c.f = &t;
     auto ref = t.ref_f;
     c.ref = [ref](const In& r) { return ref(r[PW_VOH], r[PW_F0], r[PW_F1]); };
@@ -233,23 +264,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
       c.points.push_back(pt);
     });
   }
-  // Scan for the plots: D and G1 over θ (their one angle) at each alpha.
-  if ((c.mode == kD || c.mode == kG1) && t.roughness != Roughness::None) {
-    int r = c.add_region({"scan", "dense theta x alpha in {1e-4 .. 1} (plots)", true, ""});
-    for (double alpha : kScanAlphas) {
-      double native = native_from_alpha(t.roughness, alpha);
-      if (native < t.params[0].lo || native > t.params[0].hi) continue;
-      for (auto [th, cth] : scan_angles()) {
-        Point pt;
-        pt.region = r;
-        pt.theta = th;
-        pt.alpha = alpha;
-        pt.in[c.mode == kD ? 2 : 1] = cth;
-        pt.in[c.mode == kD ? 6 : 7] = native;
-        c.points.push_back(pt);
-      }
-    }
-  }
+  add_scan(c, t);
   return c;
 }
 
@@ -273,7 +288,7 @@ CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64) {
   c.info.name = fmt::format("BRDF {}/{}/{}", d.id, g.id, f.id);
   c.info.formula = "D F G / (4 (n.l)(n.v))";
   c.info.stable = d.stable && g.stable && f.stable;
-  c.mode = kBrdf;
+  c.mode = PW_BRDF;
   c.d = &d;
   c.g = &g;
   c.f = &f;
@@ -342,7 +357,7 @@ CaseDef model_case(const Model& m, const StabilityOptions& opt) {
   // gated unless the catalog records (measured) where its kernel is not finite
   c.info.formula = m.formula + (m.unstable.empty() ? "" : " (not gated: " + m.unstable + ")");
   c.info.stable = m.unstable.empty();
-  c.mode = kModel;
+  c.mode = PW_MODEL;
   c.model = &m;
   const Model* pm = &m;
   c.ref = [pm](const In& r) { return pm->ref(wi_of(r), wo_of(r), &r[PW_P0]); };

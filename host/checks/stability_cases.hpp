@@ -25,18 +25,7 @@ namespace mfv::stability_detail {
 
 using namespace mfv::pw;  // the record's named slots and modes
 
-// The modes the sweep uses (kernels/abi/pointwise.h)
-enum Mode : int {
-  kD = pw::PW_D,
-  kG = pw::PW_G,
-  kF = pw::PW_F,
-  kG1 = pw::PW_G1,
-  kBrdf = pw::PW_BRDF,
-  kVariant = pw::PW_VARIANT,
-  kModel = pw::PW_MODEL
-};
 constexpr int kIn = pw::PW_RECORD;  // numbers per record
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // One record's numbers (inputs at their named slots; the value slots unused here).
@@ -68,11 +57,11 @@ struct Region {
 
 struct CaseDef {
   StabilityCase info;
-  Mode mode = kD;
+  PwMode mode = PW_D;
   const Term* d = nullptr;
   const Term* g = nullptr;
   const Term* f = nullptr;
-  const Model* model = nullptr;  // kModel: the kernel's `d` argument carries its number
+  const Model* model = nullptr;  // PW_MODEL: the kernel's `d` argument carries its number
   int variant = -1;
   std::vector<Region> regions;
   std::vector<Point> points;

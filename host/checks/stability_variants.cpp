@@ -48,6 +48,40 @@ const std::vector<VariantDef>& variant_table() {
   return t;
 }
 
+// D_ggx: the half vector near the normal, at mid angles and at grazing, and
+// the scan for the plots.
+void d_ggx_points(CaseDef& c, const std::vector<double>& alphas) {
+  // Inputs: the half vector's components h = (r0, 0, r2); the reference
+  // takes cos² and sin² from those components (Walter et al. 2007, eq. 33).
+  c.ref = [](const In& r) {
+    double x2 = r[PW_H_X] * r[PW_H_X], z2 = r[PW_H_Z] * r[PW_H_Z], n2 = x2 + z2;
+    return r[PW_H_Z] <= 0 ? 0.0 : ref::D_ggx_cs(z2 / n2, x2 / n2, r[PW_PD]);
+  };
+  c.describe = [](const In& r) { return fmt::format("h=({}, 0, {}) alpha={}", hx(r[PW_H_X]), hx(r[PW_H_Z]), hx(r[PW_PD])); };
+  auto add = [&](int reg, double hxv, double hzv, double a, double theta) {
+    Point pt;
+    pt.region = reg;
+    pt.in[PW_H_X] = hxv;
+    pt.in[PW_H_Z] = hzv;
+    pt.in[PW_PD] = a;
+    pt.theta = theta;
+    pt.alpha = a;
+    c.points.push_back(pt);
+  };
+  int rn = c.add_region({"normal", "theta_h in {0, 1e-8 .. 1e-2} x alpha in {1e-7 .. 10}", true, ""});
+  int rm = c.add_region({"mid", "theta_h in {0.1, 0.5, 1, 1.4} x alpha", true, ""});
+  int rg = c.add_region({"grazing", "cos theta_h in {2^-149, 1e-30, 1e-20, 1e-7, 1e-4, 1e-2} x alpha", true, ""});
+  for (double a : alphas) {
+    for (double th : {0.0, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2}) add(rn, std::sin(th), std::cos(th), a, NAN);
+    for (double th : {0.1, 0.5, 1.0, 1.4}) add(rm, std::sin(th), std::cos(th), a, NAN);
+    for (double z : {kTinyCos[0], kTinyCos[1], kTinyCos[2], 1e-7, 1e-4, 1e-2})
+      add(rg, std::sqrt((1 - z) * (1 + z)), z, a, NAN);
+  }
+  int rs = c.add_region({"scan", "dense theta x alpha in {1e-4 .. 1} (plots)", true, ""});
+  for (double a : kScanAlphas)
+    for (auto [th, cth] : scan_angles()) add(rs, th < 1 ? std::sin(th) : std::cos(M_PI / 2 - th), cth, a, th);
+}
+
 CaseDef variant_case(const VariantDef& v, bool fp64) {
   CaseDef c;
   c.info.group = "variant";
@@ -55,39 +89,11 @@ CaseDef variant_case(const VariantDef& v, bool fp64) {
   c.info.name = fmt::format("variant {} {}", v.family, v.form);
   c.info.formula = v.formula;
   c.info.is_default = v.is_default;
-  c.mode = kVariant;
+  c.mode = PW_VARIANT;
   c.variant = v.id;
   const std::vector<double> alphas = {1e-7, 1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.3, 1, 2, 10};
   if (v.family == "D_ggx") {
-    // Inputs: the half vector's components h = (r0, 0, r2); the reference
-    // takes cos² and sin² from those components (Walter et al. 2007, eq. 33).
-    c.ref = [](const In& r) {
-      double x2 = r[PW_H_X] * r[PW_H_X], z2 = r[PW_H_Z] * r[PW_H_Z], n2 = x2 + z2;
-      return r[PW_H_Z] <= 0 ? 0.0 : ref::D_ggx_cs(z2 / n2, x2 / n2, r[PW_PD]);
-    };
-    c.describe = [](const In& r) { return fmt::format("h=({}, 0, {}) alpha={}", hx(r[PW_H_X]), hx(r[PW_H_Z]), hx(r[PW_PD])); };
-    auto add = [&](int reg, double hxv, double hzv, double a, double theta) {
-      Point pt;
-      pt.region = reg;
-      pt.in[PW_H_X] = hxv;
-      pt.in[PW_H_Z] = hzv;
-      pt.in[PW_PD] = a;
-      pt.theta = theta;
-      pt.alpha = a;
-      c.points.push_back(pt);
-    };
-    int rn = c.add_region({"normal", "theta_h in {0, 1e-8 .. 1e-2} x alpha in {1e-7 .. 10}", true, ""});
-    int rm = c.add_region({"mid", "theta_h in {0.1, 0.5, 1, 1.4} x alpha", true, ""});
-    int rg = c.add_region({"grazing", "cos theta_h in {2^-149, 1e-30, 1e-20, 1e-7, 1e-4, 1e-2} x alpha", true, ""});
-    for (double a : alphas) {
-      for (double th : {0.0, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2}) add(rn, std::sin(th), std::cos(th), a, NAN);
-      for (double th : {0.1, 0.5, 1.0, 1.4}) add(rm, std::sin(th), std::cos(th), a, NAN);
-      for (double z : {kTinyCos[0], kTinyCos[1], kTinyCos[2], 1e-7, 1e-4, 1e-2})
-        add(rg, std::sqrt((1 - z) * (1 + z)), z, a, NAN);
-    }
-    int rs = c.add_region({"scan", "dense theta x alpha in {1e-4 .. 1} (plots)", true, ""});
-    for (double a : kScanAlphas)
-      for (auto [th, cth] : scan_angles()) add(rs, th < 1 ? std::sin(th) : std::cos(kPi / 2 - th), cth, a, th);
+    d_ggx_points(c, alphas);
   } else if (v.family == "Lambda_ggx" || v.family == "G1_smith_ggx") {
     bool lambda = v.family == "Lambda_ggx";
     if (lambda)
