@@ -1,14 +1,16 @@
 // Alternative formulations of the same quantities, compiled only for
 // `mfv stability` (never for the conformance checks): the report shows, side
 // by side with the kernel defaults, where each form breaks. Each variant
-// reads one record laid out as in stability.cl; the host's table in
-// host/checks/stability.cpp names them, marks the default and gives the
-// double reference each one is compared with.
+// reads one record (kernels/abi/pointwise.h, mode PW_VARIANT); the host's
+// table in host/checks/stability_variants.cpp names them, marks the default
+// and gives the double reference each one is compared with.
 //
 // Families and their inputs:
-//   D_ggx:     r[0] = h.x, r[2] = h.z (the half vector's components, h.y = 0), r[6] = alpha
-//   Lambda_ggx, G1_smith_ggx: r[1] = NoV, r[7] = alpha
-//   half vector: r[0..2] = wi, r[3..5] = wo (unit, above the horizon)
+//   D_ggx:     PW_H_X = h.x, PW_H_Z = h.z (the half vector's components, h.y = 0), PW_PD = alpha
+//   Lambda_ggx, G1_smith_ggx: PW_NOV, PW_PG = alpha
+//   half vector: PW_WI_X..PW_WO_Z = wi, wo (unit, above the horizon)
+#include "abi/pointwise.h"
+#define MFV_STABILITY_VARIANTS  // kernels/pointwise.cl dispatches PW_VARIANT here
 
 #define VAR_D_GGX_TAN2 0
 #define VAR_D_GGX_COS 1
@@ -69,17 +71,18 @@ static inline real G1_smith_ggx_closed(real NoV, real alpha) {
   return R(2.0) / (R(1.0) + sqrt(R(1.0) + alpha * alpha * t2));  // t2 = inf gives 0, the limit
 }
 
-static inline real stability_variant(int v, __global const real* r) {
-  real3 wi = (real3)(r[0], r[1], r[2]), wo = (real3)(r[3], r[4], r[5]);
+static inline real stability_variant(int v, const real* r) {
+  real3 wi = (real3)(r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z]), wo = (real3)(r[PW_WO_X], r[PW_WO_Y], r[PW_WO_Z]);
+  real NoV = r[PW_NOV], aG = r[PW_PG];
   switch (v) {
-    case VAR_D_GGX_TAN2: return D_ggx_tan2(r[2], r[6]);
-    case VAR_D_GGX_COS: return D_ggx_cos(r[2], r[6]);
-    case VAR_D_GGX_SIN2: return D_ggx(r[2], r[0] * r[0], r[6]);  // the kernel default, sin² = |n×h|²
-    case VAR_LAMBDA_GGX_TAN2: return Lambda_ggx_tan2(r[1], r[7]);
-    case VAR_LAMBDA_GGX_COS: return Lambda_ggx_cos(r[1], r[7]);
-    case VAR_LAMBDA_GGX_DEFAULT: return Lambda_ggx(r[1], r[7]);
-    case VAR_G1_GGX_LAMBDA: return G1_smith_ggx(r[1], r[7]);  // the kernel default, 1 / (1 + Λ)
-    case VAR_G1_GGX_CLOSED: return G1_smith_ggx_closed(r[1], r[7]);
+    case VAR_D_GGX_TAN2: return D_ggx_tan2(r[PW_H_Z], r[PW_PD]);
+    case VAR_D_GGX_COS: return D_ggx_cos(r[PW_H_Z], r[PW_PD]);
+    case VAR_D_GGX_SIN2: return D_ggx(r[PW_H_Z], r[PW_H_X] * r[PW_H_X], r[PW_PD]);  // the kernel default, sin² = |n×h|²
+    case VAR_LAMBDA_GGX_TAN2: return Lambda_ggx_tan2(NoV, aG);
+    case VAR_LAMBDA_GGX_COS: return Lambda_ggx_cos(NoV, aG);
+    case VAR_LAMBDA_GGX_DEFAULT: return Lambda_ggx(NoV, aG);
+    case VAR_G1_GGX_LAMBDA: return G1_smith_ggx(NoV, aG);  // the kernel default, 1 / (1 + Λ)
+    case VAR_G1_GGX_CLOSED: return G1_smith_ggx_closed(NoV, aG);
     // Half vector, seed 000: H = (L + V) / |L + V|.
     case VAR_VOH_DOT: return dot(wo, normalize(wi + wo));  // textbook: cancels as l -> -v
     case VAR_VOH_HALF_LENGTH: return min(R(0.5) * length(wi + wo), R(1.0));  // brdf.cl default

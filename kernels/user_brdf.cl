@@ -59,32 +59,32 @@ static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real
 }
 
 // Pointwise evaluation for the finiteness census and the agreement with a
-// claimed model: a record holds wi, wo, a microfacet normal m and the
-// parameters (USER_IN floats); the result holds brdf(wi, wo) (RGB), D(m),
-// G1(wo, m) and G1(wi, m) (USER_OUT floats; NaN where the file lacks one).
-#define USER_IN 16
-#define USER_OUT 6
-__kernel void user_eval(__global const float* in, __global float* out) {
-  size_t i = get_global_id(0);
-  __global const float* r = in + i * USER_IN;
-  float3 wi = (float3)(r[0], r[1], r[2]), wo = (float3)(r[3], r[4], r[5]), m = (float3)(r[6], r[7], r[8]);
+// claimed model, on the records of kernels/abi/pointwise.h (float): a record
+// holds wi, wo, a microfacet normal m (PW_M_X..Z) and the parameters
+// (PW_P0..); user_eval writes brdf(wi, wo) (RGB: PW_BRDF_R..B), D(m)
+// (PW_USER_D), G1(wo, m) and G1(wi, m) (PW_USER_G1_WO, _WI; NaN where the
+// file lacks one).
+#include "abi/pointwise.h"
+__kernel void user_eval(__global float* rec) {
+  __global float* r = rec + get_global_id(0) * PW_RECORD;
+  float3 wi = (float3)(r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z]), wo = (float3)(r[PW_WO_X], r[PW_WO_Y], r[PW_WO_Z]);
+  float3 m = (float3)(r[PW_M_X], r[PW_M_Y], r[PW_M_Z]);
   float p[MFV_USER_SLOTS];
-  for (int k = 0; k < MFV_USER_PARAMS; ++k) p[k] = r[9 + k];
+  for (int k = 0; k < MFV_USER_PARAMS; ++k) p[k] = r[PW_P0 + k];
   user_poison(p);
-  __global float* o = out + i * USER_OUT;
   float3 f = brdf(wi, wo, p);
-  o[0] = f.x;
-  o[1] = f.y;
-  o[2] = f.z;
+  r[PW_BRDF_R] = f.x;
+  r[PW_BRDF_G] = f.y;
+  r[PW_BRDF_B] = f.z;
 #ifdef MFV_USER_HAS_D
-  o[3] = D(m, p);
+  r[PW_USER_D] = D(m, p);
 #else
-  o[3] = NAN;
+  r[PW_USER_D] = NAN;
 #endif
 #ifdef MFV_USER_HAS_G1
-  o[4] = G1(wo, m, p);
-  o[5] = G1(wi, m, p);
+  r[PW_USER_G1_WO] = G1(wo, m, p);
+  r[PW_USER_G1_WI] = G1(wi, m, p);
 #else
-  o[4] = o[5] = NAN;
+  r[PW_USER_G1_WO] = r[PW_USER_G1_WI] = NAN;
 #endif
 }

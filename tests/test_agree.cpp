@@ -77,7 +77,7 @@ TEST_CASE("Kernel G1 terms follow seed 000: (v.n) at or above 1 gives 1, at or b
   p.g = &find_term(id);
   p.inputs[1] = c.NoV;
   p.params[1] = id == "smith_phong" ? 30.0f : 0.3f;
-  PointResult r = eval_point(*rt, p, false);
+  PointValue r = eval_point(*rt, p, false);
   CHECK(r.kernel == c.expected);
   CHECK(r.reference == c.expected);
 }

@@ -2,6 +2,8 @@
 
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
+#include "checks/pointwise.hpp"
+#include "checks/pointwise_inputs.hpp"
 #include "reference/brdf.hpp"
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
@@ -23,12 +25,21 @@
 namespace mfv {
 namespace {
 
-// = EvalMode, = AGREE_* in agree.cl; the *Aniso modes take both widths of an
-// anisotropic term (Term::aniso), alpha_y in record slot 14.
-enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kModel = 5, kDAniso = 6, kG1Aniso = 7, kBrdfAniso = 8 };
-constexpr int kRecord = 16;   // floats per record, see kernels/agree.cl
-constexpr int kSlots = 6;     // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
-constexpr int kRangeSlots = 7;  // and a whole model's p[6] (record slot 14; kernels/agree.cl)
+using namespace pw;  // the record's named slots and modes (kernels/abi/pointwise.h)
+
+enum Mode : int {
+  kD = PW_D,
+  kG = PW_G,
+  kF = PW_F,
+  kG1 = PW_G1,
+  kBrdf = PW_BRDF,
+  kModel = PW_MODEL,
+  kDAniso = PW_D_ANISO,
+  kG1Aniso = PW_G1_ANISO,
+  kBrdfAniso = PW_BRDF_ANISO
+};
+constexpr int kRecord = PW_RECORD;  // floats per record
+constexpr int kSlots = 6;           // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
 
 struct Case {
   std::string name;
@@ -39,18 +50,6 @@ struct Case {
   double ulp_budget = 0, abs_floor = 0;
   const Model* model = nullptr;
 };
-
-// Sampling range of one parameter: log-uniform where it spans decades.
-void put_range(std::array<float, 3 * kRangeSlots>& r, int slot, const Param* p) {
-  double lo = p ? p->lo : 0.0, hi = p ? p->hi : 1.0;
-  bool log_scale = hi > 100.0 * std::max(lo, 1e-300);
-  if (log_scale && lo <= 0.0) lo = 1e-3 * std::max(1.0, hi * 1e-6);  // an exponent from 0: sample from ~1
-  r[3 * slot] = static_cast<float>(lo);
-  r[3 * slot + 1] = static_cast<float>(hi);
-  r[3 * slot + 2] = log_scale ? 1.0f : 0.0f;
-}
-
-const Param* param(const Term* t, size_t i) { return t && i < t->params.size() ? &t->params[i] : nullptr; }
 
 std::vector<Case> make_cases(const AgreeOptions& opt) {
   std::vector<Case> cases;
@@ -120,10 +119,9 @@ struct Evaluator {
   const float* r;
   bool fp64 = false;
   double eval(int bump_index, double bump) const {
-    double in[6 + kSlots + 1];
-    for (int k = 0; k < 6; ++k) in[k] = r[k];
-    for (int k = 0; k < kSlots; ++k) in[6 + k] = r[6 + k];
-    in[6 + kSlots] = r[14];  // alpha_y of the anisotropic modes; a whole model's p[6] (in + 6 is its p[0..6])
+    // the record's inputs: the geometry, p[0..5] and PW_ALPHA_Y = PW_P6 (in + PW_P0 is a model's p[0..6])
+    double in[PW_P6 + 1];
+    for (int k = 0; k <= PW_P6; ++k) in[k] = r[k];
     if (aniso() && bump_index >= 0 && bump_index < 13) in[bump_index] *= 1.0 + bump;
     // inputs 0..3 are the cosines; for the BRDF they are derived from wi, wo
     // below and bumped there (index 11..14), so float rounding inside the
@@ -141,18 +139,19 @@ struct Evaluator {
         // degree -4 in h, so at the recorded h they are exactly D(ĥ)/|h|⁴:
         // the reference at the kernel's own inputs, not at the rounding of
         // the half vector (issue 19). |h|⁴ differs from 1 by ~4e-7 in float.
-        const glm::dvec3 h(in[4], in[5], in[2]);
+        const glm::dvec3 h(in[PW_AUX_X], in[PW_AUX_Y], in[PW_NOH]);
         const double len2 = glm::dot(h, h);
-        return c.d->ref_d_aniso(h, in[6], in[12]) / (len2 * len2);
+        return c.d->ref_d_aniso(h, in[PW_PD], in[PW_ALPHA_Y]) / (len2 * len2);
       }
-      case kG1Aniso: return c.g->ref_g1_aniso(glm::dvec3(in[4], in[5], in[1]), in[7], in[12]);
+      case kG1Aniso:
+        return c.g->ref_g1_aniso(glm::dvec3(in[PW_AUX_X], in[PW_AUX_Y], in[PW_NOV]), in[PW_PG], in[PW_ALPHA_Y]);
       case kBrdfAniso: {
         // as kernels/agree.cl and the whole models: the record's directions as
         // they are in float32 (made unit in float64 builds), the half vector
         // formed from them (nearly opposite l and v leave it ill-conditioned)
-        ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
-        s.pd2 = s.pg2 = in[12];
-        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        ref::BrdfSpec s{c.d, c.g, c.f, in[PW_PD], in[PW_PG], in[PW_F0], in[PW_F1], in[PW_KD]};
+        s.pd2 = s.pg2 = in[PW_ALPHA_Y];
+        glm::dvec3 wi(in[PW_WI_X], in[PW_WI_Y], in[PW_WI_Z]), wo(in[PW_WO_X], in[PW_WO_Y], in[PW_WO_Z]);
         if (fp64) wi = unit_exact(wi), wo = unit_exact(wo);
         if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
         const glm::dvec3 sum = wi + wo;
@@ -161,21 +160,21 @@ struct Evaluator {
         return s.kd / M_PI + ref::eval_d(s, sum / len) * c.f->ref_f(sh.VoH, s.f0, s.f1) * ref::eval_g(s, wi, wo, sh) /
                                  (4.0 * sh.NoL * sh.NoV);
       }
-      case kD: return c.d->ref_d(in[2], in[6]);
-      case kG: return c.g->ref_g(in[0], in[1], in[2], in[3], in[7]);
-      case kG1: return c.g->ref_g1(in[1], in[7]);
-      case kF: return c.f->ref_f(in[3], in[8], in[9]);
+      case kD: return c.d->ref_d(in[PW_NOH], in[PW_PD]);
+      case kG: return c.g->ref_g(in[PW_NOL], in[PW_NOV], in[PW_NOH], in[PW_VOH], in[PW_PG]);
+      case kG1: return c.g->ref_g1(in[PW_NOV], in[PW_PG]);
+      case kF: return c.f->ref_f(in[PW_VOH], in[PW_F0], in[PW_F1]);
       case kModel: {
         // as kernels/agree.cl: the float record's directions as they are in
         // float32 (the model's formula then sees the kernel's own inputs, not
         // unit vectors 1e-7 away), made unit in float64 as the kernel does
-        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        glm::dvec3 wi(in[PW_WI_X], in[PW_WI_Y], in[PW_WI_Z]), wo(in[PW_WO_X], in[PW_WO_Y], in[PW_WO_Z]);
         if (fp64) wi = unit_exact(wi), wo = unit_exact(wo);
-        return c.model->ref(wi, wo, in + 6);
+        return c.model->ref(wi, wo, in + PW_P0);
       }
       case kBrdf: {
-        ref::BrdfSpec s{c.d, c.g, c.f, in[6], in[7], in[8], in[9], in[10]};
-        glm::dvec3 wi(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        ref::BrdfSpec s{c.d, c.g, c.f, in[PW_PD], in[PW_PG], in[PW_F0], in[PW_F1], in[PW_KD]};
+        glm::dvec3 wi(in[PW_WI_X], in[PW_WI_Y], in[PW_WI_Z]), wo(in[PW_WO_X], in[PW_WO_Y], in[PW_WO_Z]);
         if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
         ref::Shading sh = ref::shading_from(wi, wo);
         sh.sin2H = -1;  // D from NoH alone, so that bumping NoH (the conditioning allowance) moves it
@@ -193,15 +192,16 @@ struct Evaluator {
 std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string in;
   if (c.mode == kBrdf || c.mode == kModel || c.mode == kBrdfAniso)
-    in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[0], r[1], r[2], r[3], r[4], r[5]);
+    in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z], r[PW_WO_X],
+                     r[PW_WO_Y], r[PW_WO_Z]);
   else
-    in = fmt::format("NoL={:a} NoV={:a} NoH={:a} VoH={:a}", r[0], r[1], r[2], r[3]);
+    in = fmt::format("NoL={:a} NoV={:a} NoH={:a} VoH={:a}", r[PW_NOL], r[PW_NOV], r[PW_NOH], r[PW_VOH]);
   std::string ps;
   const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd", "p5"};
-  for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[6 + s]);
-  if (c.mode == kModel && r[14] != 0.0f) ps += fmt::format(" p6={:a}", r[14]);
+  for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[PW_P0 + s]);
+  if (c.mode == kModel && r[PW_P6] != 0.0f) ps += fmt::format(" p6={:a}", r[PW_P6]);
   if (c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso)
-    ps += fmt::format(" h.x|v.x={:a} h.y|v.y={:a} alpha_y={:a}", r[4], r[5], r[14]);
+    ps += fmt::format(" h.x|v.x={:a} h.y|v.y={:a} alpha_y={:a}", r[PW_AUX_X], r[PW_AUX_Y], r[PW_ALPHA_Y]);
   return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
 }
 
@@ -218,19 +218,13 @@ struct Stats {
 // flushed intermediate that a formula then scales up (that is a real error:
 // kernels/terms_d.cl D_beckmann rescales instead).
 void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool fp64, double ftz_floor, Stats& st) {
-  const double eps = fp64 ? 0x1p-52 : 0x1p-23;
   for (size_t i = begin; i < end; ++i) {
     const float* r = rec + i * kRecord;
-    double k = r[12];
-    if (std::isfinite(k)) k += r[13];
+    double k = record_value(r);
     Evaluator ev{c, r, fp64};
     double ref = ev.eval(-1, 0.0);
-    double diff = std::fabs(k - ref);
-    bool same_nonfinite = (std::isinf(k) && k == ref);
-    if (same_nonfinite) diff = 0;
-    double ulps = diff / ulp_of(ref, fp64);
-    double rel = diff / std::max(std::fabs(ref), std::numeric_limits<double>::min());
-    if (std::isnan(k) || std::isnan(ref)) ulps = rel = std::numeric_limits<double>::infinity();
+    const PointError e = point_error(k, ref, fp64);
+    const double diff = e.diff, ulps = e.ulps, rel = e.rel;
     st.rel.push_back(rel);
     st.max_rel = std::max(st.max_rel, rel);
     st.max_ulps = std::max(st.max_ulps, ulps);
@@ -246,9 +240,8 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
       // a normalisation each: several roundings of the inputs' scale, which
       // a lobe (v·r)^n multiplies by n; their bump is 4 units, not 2.
       const double units = c.mode == kModel ? 4 : 2;
-      double dev = 0;
-      for (int j = 0; j < ev.inputs(); ++j)
-        for (double b : {units * eps, -units * eps}) dev = std::max(dev, std::fabs(ev.eval(j, b) - ref));
+      const double dev =
+          input_sensitivity(ev.inputs(), units, fp64, [&](int j, double b) { return ev.eval(j, b); }, ref);
       fail = diff > std::max(allowed, 2.0 * dev);
     }
     double score = fail ? 1e300 + ulps : ulps;
@@ -260,18 +253,34 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
   }
 }
 
-}  // namespace
-
-double ulp_of(double x, bool fp64) {
-  double a = std::fabs(x);
-  int mant = fp64 ? 52 : 23;
-  double tiny = fp64 ? std::numeric_limits<double>::denorm_min() : std::numeric_limits<float>::denorm_min();
-  if (!std::isfinite(a)) return std::numeric_limits<double>::infinity();
-  if (a < (fp64 ? std::numeric_limits<double>::min() : std::numeric_limits<float>::min())) return tiny;
-  int e;
-  std::frexp(a, &e);  // a = m 2^e, m in [0.5, 1)
-  return std::ldexp(1.0, e - 1 - mant);
+// One thread's statistics added to the case's.
+void merge(Stats& total, const Stats& p) {
+  total.rel.insert(total.rel.end(), p.rel.begin(), p.rel.end());
+  total.max_rel = std::max(total.max_rel, p.max_rel);
+  total.max_ulps = std::max(total.max_ulps, p.max_ulps);
+  total.failures += p.failures;
+  if (p.worst_score > total.worst_score) {
+    total.worst_score = p.worst_score;
+    total.worst = p.worst;
+  }
 }
+
+AgreeResult result_of(const Case& c, Stats& total, uint64_t samples) {
+  AgreeResult r;
+  r.name = c.name;
+  r.samples = samples;
+  r.ulp_budget = c.ulp_budget;
+  r.max_rel = total.max_rel;
+  r.max_ulps = total.max_ulps;
+  r.failures = total.failures;
+  r.worst = total.worst;
+  auto mid = total.rel.begin() + total.rel.size() / 2;
+  std::nth_element(total.rel.begin(), mid, total.rel.end());
+  r.median_rel = *mid;
+  return r;
+}
+
+}  // namespace
 
 namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64);
@@ -292,7 +301,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   const size_t chunk = static_cast<size_t>(std::min<uint64_t>(opt.samples, 1u << 18));
   // read and written: agree_eval evaluates each record from what it stored
   cl::Buffer rec_buf(rt.context(), CL_MEM_READ_WRITE, chunk * kRecord * sizeof(float));
-  cl::Buffer range_buf(rt.context(), CL_MEM_READ_ONLY, 3 * kRangeSlots * sizeof(float));
+  cl::Buffer range_buf(rt.context(), CL_MEM_READ_ONLY, sizeof(DrawRanges));
   std::vector<float> rec(chunk * kRecord);
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   const double ftz_floor = !opt.fp64 && !rt.device().fp32_denorms ? std::numeric_limits<float>::min() : 0.0;
@@ -300,22 +309,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   progress::Task task("agree: cases", cases.size());
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
-    std::array<float, 3 * kRangeSlots> ranges{};
-    put_range(ranges, 0, param(c.d, 0));
-    put_range(ranges, 1, param(c.g, 0));
-    put_range(ranges, 2, param(c.f, 0));
-    put_range(ranges, 3, param(c.f, 1));
-    put_range(ranges, 4, nullptr);  // kd in [0, 1]
-    put_range(ranges, 5, nullptr);
-    put_range(ranges, 6, nullptr);
-    ranges[3 * 6 + 1] = 0.0f;  // p[6]: whole models only
-    ranges[3 * 5 + 1] = 0.0f;  // p5: whole models only
-    if (c.mode != kBrdf && c.mode != kBrdfAniso) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
-    if (c.model)  // a whole model: its own parameters in every slot, 0 past its count
-      for (int k = 0; k < kRangeSlots; ++k) {
-        put_range(ranges, k, size_t(k) < c.model->params.size() ? &c.model->params[size_t(k)] : nullptr);
-        if (size_t(k) >= c.model->params.size()) ranges[3 * k + 1] = 0.0f;
-      }
+    const DrawRanges ranges = draw_ranges(c.d, c.g, c.f, c.model, c.mode == kBrdf || c.mode == kBrdfAniso);
     rt.queue().enqueueWriteBuffer(range_buf, CL_TRUE, 0, sizeof(ranges), ranges.data());
 
     Stats total;
@@ -346,29 +340,9 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       auto t2 = std::chrono::steady_clock::now();
       rep.kernel_seconds += std::chrono::duration<double>(t1 - t0).count();
       rep.reference_seconds += std::chrono::duration<double>(t2 - t1).count();
-      for (auto& p : part) {
-        total.rel.insert(total.rel.end(), p.rel.begin(), p.rel.end());
-        total.max_rel = std::max(total.max_rel, p.max_rel);
-        total.max_ulps = std::max(total.max_ulps, p.max_ulps);
-        total.failures += p.failures;
-        if (p.worst_score > total.worst_score) {
-          total.worst_score = p.worst_score;
-          total.worst = p.worst;
-        }
-      }
+      for (auto& p : part) merge(total, p);
     }
-    AgreeResult r;
-    r.name = c.name;
-    r.samples = opt.samples;
-    r.ulp_budget = c.ulp_budget;
-    r.max_rel = total.max_rel;
-    r.max_ulps = total.max_ulps;
-    r.failures = total.failures;
-    r.worst = total.worst;
-    auto mid = total.rel.begin() + total.rel.size() / 2;
-    std::nth_element(total.rel.begin(), mid, total.rel.end());
-    r.median_rel = *mid;
-    rep.results.push_back(r);
+    rep.results.push_back(result_of(c, total, opt.samples));
     rep.samples += opt.samples;
     task.advance(1);
   }
@@ -379,20 +353,19 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build(catalog_sources({"agree.cl"}), defines, generate_dispatch(TermSelection::all()), kDispatchBefore);
+  return rt.build(catalog_sources({"pointwise.cl", "agree.cl"}), defines, generate_dispatch(TermSelection::all()), kDispatchBefore);
 }
 }  // namespace
 
-PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
+PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   if (fp64 && !rt.device().fp64)
     throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
   cl::Program prog = build_agree_program(rt, fp64);
   cl::Kernel kern(prog, "eval_records");
-  std::array<float, kRecord> rec{};
-  for (int k = 0; k < 6; ++k) rec[k] = p.inputs[k];
-  for (int k = 0; k < kSlots; ++k) rec[6 + k] = p.params[k];
-  rec[14] = p.params[6];  // a whole model's p[6] (kernels/agree.cl)
-  rec[12] = std::numeric_limits<float>::quiet_NaN();  // sentinel
+  FloatRecord rec{};
+  for (int k = 0; k < 6; ++k) rec[size_t(k)] = p.inputs[k];
+  for (int k = 0; k < PW_PARAMS; ++k) rec[size_t(PW_P0 + k)] = p.params[k];
+  rec[PW_VALUE] = std::numeric_limits<float>::quiet_NaN();  // sentinel
   cl::Buffer buf(rt.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(rec), rec.data());
   kern.setArg(0, static_cast<cl_int>(p.mode));
   kern.setArg(1, static_cast<cl_int>(p.model ? int(p.model->number()) : p.d ? term_index(*p.d) : 0));
@@ -402,13 +375,12 @@ PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(1));
   rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, sizeof(rec), rec.data());
   Case c{"point", static_cast<Mode>(p.mode), p.d, p.g, p.f, 0, 0, p.model};
-  PointResult r;
-  r.kernel = rec[12];
-  if (std::isfinite(r.kernel)) r.kernel += rec[13];
+  PointValue r;
+  r.kernel = record_value(rec.data());
   r.reference = Evaluator{c, rec.data(), fp64}.eval(-1, 0.0);
-  double diff = r.kernel == r.reference ? 0.0 : std::fabs(r.kernel - r.reference);
-  r.ulps = diff / ulp_of(r.reference, fp64);
-  r.rel = diff / std::max(std::fabs(r.reference), std::numeric_limits<double>::min());
+  const PointError e = point_error(r.kernel, r.reference, fp64);
+  r.ulps = e.ulps;
+  r.rel = e.rel;
   return r;
 }
 

@@ -2,6 +2,7 @@
 // evaluated by the kernel and by the double reference on identical inputs.
 #pragma once
 
+#include "abi/pointwise.h"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -36,16 +37,26 @@ struct AgreeReport {
 
 AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
 
-// One point evaluated by the kernel and the reference (mfv eval). A record
-// holds the inputs as kernels/agree.cl lays them out: for a BRDF wi.xyz,
-// wo.xyz; for a term NoL, NoV, NoH, VoH; then D param, G param, F p0, F p1, kd.
-// A whole model (Model) takes wi.xyz, wo.xyz and its p[0..6] in params.
+// One point evaluated by the kernel and the reference (mfv eval), through
+// the records of mfv agree (kernels/abi/pointwise.h): for a BRDF or a whole
+// model `inputs` are wi.xyz, wo.xyz; for a term NoL, NoV, NoH, VoH (the
+// anisotropic modes: h.x|v.x, h.y|v.y in [4], [5]); `params` are p[0..6]
+// (D param, G param, F p0, F p1, kd, p5, and p6: a whole model's p[6], the
+// anisotropic modes' alpha_y).
 struct Term;
 struct Model;
-// = AGREE_* of kernels/agree.cl; the *Aniso modes take an anisotropic term's
-// directions (D: h in inputs [4], [5], [2]; G1: v in [4], [5], [1]) and its
-// alpha_y in params[6].
-enum class EvalMode { D = 0, G = 1, F = 2, G1 = 3, Brdf = 4, Model = 5, DAniso = 6, G1Aniso = 7, BrdfAniso = 8 };
+// = PW_* of kernels/abi/pointwise.h
+enum class EvalMode {
+  D = pw::PW_D,
+  G = pw::PW_G,
+  F = pw::PW_F,
+  G1 = pw::PW_G1,
+  Brdf = pw::PW_BRDF,
+  Model = pw::PW_MODEL,
+  DAniso = pw::PW_D_ANISO,
+  G1Aniso = pw::PW_G1_ANISO,
+  BrdfAniso = pw::PW_BRDF_ANISO
+};
 struct PointSpec {
   EvalMode mode = EvalMode::Brdf;
   const Term* d = nullptr;
@@ -53,14 +64,13 @@ struct PointSpec {
   const Term* f = nullptr;
   const Model* model = nullptr;
   float inputs[6] = {0, 0, 1, 0, 0, 1};
-  float params[7] = {0, 0, 0, 0, 0, 0, 0};  // [6]: a whole model's p[6] (record slot 14)
+  float params[pw::PW_PARAMS] = {0, 0, 0, 0, 0, 0, 0};
 };
-struct PointResult {
+// The kernel's and the reference's value at one point (not the suite's
+// PointResult, checks/suite.hpp, which is one integral's verdict).
+struct PointValue {
   double kernel = 0, reference = 0, rel = 0, ulps = 0;
 };
-PointResult eval_point(Runtime& rt, const PointSpec& p, bool fp64);
-
-// ULP of a float (or double) at |x|: the spacing of the format just above |x|.
-double ulp_of(double x, bool fp64);
+PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64);
 
 }  // namespace mfv

@@ -9,8 +9,6 @@
 
 #include "runtime/opencl.hpp"
 
-#include <glm/vec3.hpp>
-
 #include <array>
 #include <cstdint>
 #include <string>
@@ -88,34 +86,5 @@ inline constexpr double kBreakUlps = 4096;
 inline constexpr double kGOvershoot = 6.1e-5;
 
 StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt);
-
-// The sweep's inputs, shared with mfv check's finiteness census (host/user/).
-// Cosine classes: grazing (down to 2^-149), mid, normal, tan_zero, above_one
-// (dot products that rounded above 1), below_horizon.
-struct CosClass {
-  std::string name, what;
-  std::vector<double> values;
-  bool in_domain = true;
-};
-std::vector<CosClass> cos_classes(bool fp64);
-// Direction pairs (wi = light, wo = view, n = +z): mirror, near_mirror,
-// grazing, normal, mid, opposite (h ~ 0/0), below_horizon, non_unit.
-struct Pair {
-  glm::dvec3 wi, wo;
-};
-struct PairSet {
-  std::string name, what, expect;
-  std::vector<Pair> pairs;
-};
-std::vector<PairSet> pair_sets(bool fp64);
-
-// Outputs (host/checks/stability_report.cpp).
-std::string stability_console(const StabilityReport& rep);
-std::string stability_json(const StabilityReport& rep);
-std::string stability_markdown(const StabilityReport& rep);
-// Writes stability.json, stability.md and the plot data under dir (whole or
-// not at all), then the plots when gnuplot is found; returns one line per
-// note to print (e.g. that gnuplot is missing).
-std::vector<std::string> write_stability_outputs(const StabilityReport& rep, const std::string& dir);
 
 }  // namespace mfv

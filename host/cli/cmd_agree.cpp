@@ -1,6 +1,7 @@
 // mfv agree: kernel vs reference on identical inputs, every term and BRDF.
 #include "checks/agree.hpp"
 #include "cli/commands.hpp"
+#include "report/agree_report.hpp"
 
 #include <fmt/format.h>
 
@@ -20,29 +21,10 @@ void add_agree(CLI::App& app, Globals& g, int& rc) {
     opt.combinations = !terms_only;
     Runtime rt(g.device, g.kernel_dir);
     AgreeReport rep = run_agree(rt, opt);
-    fmt::print("device: {} ({}), {}; kernels in {}\n", rt.device().name, rt.device().platform, rt.device().driver,
-               opt.fp64 ? "float64" : "float32");
-    int failed = 0;
-    fmt::print("{:<44} {:>10} {:>10} {:>10} {:>7} {:>9}  {}\n", "case", "max rel", "median rel", "max ulps",
-               "budget", "failures", "verdict");
-    bool conditioned = false;
-    for (auto& r : rep.results) {
-      // above the budget yet passing: every such input was within its conditioning (below)
-      const bool by_conditioning = r.pass() && r.max_ulps > r.ulp_budget;
-      conditioned = conditioned || by_conditioning;
-      fmt::print("{:<44} {:>10.3g} {:>10.3g} {:>10.3g} {:>7g} {:>9}  {}\n", r.name, r.max_rel, r.median_rel,
-                 r.max_ulps, r.ulp_budget, r.failures, r.pass() ? (by_conditioning ? "pass*" : "pass") : "FAIL");
-      if (!r.pass()) {
-        fmt::print("    worst: {}\n", r.worst);
-        ++failed;
-      }
-    }
-    if (conditioned)
-      fmt::print("* max ulps above the budget, yet no failure: an input also passes when its error is within twice "
-                 "what the exact function moves when any one input moves by two units of rounding (an "
-                 "ill-conditioned input, e.g. near a zero of the function, cannot be computed closer)\n");
-    fmt::print("{} cases, {} inputs; build {:.2f} s, kernel {:.2f} s, reference {:.2f} s; {} failed\n",
-               rep.results.size(), rep.samples, rep.build_seconds, rep.kernel_seconds, rep.reference_seconds, failed);
+    fmt::print("{}", agree_console(rep, fmt::format("device: {} ({}), {}; kernels in {}", rt.device().name,
+                                                     rt.device().platform, rt.device().driver,
+                                                     opt.fp64 ? "float64" : "float32")));
+    const int failed = agree_failures(rep);
     rc = failed ? 1 : 0;
   });
 }

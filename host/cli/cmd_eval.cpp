@@ -212,7 +212,7 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
       if (!given.used.count(name)) throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, spec));
 
     Runtime rt(g.device, g.kernel_dir);
-    PointResult r = eval_point(rt, ps, fp64);
+    PointValue r = eval_point(rt, ps, fp64);
     fmt::print("kernel    {:.9g}  ({:a})  on {}, {}\n", r.kernel, r.kernel, rt.device().name, fp64 ? "float64" : "float32");
     fmt::print("reference {:.17g}  ({:a})  double\n", r.reference, r.reference);
     fmt::print("relative error {:.3g}, {:.3g} ulps\n", r.rel, r.ulps);

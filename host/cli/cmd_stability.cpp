@@ -2,6 +2,7 @@
 // breaks on stiff and extreme inputs (issue 6); exit 1 when a term the
 // catalog marks stable gives NaN or Inf on in-domain inputs.
 #include "checks/stability.hpp"
+#include "report/stability_report.hpp"
 #include "cli/commands.hpp"
 #include "report/files.hpp"
 #include "runtime/error.hpp"

@@ -2,6 +2,7 @@
 
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
+#include "runtime/kernel_includes.hpp"
 #include "runtime/provenance.hpp"
 #include "util/parse.hpp"
 #include "runtime/work_group.hpp"
@@ -175,58 +176,32 @@ std::string Runtime::kernel_text(const std::string& file) const {
   throw Error(fmt::format("internal: no embedded kernel named {}", file));
 }
 
-// Each `#include "abi/NAME"` line of a kernel file is replaced by kernels/abi/NAME
-// (once per program, with #line on both sides): a program built from a string
-// has no include path on every implementation, and --kernel-dir must read the
-// headers from the same folder as the files. `text` starts with #line 1 "LABEL".
-std::string Runtime::expand_includes(const std::string& text, std::set<std::string>& included) const {
-  const size_t first_end = text.find('\n');
-  const std::string first = text.substr(0, first_end);
-  const std::string label = first.rfind("#line 1 ", 0) == 0 ? first.substr(8) : "\"<kernel>\"";
-  std::string out;
-  std::istringstream lines(text);
-  size_t number = 0;  // the #line 1 line is line 0 of the file
-  for (std::string line; std::getline(lines, line); ++number) {
-    const size_t at = line.find_first_not_of(" \t");
-    const std::string prefix = "#include \"abi/";
-    if (at == std::string::npos || line.compare(at, prefix.size(), prefix) != 0) {
-      out += line + "\n";
-      continue;
-    }
-    const size_t open = line.find('"', at), close = line.find('"', open + 1);
-    if (close == std::string::npos) throw Error(fmt::format("malformed include in kernel source: {}", line));
-    const std::string name = line.substr(open + 1, close - open - 1);
-    if (included.insert(name).second) {
-      const std::string header = kernel_text(name);
-      record_kernel_source(name, header.substr(header.find('\n') + 1));
-      out += expand_includes(header, included) + "\n";
-    }
-    out += fmt::format("#line {} {}\n", number + 1, label);
-  }
-  return out;
-}
-
 cl::Program Runtime::build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
                            const std::string& generated, const std::string& insert_before,
                            const std::vector<ExtraSource>& extra) {
   std::vector<ExtraSource> inserts = extra;
   if (!generated.empty()) inserts.insert(inserts.begin(), {"<generated>", generated, insert_before});
   std::vector<bool> done(inserts.size(), false);
-  std::set<std::string> included;  // kernels/abi/ headers already in the program
   std::string source;
+  // Each file, and each file it includes (kernels/abi/), recorded once with
+  // its hash, without the #line mfv puts first.
+  std::set<std::string> seen;
+  auto load = [&](const std::string& f) {
+    std::string text = kernel_text(f);
+    record_kernel_source(f, text.substr(text.find('\n') + 1));
+    return text;
+  };
   auto insert = [&](const std::string& before) {
     for (size_t i = 0; i < inserts.size(); ++i)
       if (!done[i] && (inserts[i].before == before || before.empty())) {
-        source += expand_includes("#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text, included) + "\n";
+        source += expand_kernel_includes("#line 1 \"" + inserts[i].name + "\"\n" + inserts[i].text, load, seen) + "\n";
         if (inserts[i].name != "<generated>") record_kernel_source(inserts[i].name, inserts[i].text);
         done[i] = true;
       }
   };
   for (auto& f : files) {
     insert(f);
-    std::string text = kernel_text(f);
-    record_kernel_source(f, text.substr(text.find('\n') + 1));  // the file, without the #line mfv puts first
-    source += expand_includes(text, included);
+    source += expand_kernel_includes(load(f), load, seen);
     source += "\n";
   }
   insert("");  // those whose file is not in the list, or that asked for the end

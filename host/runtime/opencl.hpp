@@ -69,7 +69,6 @@ class Runtime {
 
  private:
   std::string kernel_text(const std::string& file) const;
-  std::string expand_includes(const std::string& text, std::set<std::string>& included) const;
 
   DeviceInfo info_;
   std::string kernel_dir_;

@@ -3,6 +3,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
+#include "user/user_detail.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
@@ -33,9 +34,7 @@ SuiteOptions suite_options_of(const UserCheckOptions& o) {
 
 namespace {
 
-using Values = std::vector<double>;  // one value per user parameter
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using namespace user_detail;
 
 // ---- the program -------------------------------------------------------------
 
@@ -69,6 +68,10 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
     throw Error(fmt::format("{} ({} error{}; the build log follows)\n{}", first, errors, errors == 1 ? "" : "s", log));
   }
 }
+
+}  // namespace
+
+namespace user_detail {
 
 // ---- parameter grids ---------------------------------------------------------
 
@@ -144,7 +147,11 @@ PointResult point_of(const UserBrdf& u, const std::string& check, const Values& 
   return p;
 }
 
-const char* kChannel = "rgb";
+}  // namespace user_detail
+
+namespace {
+
+using namespace user_detail;
 
 // ---- integrals -----------------------------------------------------------------
 
@@ -194,129 +201,6 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
   return plans;
 }
 
-// Census and agreement inputs for kernels/user_brdf.cl user_eval.
-constexpr int kIn = 16, kOut = 6;
-struct Record {
-  glm::dvec3 wi, wo, m;
-  bool has_m = false;  // m is a half vector or a normal the D and G1 census may use
-  std::string region;
-  size_t setting = 0;  // index of its parameter values
-};
-
-std::vector<float> eval_records(Runtime& rt, const cl::Program& prog, const std::vector<Record>& recs,
-                                const std::vector<Values>& settings) {
-  std::vector<float> in(recs.size() * kIn, 0.0f), out(recs.size() * kOut);
-  if (recs.empty()) return out;
-  for (size_t i = 0; i < recs.size(); ++i) {
-    float* r = &in[i * kIn];
-    const Record& x = recs[i];
-    double v[9] = {x.wi.x, x.wi.y, x.wi.z, x.wo.x, x.wo.y, x.wo.z, x.m.x, x.m.y, x.m.z};
-    for (int k = 0; k < 9; ++k) r[k] = float(v[k]);
-    const Values& s = settings[x.setting];
-    for (size_t k = 0; k < s.size(); ++k) r[9 + k] = float(s[k]);
-  }
-  cl::Kernel k(prog, "user_eval");
-  cl::Buffer ib(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, in.size() * sizeof(float), in.data());
-  cl::Buffer ob(rt.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(float));
-  k.setArg(0, ib);
-  k.setArg(1, ob);
-  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(recs.size()));
-  rt.queue().enqueueReadBuffer(ob, CL_TRUE, 0, out.size() * sizeof(float), out.data());
-  return out;
-}
-
-glm::dvec3 as_float(const glm::dvec3& v) { return glm::dvec3(float(v.x), float(v.y), float(v.z)); }
-std::string vec_text(const glm::dvec3& v) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", float(v.x), float(v.y), float(v.z)); }
-
-// The half vector in double, where both directions are above the horizon and it exists.
-bool half_vector(const glm::dvec3& wi, const glm::dvec3& wo, glm::dvec3& h) {
-  glm::dvec3 s = wi + wo;
-  double len = glm::length(s);
-  if (!(wi.z > 0 && wo.z > 0 && len > 0)) return false;
-  h = s / len;
-  return true;
-}
-
-// ---- the NaN/Inf census over the stability sweep's extremes -----------------
-
-void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep) {
-  auto t0 = Clock::now();
-  // Widths from the sweep's extremes (alpha 1e-7 .. 2), the range ends, every other parameter at its ends.
-  std::vector<Values> settings;
-  for (auto& r : roughness_grid(u, {1e-7, 1e-4, 1e-2, 0.3, 1.0, 2.0}, 64)) {
-    auto c = corners(u, r);
-    settings.insert(settings.end(), c.begin(), c.end());
-  }
-  if (u.roughness >= 0 && !u.params[size_t(u.roughness)].fixed)
-    for (double end : {u.params[size_t(u.roughness)].lo, u.params[size_t(u.roughness)].hi}) {
-      Values b = u.defaults();
-      b[size_t(u.roughness)] = end;
-      auto c = corners(u, b);
-      settings.insert(settings.end(), c.begin(), c.end());
-    }
-  std::vector<Record> base;
-  for (auto& ps : pair_sets(false))
-    for (auto& pr : ps.pairs) {
-      Record r{pr.wi, pr.wo, {0, 0, 1}, false, ps.name, 0};
-      r.has_m = half_vector(as_float(pr.wi), as_float(pr.wo), r.m);
-      base.push_back(r);
-    }
-  // D and G1 at every cosine class: m at that angle (and v = m), and m = n.
-  for (auto& cc : cos_classes(false))
-    for (double c : cc.values) {
-      double s = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c)));
-      glm::dvec3 d(s * std::cos(0.3), s * std::sin(0.3), c);
-      base.push_back({d, d, d, true, "cos_" + cc.name, 0});
-      base.push_back({d, d, {0, 0, 1}, true, "cos_" + cc.name, 0});
-    }
-  std::vector<Record> recs;
-  for (size_t s = 0; s < settings.size(); ++s)
-    for (auto r : base) {
-      r.setting = s;
-      recs.push_back(r);
-    }
-  std::vector<float> out = eval_records(rt, prog, recs, settings);
-
-  // One point per function and region: the count of NaN, Inf and negative values.
-  struct Tally {
-    uint64_t evaluated = 0, bad = 0;
-    std::string first;
-  };
-  std::map<std::pair<std::string, std::string>, Tally> tally;
-  for (size_t i = 0; i < recs.size(); ++i) {
-    const Record& r = recs[i];
-    auto count = [&](const std::string& fn, float value, const std::string& call) {
-      Tally& t = tally[{fn, r.region}];
-      t.evaluated++;
-      if (std::isfinite(value) && value >= 0) return;
-      if (t.bad++ == 0)
-        t.first = fmt::format("first {} = {:.9g} at {}", call, value, named_text(u, settings[r.setting]));
-    };
-    for (int ch : opt.channels)
-      count("brdf", out[i * kOut + size_t(ch)],
-            fmt::format("brdf(wi={}, wo={}).{}", vec_text(r.wi), vec_text(r.wo), kChannel[ch]));
-    if (!r.has_m) continue;
-    if (u.has_d) count("D", out[i * kOut + 3], fmt::format("D(m={})", vec_text(r.m)));
-    if (u.has_g1) {
-      count("G1", out[i * kOut + 4], fmt::format("G1(v={}, m={})", vec_text(r.wo), vec_text(r.m)));
-      count("G1", out[i * kOut + 5], fmt::format("G1(v={}, m={})", vec_text(r.wi), vec_text(r.m)));
-    }
-  }
-  for (auto& [key, t] : tally) {
-    PointResult p = point_of(u, "finite", {});
-    p.params.clear();
-    p.bounded = true;
-    p.bound = 0;
-    p.estimate = double(t.bad);
-    p.samples = t.evaluated;
-    p.measure = "NaN/Inf/negative values";
-    p.detail = fmt::format("{} in region {} ({} evaluated){}{}", key.first, key.second, t.evaluated,
-                           t.first.empty() ? "" : ", ", t.first);
-    rep.points.push_back(p);
-  }
-  rep.stats.push_back({"finite", tally.size(), recs.size(), since(t0)});
-}
-
 // ---- reciprocity -------------------------------------------------------------
 
 void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOptions& opt,
@@ -333,97 +217,6 @@ void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOpti
         pts.push_back(p);
       }
   record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
-}
-
-// ---- pointwise agreement with a claimed model --------------------------------
-
-// The cosines of a pair taken as given, not made unit (above the horizon).
-ref::Shading raw_shading(const glm::dvec3& wi, const glm::dvec3& wo) {
-  double len = glm::length(wi + wo);
-  return {wi.z, wo.z, (wi.z + wo.z) / len, std::min(0.5 * len, 1.0)};
-}
-
-void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const Claim& claim,
-                   const UserCheckOptions& opt, SuiteReport& rep) {
-  auto t0 = Clock::now();
-  std::vector<Values> settings;
-  for (auto& r : roughness_grid(u, suite_alphas(), 6)) {
-    auto c = corners(u, r);
-    settings.insert(settings.end(), c.begin(), c.end());
-  }
-  std::vector<ref::BrdfSpec> refs;
-  for (auto& v : settings) refs.push_back(claim.at(v));  // throws when a mapped value leaves its term's range
-  // Per setting: half the pairs uniform over the hemisphere, half around the
-  // specular peak (wo reflected about an m of Cauchy slopes of the width).
-  constexpr uint32_t kPairs = 2048;
-  std::vector<Record> recs;
-  for (size_t s = 0; s < settings.size(); ++s) {
-    double w = u.width(settings[s]) > 0 ? u.width(settings[s]) : 0.3;
-    for (uint32_t k = 0; k < kPairs; ++k) {
-      auto r = philox(opt.seed, uint32_t(s), 7, k);
-      auto dir = [](double c, double phi) {
-        double st = std::sqrt(std::max(0.0, 1.0 - c * c));
-        return glm::dvec3(st * std::cos(phi), st * std::sin(phi), c);
-      };
-      glm::dvec3 wo = dir(u01_open(r[0]), 2 * M_PI * u01_open(r[1]));
-      glm::dvec3 wi = dir(u01_open(r[2]), 2 * M_PI * u01_open(r[3]));
-      if (k % 2) {
-        double t = w * std::sqrt(1.0 / ((1.0 - u01_open(r[2])) * (1.0 - u01_open(r[2]))) - 1.0);
-        glm::dvec3 m = glm::normalize(glm::dvec3(t * std::cos(2 * M_PI * u01_open(r[3])), t * std::sin(2 * M_PI * u01_open(r[3])), 1.0));
-        glm::dvec3 refl = 2.0 * glm::dot(wo, m) * m - wo;
-        if (refl.z > 1e-4) wi = refl;
-      }
-      Record rec{as_float(wi), as_float(wo), {0, 0, 1}, false, "", s};
-      rec.has_m = half_vector(rec.wi, rec.wo, rec.m);
-      recs.push_back(rec);
-    }
-  }
-  std::vector<float> out = eval_records(rt, prog, recs, settings);
-  const double eps = 0x1p-23;
-  for (size_t s = 0; s < settings.size(); ++s)
-    for (int ch : opt.channels) {
-      PointResult p = point_of(u, "agree", settings[s]);
-      p.params["channel"] = ch;
-      p.bounded = true;
-      p.bound = kAgreeBound;
-      p.measure = "max relative error vs " + claim.spec;
-      p.samples = kPairs;
-      double rmax = 0;
-      std::vector<double> refv(kPairs);
-      for (uint32_t k = 0; k < kPairs; ++k) {
-        const Record& r = recs[s * kPairs + k];
-        refv[k] = ref::brdf(refs[s], r.wi, r.wo);
-        rmax = std::max(rmax, std::fabs(refv[k]));
-      }
-      double worst = -1;
-      for (uint32_t k = 0; k < kPairs; ++k) {
-        const Record& r = recs[s * kPairs + k];
-        double uv = out[(s * kPairs + k) * kOut + size_t(ch)], rv = refv[k];
-        // What the model itself moves when one direction component moves by
-        // one float rounding: no float code can be closer than that.
-        // The reference makes float directions unit in double first; code
-        // that takes them as they are (|w| = 1 +- 1e-7) sees a half vector
-        // that moves by that much over |wi + wo|, a lot for nearly opposite
-        // directions: the model on the raw vectors bounds that too.
-        double dev = std::fabs(ref::brdf(refs[s], raw_shading(r.wi, r.wo)) - rv);
-        for (int c = 0; c < 6; ++c)
-          for (double b : {eps, -eps}) {
-            glm::dvec3 wi = r.wi, wo = r.wo;
-            (c < 3 ? wi : wo)[c % 3] *= 1.0 + b;
-            dev = std::max(dev, std::fabs(ref::brdf(refs[s], wi, wo) - rv));
-          }
-        double err = std::isfinite(uv) ? std::max(0.0, std::fabs(uv - rv) - 2 * dev) / std::max({std::fabs(rv), 1e-6 * rmax, 1e-30})
-                                       : std::numeric_limits<double>::infinity();
-        if (err > worst) {
-          worst = err;
-          p.detail = fmt::format("brdf(wi={}, wo={}).{} = {:.9g}, {} gives {:.9g}", vec_text(r.wi), vec_text(r.wo),
-                                 kChannel[ch], uv, claim.spec, rv);
-        }
-      }
-      p.estimate = worst;
-      rep.points.push_back(p);
-    }
-  rep.stats.push_back({"agree", settings.size() * opt.channels.size(), recs.size(), since(t0)});
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Outputs of mfv stability: console table, JSON (schema mfv-stability/1),
 // Markdown, and gnuplot plots of error over θ and α. Files are written whole
 // or not at all (docs/design.md §7).
-#include "checks/stability.hpp"
+#include "report/stability_report.hpp"
 #include "mfv_git_commit.h"
 
 #include "report/files.hpp"

@@ -1,0 +1,39 @@
+// mfv check's internals shared by host/user/user_check.cpp (the integrals,
+// reciprocity and the run) and host/user/user_pointwise.cpp (the census and
+// the agreement, on the pointwise records of kernels/abi/pointwise.h).
+#pragma once
+
+#include "checks/suite.hpp"
+#include "user/claim.hpp"
+#include "user/user_brdf.hpp"
+#include "user/user_check.hpp"
+
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mfv::user_detail {
+
+using Values = std::vector<double>;  // one value per user parameter
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The roughness values whose widths are `alphas` and lie in the declared
+// range (evenly thinned to at most `most`); the defaults alone without a
+// roughness or with a fixed one.
+std::vector<Values> roughness_grid(const UserBrdf& u, const std::vector<double>& alphas, size_t most);
+// Every other parameter at each end of its range (a product of corners).
+std::vector<Values> corners(const UserBrdf& u, const Values& base);
+std::map<std::string, double> named(const UserBrdf& u, const Values& v);
+std::string named_text(const UserBrdf& u, const Values& v);
+IntegralSpec spec_of(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel);
+PointResult point_of(const UserBrdf& u, const std::string& check, const Values& v);
+
+// The NaN/Inf census over the stability sweep's extremes (check 'finite').
+void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep);
+// Pointwise agreement with a claimed catalog model (check 'agree').
+void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const Claim& claim,
+                   const UserCheckOptions& opt, SuiteReport& rep);
+
+}  // namespace mfv::user_detail
