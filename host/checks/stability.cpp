@@ -8,6 +8,7 @@
 #include "reference/reference.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "util/math_constants.hpp"
 #include "runtime/work_group.hpp"
 #include "util/progress.hpp"
 
@@ -41,7 +42,6 @@ namespace {
 
 enum Mode { kD = 0, kG = 1, kF = 2, kG1 = 3, kBrdf = 4, kVariant = 5, kModel = 6 };  // = STAB_* in stability.cl
 constexpr int kIn = 13;                                                  // = STAB_IN
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 using In = std::array<double, kIn>;

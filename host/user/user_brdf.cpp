@@ -1,5 +1,6 @@
 #include "user/user_brdf.hpp"
 
+#include "catalog/roughness.hpp"
 #include "runtime/error.hpp"
 #include "util/parse.hpp"
 
@@ -22,7 +23,7 @@ std::vector<double> UserParam::ends() const {
 double UserBrdf::width(const std::vector<double>& values) const {
   if (roughness < 0) return 0.0;  // no declared roughness: the estimators' mixture of widths
   double v = values[size_t(roughness)];
-  return params[size_t(roughness)].role == WidthRole::Perceptual ? v * v : v;
+  return params[size_t(roughness)].role == WidthRole::Perceptual ? alpha_from_perceptual(v) : v;
 }
 
 std::vector<double> UserBrdf::defaults() const {
