@@ -10,7 +10,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv agree's command-line values, owned by the command: its callback holds them.
+// mfv agree's command-line values, bound to its options (Globals::command_values keeps them).
 struct AgreeCommandOptions {
   AgreeOptions opt;
   bool terms_only = false;
@@ -21,7 +21,8 @@ struct AgreeCommandOptions {
 void add_agree(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("agree", "evaluate every term and D x G x F BRDF on the device and in the "
                                           "double reference on identical inputs; fail beyond the ULP table");
-  auto values = std::make_shared<AgreeCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<AgreeCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--samples", values->opt.samples, "inputs per term or combination")->check(CLI::Range(1ull, 1ull << 40));
   cmd->add_option("--seed", values->opt.seed, "Philox key");
   cmd->add_flag("--fp64", values->opt.fp64, "run the kernels in double (device needs cl_khr_fp64)");

@@ -27,16 +27,17 @@ void add_devices(CLI::App& app, Globals&, int& rc) {
 
 namespace {
 
-// mfv list's command-line values, owned by the command: its callback holds them.
+// mfv list's command-line values, bound to its options (Globals::command_values keeps them).
 struct ListCommandOptions {
   bool json = false;
 };
 
 }  // namespace
 
-void add_list(CLI::App& app, Globals&, int& rc) {
+void add_list(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
-  auto values = std::make_shared<ListCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<ListCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_flag("--json", values->json, "machine-readable output");
   cmd->callback([&rc, values] {
     if (values->json) {

@@ -12,7 +12,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv bench's command-line values, owned by the command: its callback holds them.
+// mfv bench's command-line values, bound to its options (Globals::command_values keeps them).
 struct BenchCommandOptions {
   BenchOptions opt;
   std::string out_dir;
@@ -25,7 +25,8 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("bench", "throughput of d_norm, albedo (GGX + smith_ggx_correlated + Schlick) and "
                                           "reciprocity on every OpenCL device (or --device) and the double reference "
                                           "with 1 and all threads; medians, ratios, flops/sample");
-  auto values = std::make_shared<BenchCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<BenchCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--integrals", values->opt.integrals, "integrals per launch and per reference pass (default 64)");
   cmd->add_option("--samples", values->opt.samples, "samples per integral on a device (default 65536)");
   cmd->add_option("--ref-samples", values->opt.ref_samples, "samples per integral in the reference (default 4096)");

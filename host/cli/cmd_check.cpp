@@ -23,7 +23,7 @@ constexpr double kDefaultCheckTimeout = 600, kMaxCheckTimeout = 7 * 86400;
 
 namespace {
 
-// mfv check's command-line values, owned by the command: its callback holds them.
+// mfv check's command-line values, bound to its options (Globals::command_values keeps them).
 struct CheckCommandOptions {
   std::string path;
   std::string as;
@@ -41,7 +41,8 @@ struct CheckCommandOptions {
 void add_check(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("check", "check your own BRDF code (an OpenCL C file) with the suite's checks; exit 0 "
                                           "when every check passes, 1 when one fails, 2 on bad input");
-  auto values = std::make_shared<CheckCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<CheckCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--brdf", values->path, "OpenCL C file defining float3 brdf(float3 wi, float3 wo, const float* params) "
                                   "(optional D and G1)")
       ->required();

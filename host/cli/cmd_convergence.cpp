@@ -12,7 +12,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv convergence's command-line values, owned by the command: its callback holds them.
+// mfv convergence's command-line values, bound to its options (Globals::command_values keeps them).
 struct ConvergenceCommandOptions {
   ConvergenceOptions opt;
   std::vector<std::string> cases;
@@ -27,7 +27,8 @@ void add_convergence(CLI::App& app, Globals& g, int& rc) {
                                                 "and albedo (uniform, cosine, mis, dsample, vndf, rqmc, quadrature) "
                                                 "on the OpenCL device and in the reference: slopes, time to "
                                                 "tolerance, log-log plots");
-  auto values = std::make_shared<ConvergenceCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<ConvergenceCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--check", values->opt.checks, "d_norm, albedo, furnace (albedo with F = 1) (default: d_norm albedo)");
   cmd->add_option("--estimator", values->opt.estimators, "uniform, cosine, mis, dsample, vndf, rqmc, quadrature (default: all; "
                                                  "dsample and vndf are albedo only)");

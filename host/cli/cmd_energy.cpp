@@ -34,7 +34,7 @@ std::string written_list(const std::vector<std::pair<std::string, std::string>>&
 
 namespace {
 
-// mfv energy's command-line values, owned by the command: its callback holds them.
+// mfv energy's command-line values, bound to its options (Globals::command_values keeps them).
 struct EnergyCommandOptions {
   EnergyOptions opt;
   std::string out_dir;
@@ -50,7 +50,8 @@ void add_energy(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("energy", "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
                                            "D x G (F = none), and E(mu), E_avg of every whole model at its catalog "
                                            "cases: CSV, JSON, C header, report with plots");
-  auto values = std::make_shared<EnergyCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<EnergyCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--models", values->opt.models, "only D/G combinations (d/g) and whole-model cases (model[case]) whose name "
                                           "contains one of these, e.g. ggx/ or '[' for the whole models "
                                           "(default: every D x G and every whole-model case)");

@@ -107,7 +107,7 @@ void single_term(PointSpec& ps, const Term& t, bool g1, const EvalArgs& a) {
 
 namespace {
 
-// mfv eval's command-line values, owned by the command: its callback holds them.
+// mfv eval's command-line values, bound to its options (Globals::command_values keeps them).
 struct EvalCommandOptions {
   std::string spec;
   std::string wi_s = "0,0,1";
@@ -129,7 +129,8 @@ struct EvalCommandOptions {
 void add_eval(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("eval", "evaluate one term or one D/G/F BRDF at one point on the device and in "
                                          "the reference");
-  auto values = std::make_shared<EvalCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<EvalCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("spec", values->spec, "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
                                 "a whole model (lambert, eon, phong_004...)")
       ->required();

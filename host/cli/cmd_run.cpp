@@ -18,7 +18,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv run's command-line values, owned by the command: its callback holds them.
+// mfv run's command-line values, bound to its options (Globals::command_values keeps them).
 struct RunCommandOptions {
   SuiteOptions opt;
   std::string out_dir;
@@ -34,7 +34,8 @@ struct RunCommandOptions {
 void add_run(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("run", "run the conformance suite over the catalog; exit 0 exactly when every "
                                         "verdict matches expectation");
-  auto values = std::make_shared<RunCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<RunCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--seed", values->opt.seed, "Philox key");
   cmd->add_option("--scale", values->opt.scale, "multiply every check's samples (budget); 1 = about a minute on 2 cores");
   auto* samples_opt = cmd->add_option("--samples", values->samples,

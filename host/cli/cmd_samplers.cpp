@@ -13,7 +13,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv samplers's command-line values, owned by the command: its callback holds them.
+// mfv samplers's command-line values, bound to its options (Globals::command_values keeps them).
 struct SamplersCommandOptions {
   SamplersOptions opt;
   std::string out_dir;
@@ -27,7 +27,8 @@ struct SamplersCommandOptions {
 void add_samplers(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("samplers", "verify the sampling routines: pdf integrates to 1, chi-square "
                                              "histogram test (Sidak-corrected), device and reference draws");
-  auto values = std::make_shared<SamplersCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<SamplersCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--samples", values->opt.samples, "draws per test (default 2^20)");
   cmd->add_option("--seed", values->opt.seed, "Philox key");
   cmd->add_option("--significance", values->opt.significance, "family-wise false-alarm rate (default 0.01)");

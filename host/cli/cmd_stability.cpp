@@ -16,7 +16,7 @@ namespace mfv::cli {
 
 namespace {
 
-// mfv stability's command-line values, owned by the command: its callback holds them.
+// mfv stability's command-line values, bound to its options (Globals::command_values keeps them).
 struct StabilityCommandOptions {
   StabilityOptions opt;
   std::string out;
@@ -29,7 +29,8 @@ struct StabilityCommandOptions {
 void add_stability(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("stability", "sweep every term, Smith G1, D x G x F BRDF, whole model and alternative "
                                               "form over extreme inputs; report NaN/Inf/negative and error per region");
-  auto values = std::make_shared<StabilityCommandOptions>();  // the command's values, held by its callback
+  auto values = std::make_shared<StabilityCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
   cmd->add_option("--out", values->out, "write stability.json, stability.md and plots (gnuplot) into this folder");
   cmd->add_flag("--fp64", values->opt.fp64, "run the kernels in double (device needs cl_khr_fp64)");
   cmd->add_flag("--terms-only", values->terms_only, "skip the D x G x F combinations and the whole models");
