@@ -19,21 +19,22 @@ if(MFV_SANITIZE)
        ${CMAKE_SOURCE_DIR}/host/catalog/*.cpp ${CMAKE_SOURCE_DIR}/host/reference/*.cpp
        ${CMAKE_SOURCE_DIR}/host/numeric/*.cpp ${CMAKE_SOURCE_DIR}/host/util/*.cpp ${CMAKE_SOURCE_DIR}/host/scene/*.cpp)
   list(FILTER MFV_HOST_ONLY_SOURCES EXCLUDE REGEX ".*/host/scene/scene_(checks|report|filters)\\.cpp$")
-  list(APPEND MFV_HOST_ONLY_SOURCES ${CMAKE_SOURCE_DIR}/host/report/files.cpp ${CMAKE_SOURCE_DIR}/host/report/temp_files.cpp)
   set(MFV_SANITIZE_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_library(mfv_host STATIC ${MFV_HOST_ONLY_SOURCES})
-  # mfv_core's include folders, definitions and libraries, without OpenCL
-  get_target_property(core_includes mfv_core INCLUDE_DIRECTORIES)
-  get_target_property(core_defines mfv_core COMPILE_DEFINITIONS)
-  get_target_property(core_libs mfv_core LINK_LIBRARIES)
+  # The layers' shared include folders, definitions and libraries, without
+  # OpenCL; one include root (host/) for the sources of several layers: the
+  # default build's layer libraries already refuse an upward include.
+  get_target_property(core_includes mfv_settings INTERFACE_INCLUDE_DIRECTORIES)
+  get_target_property(core_defines mfv_settings INTERFACE_COMPILE_DEFINITIONS)
+  get_target_property(core_libs mfv_settings INTERFACE_LINK_LIBRARIES)
   list(REMOVE_ITEM core_libs OpenCL::OpenCL)
-  target_include_directories(mfv_host PUBLIC ${core_includes})
+  target_include_directories(mfv_host PUBLIC ${CMAKE_SOURCE_DIR}/host ${core_includes})
   target_compile_definitions(mfv_host PUBLIC ${core_defines})
   target_compile_options(mfv_host PUBLIC ${MFV_SANITIZE_FLAGS})
   target_link_options(mfv_host PUBLIC ${MFV_SANITIZE_FLAGS})
   target_link_libraries(mfv_host PUBLIC ${core_libs})
   add_executable(mfv_host_tests ${CMAKE_SOURCE_DIR}/tests/main.cpp ${MFV_HOST_TEST_SOURCES}
-                 ${CMAKE_SOURCE_DIR}/tests/test_reference_terms.cpp)
+                 ${CMAKE_SOURCE_DIR}/tests/test_reference_terms.cpp ${CMAKE_SOURCE_DIR}/tests/test_reference_terms_g.cpp)
   target_link_libraries(mfv_host_tests PRIVATE mfv_host Catch2::Catch2)
   target_compile_definitions(mfv_host_tests PRIVATE MFV_TEST_DATA_DIR="${CMAKE_SOURCE_DIR}/tests/data"
                              MFV_FUZZ_DIR="${CMAKE_SOURCE_DIR}/tests/fuzz")

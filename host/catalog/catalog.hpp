@@ -5,7 +5,7 @@
 // and reports all read these declarations.
 #pragma once
 
-#include <glm/vec3.hpp>
+#include "reference/twins.hpp"
 
 #include <optional>
 #include <string>
@@ -44,18 +44,18 @@ struct SmithFit {
   std::string why;             // the source of the fit, or of its limit
 };
 
-using RefD = double (*)(double NoH, double p);
-using RefDcs = double (*)(double cos2, double sin2, double p);  // D from cos²θ and sin²θ given apart
-using RefG = double (*)(double NoL, double NoV, double NoH, double VoH, double p);
-using RefG1 = double (*)(double NoV, double p);
-using RefF = double (*)(double VoH, double p0, double p1);
-// Anisotropic terms (Term::aniso): directions in the tangent frame t = +x,
-// b = +y, n = +z, widths ax along t and ay along b.
-using RefDAniso = double (*)(const glm::dvec3& m, double ax, double ay);
-using RefG1Aniso = double (*)(const glm::dvec3& v, double ax, double ay);
-using RefGAniso = double (*)(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
+// The reference twins' signatures (reference/twins.hpp), by their catalog names.
+using ref::RefD;
+using ref::RefDcs;
+using ref::RefG;
+using ref::RefG1;
+using ref::RefF;
+using ref::RefDAniso;
+using ref::RefG1Aniso;
+using ref::RefGAniso;
 
-struct Term {
+// One term: its declaration, and (from ref::TermTwins) its reference twins.
+struct Term : ref::TermTwins {
   std::string id;         // catalog name: ggx, smith_ggx_correlated, schlick...
   Kind kind;
   std::string kernel_fn;  // function in kernels/terms_*.cl
@@ -67,28 +67,12 @@ struct Term {
   // (none: one point, no parameters).
   std::vector<ParamPoint> check_points = {{0, 0, ""}};
 
-  RefD ref_d = nullptr;  // exactly one of these is set, by kind
-  // D: the same from cos²θ and sin²θ (where the form has tan²θ or (n·h)^e), which the
-  // reference estimators take: a cosine alone leaves 1 − cosθ to u/θ² near a
-  // narrow peak, less precise than the float kernels, which keep sin²θ.
-  RefDcs ref_d_cs = nullptr;
-  RefG ref_g = nullptr;
-  RefF ref_f = nullptr;
-  // Smith G terms: the G1 they are built from (kernel and reference), used by
-  // the masking check; empty for G terms that are no Smith G1 of any D.
+  // Smith G terms: the kernel G1 they are built from (its reference twin is
+  // ref_g1), used by the masking check; empty for G terms that are no Smith G1 of any D.
   std::string g1_kernel_fn;
-  RefG1 ref_g1 = nullptr;
-
-  // Anisotropic D and Smith G: params are (alpha_x, alpha_y) in the tangent
-  // frame t = +x, b = +y, n = +z. Their kernel functions take the tangent
-  // components (kernels/terms_d.cl, terms_g.cl); ref_d/ref_g/ref_g1 above are
-  // their isotropic slice (direction in the xz-plane, alpha_y = alpha_x), the
-  // one-width view of the generic checks; the *_aniso twins take directions.
-  // terms_of() leaves them out: its callers pass one width.
-  bool aniso = false;
-  RefDAniso ref_d_aniso = nullptr;
-  RefG1Aniso ref_g1_aniso = nullptr;
-  RefGAniso ref_g_aniso = nullptr;
+  // Anisotropic D and Smith G (aniso, see ref::TermTwins): their kernel functions
+  // take the tangent components (kernels/terms_d.cl, terms_g.cl). terms_of()
+  // leaves them out: its callers pass one width.
 
   // Agreement budget (kernel float vs double reference, identical inputs):
   // ULPs of the float result, and an absolute floor for results near zero.

@@ -3,7 +3,7 @@
 #include "catalog/roughness.hpp"
 #include "reference/model_gltf.hpp"
 #include "reference/models.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 
@@ -281,7 +281,7 @@ double Model::proposal_width(const double* p) const {
     case Width::AlphaPair:  // the geometric mean; an isotropic model (second width 0) has the first
       return p[width_param2] > 0.0 ? std::sqrt(p[width_param] * p[width_param2]) : p[width_param];
     case Width::AlphaMin: return std::min(p[width_param], p[width_param2]);
-    case Width::Perceptual: return std::max(p[width_param] * p[width_param], 1e-3);
+    case Width::Perceptual: return std::max(alpha_from_perceptual(p[width_param]), 1e-3);
     case Width::HalfExponent: return alpha_from_phong_exponent(p[width_param]);
     case Width::MirrorExponent: return alpha_from_phong_exponent(4.0 * p[width_param]);
     case Width::HalfCosine: {

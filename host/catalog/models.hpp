@@ -23,13 +23,11 @@ namespace mfv {
 // fail (a deficiency large enough to show at any seed), or it may fail.
 enum class Expect { Hold, Fail, May };
 
-constexpr size_t kModelParams = 7;  // p[0..6] travel in IntegralSpec pd, pg, f0, f1, kd, p5, pd2 (0 for most models)
+using ref::kModelParams;  // p[0..6], see reference/twins.hpp
 using ModelParams = std::array<double, kModelParams>;
 
-// f(l, v): l = light, v = view, both unit and pointing away from the surface, n = +z.
-using RefModel = double (*)(const glm::dvec3& wi, const glm::dvec3& wo, const double* p);
-// Exact directional albedo E(l) = ∫ f(l, v) (n·v) dv at n·l = cos_l; NaN where unknown.
-using RefAlbedo = double (*)(double cos_l, const double* p);
+using ref::RefAlbedo;
+using ref::RefModel;
 
 // Where the albedo estimator's proposal width comes from (never the formula).
 enum class Width {
@@ -52,7 +50,8 @@ struct ModelCase {
   std::string reciprocity_why;
 };
 
-struct Model {
+// One whole model: its declaration, and (from ref::ModelTwins) its reference twins.
+struct Model : ref::ModelTwins {
   std::string id;         // catalog name, distinct from every term id
   std::string kernel_fn;  // function in kernels/models.cl (gltf: kernels/model_gltf.cl)
   std::string source;     // seed file and formula, or paper and equation
@@ -63,9 +62,7 @@ struct Model {
   std::string radiance;
   Width width = Width::Diffuse;
   int width_param = -1, width_param2 = -1;
-  RefModel ref = nullptr;
-  RefAlbedo ref_albedo = nullptr;  // exact albedo where known (the energy check then tests equality)
-  std::string albedo_doc;          // where the closed form holds and why
+  std::string albedo_doc;          // where ref_albedo's closed form holds and why
   double ulp_budget = 64;          // kernel float vs double reference, identical inputs
   double abs_floor = 1e-30;
   std::vector<ModelCase> cases;    // the points mfv run checks, with expected verdicts

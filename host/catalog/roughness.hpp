@@ -13,6 +13,7 @@
 namespace mfv {
 
 inline double alpha_from_perceptual(double r) { return r * r; }
+inline double perceptual_from_alpha(double alpha) { return std::sqrt(alpha); }
 inline double phong_exponent_from_alpha(double alpha) { return 2.0 / (alpha * alpha) - 2.0; }
 inline double alpha_from_phong_exponent(double alpha_p) { return std::sqrt(2.0 / (alpha_p + 2.0)); }
 

@@ -5,7 +5,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
 

@@ -8,7 +8,7 @@
 #include "numeric/quadrature.hpp"
 #include "reference/brdf.hpp"
 #include "reference/estimators.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "runtime/error.hpp"
 
 #include <fmt/format.h>
@@ -246,16 +246,11 @@ double t_two_sided_p(double t, int dof) {
   return std::min(1.0, 2.0 * tail);
 }
 
-ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in) {
-  validate_convergence_options(opt_in);
-  const double t_start = now();
-  ConvergenceReport rep;
-  rep.opt = opt_in;
-  const auto& opt = rep.opt;
-  rep.cases = opt.cases.empty() ? default_convergence_cases() : opt.cases;
-  rep.checks = opt.checks.empty() ? std::vector<std::string>{"d_norm", "albedo"} : opt.checks;
-  const std::vector<std::string> ests = opt.estimators.empty() ? kEstimators : opt.estimators;
-  for (auto& ch : rep.checks) {
+namespace {
+
+// Every check needs an estimator that applies to it.
+void require_an_estimator(const std::vector<std::string>& checks, const std::vector<std::string>& ests) {
+  for (auto& ch : checks) {
     bool any = false;
     for (auto& e : ests) any = any || estimator_applies(e, ch);
     if (!any)
@@ -263,121 +258,89 @@ ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in)
                               "makes D normalization a tautology",
                               join(ests), ch));
   }
-  rep.device = rt.device().name;
-  rep.platform = rt.device().platform;
-  rep.date = utc_timestamp();
-  const size_t C = rep.cases.size();
-  const int R = opt.replicates;
+}
 
-  for (auto& ch : rep.checks) {
-    std::vector<ConvergenceTruth> row;
-    for (auto& c : rep.cases) row.push_back(truth_of(ch, c));
-    rep.truth.push_back(row);
-  }
-
+// The terms of the convergence cases (GGX and Beckmann with their Smith G), built once.
+TermSelection convergence_terms() {
   TermSelection sel;
   for (const char* id : {"ggx", "beckmann", "smith_ggx_correlated", "smith_beckmann", "schlick", "none"}) {
     const Term& t = find_term(id);
     (t.kind == Kind::D ? sel.d : t.kind == Kind::G ? sel.g : sel.f).push_back(&t);
   }
-  Integrator in(rt, sel);
+  return sel;
+}
 
-  for (size_t ci = 0; ci < rep.checks.size(); ++ci) {
-    const std::string& ch = rep.checks[ci];
-    for (size_t ei = 0; ei < ests.size(); ++ei) {
-      const std::string& est = ests[ei];
-      if (!estimator_applies(est, ch)) continue;
-      const bool rqmc = est == "rqmc";
-      std::vector<ConvergenceSeries> dev(C), ref(C);
-      for (size_t k = 0; k < C; ++k) {
-        dev[k].check = ref[k].check = ch;
-        dev[k].estimator = ref[k].estimator = est;
-        dev[k].engine = "device";
-        ref[k].engine = "reference";
-        dev[k].case_index = ref[k].case_index = k;
-      }
-      if (est == "quadrature") {
-        // deterministic: orders 2..quad_max_order of the product rule, 2 panels a decade, 4 φ panels
-        for (size_t k = 0; k < C; ++k) {
-          const ref::IntegralRef r = reference_of(spec_of(ch, rep.cases[k]));
-          const glm::dvec3 o(std::sqrt((1.0 - r.cos_o) * (1.0 + r.cos_o)), 0.0, r.cos_o);
-          double prev = kNaN;
-          for (int q = 2; q <= opt.quad_max_order; q += q < 6 ? 1 : 2) {
-            const double t0 = now();
-            const ProductRule rule{q, 2, 4};
-            const QuadratureResult qr =
-                ch == "d_norm"
-                    ? integrate_normals([&](const glm::dvec3& m) { return r.brdf.d->ref_d(m.z, r.brdf.pd) * m.z; }, rule)
-                    : integrate_reflected([&](const glm::dvec3& i) { return ref::brdf(r.brdf, i, o) * i.z; }, o, rule);
-            ConvergenceLevel l;
-            l.n = uint64_t(qr.evaluations);
-            l.seconds = now() - t0;
-            l.mean = qr.value;
-            l.rmse = std::fabs(qr.value - rep.truth[ci][k].value);
-            l.est_se = std::fabs(qr.value - prev);
-            prev = qr.value;
-            ref[k].levels.push_back(l);
-          }
-        }
-        for (auto& s : ref) rep.series.push_back(s);
-        continue;
-      }
-      for (int lg = opt.min_log2; lg <= opt.max_log2; ++lg) {
-        const uint64_t n = uint64_t(1) << lg;
-        const uint64_t seed = opt.seed + uint64_t(lg) * 0x9E3779B97F4A7C15ull;  // independent runs per level
-        std::vector<IntegralSpec> specs;
-        for (size_t k = 0; k < C; ++k)
-          for (int r = 0; r < R; ++r) {
-            IntegralSpec s = spec_of(ch, rep.cases[k]);
-            s.estimator = estimator_id(est, rep.cases[k]);
-            s.stream = uint32_t(((ci * kEstimators.size() + ei) * C + k) * R + r);
-            specs.push_back(s);
-          }
-        const double t0 = now();
-        const std::vector<Estimate> es = in.run(specs, n, seed);
-        const double per_run = (now() - t0) / double(specs.size());
-        const uint64_t used = es.front().samples;
-        for (size_t k = 0; k < C; ++k) {
-          std::vector<double> e(R), se(R);
-          for (int r = 0; r < R; ++r) {
-            e[r] = es[k * R + r].mean;
-            se[r] = es[k * R + r].stderr_;
-          }
-          dev[k].levels.push_back(level_of(used, e, se, rqmc, rep.truth[ci][k].value, per_run));
-        }
-        if (!opt.reference || lg > opt.ref_max_log2) continue;
-        in.stratify(specs, n);  // the own d_norm estimator is stratified over its n samples
-        for (size_t k = 0; k < C; ++k) {
-          std::vector<double> e(R), se(R);
-          const double t1 = now();
-          for (int r = 0; r < R; ++r) {
-            const ref::IntegralRef rr = reference_of(specs[k * R + r]);
-            double sum = 0, sq = 0;
-            for (uint64_t j = 0; j < used; j += (rr.strata ? 2 : 1)) {
-              const double v = ref::sample_value(rr, seed, j);
-              if (rr.strata) {  // neighbouring strata in pairs, as the kernel
-                const double v1 = ref::sample_value(rr, seed, j + 1);
-                sum += v + v1;
-                sq += (v - v1) * (v - v1);
-              } else {
-                sum += v;
-                sq += v * v;
-              }
-            }
-            e[r] = sum / double(used);
-            se[r] = rr.strata ? std::sqrt(sq) / double(used)
-                              : std::sqrt(std::max(0.0, sq / double(used) - e[r] * e[r]) / double(used - 1));
-          }
-          ref[k].levels.push_back(level_of(used, e, se, rqmc, rep.truth[ci][k].value, (now() - t1) / R));
-        }
-      }
-      for (auto& s : dev) rep.series.push_back(s);
-      for (auto& s : ref)
-        if (!s.levels.empty()) rep.series.push_back(s);  // none where ref_max_log2 < min_log2
+// One series per case of a check and estimator on one engine, no levels yet.
+std::vector<ConvergenceSeries> empty_series(const std::string& ch, const std::string& est, const char* engine, size_t C) {
+  std::vector<ConvergenceSeries> out(C);
+  for (size_t k = 0; k < C; ++k) {
+    out[k].check = ch;
+    out[k].estimator = est;
+    out[k].engine = engine;
+    out[k].case_index = k;
+  }
+  return out;
+}
+
+// The deterministic quadrature "estimator": orders 2..quad_max_order of the
+// product rule, 2 panels a decade, 4 φ panels; each level's est_se is its
+// change from the previous order.
+void quadrature_levels(const ConvergenceReport& rep, size_t ci, std::vector<ConvergenceSeries>& ref) {
+  const std::string& ch = rep.checks[ci];
+  for (size_t k = 0; k < rep.cases.size(); ++k) {
+    const ref::IntegralRef r = reference_of(spec_of(ch, rep.cases[k]));
+    const glm::dvec3 o(std::sqrt((1.0 - r.cos_o) * (1.0 + r.cos_o)), 0.0, r.cos_o);
+    double prev = kNaN;
+    for (int q = 2; q <= rep.opt.quad_max_order; q += q < 6 ? 1 : 2) {
+      const double t0 = now();
+      const ProductRule rule{q, 2, 4};
+      const QuadratureResult qr =
+          ch == "d_norm"
+              ? integrate_normals([&](const glm::dvec3& m) { return r.brdf.d->ref_d(m.z, r.brdf.pd) * m.z; }, rule)
+              : integrate_reflected([&](const glm::dvec3& i) { return ref::brdf(r.brdf, i, o) * i.z; }, o, rule);
+      ConvergenceLevel l;
+      l.n = uint64_t(qr.evaluations);
+      l.seconds = now() - t0;
+      l.mean = qr.value;
+      l.rmse = std::fabs(qr.value - rep.truth[ci][k].value);
+      l.est_se = std::fabs(qr.value - prev);
+      prev = qr.value;
+      ref[k].levels.push_back(l);
     }
   }
+}
 
-  // slopes, tolerances, consistency (Sidak over every tested series, family-wise 1e-3)
+// The double reference's level for case k on the same `used` samples of the
+// same R integrals as the device's (specs, seed).
+ConvergenceLevel reference_level(const ConvergenceReport& rep, size_t ci, size_t k,
+                                 const std::vector<IntegralSpec>& specs, uint64_t used, uint64_t seed, bool rqmc) {
+  const int R = rep.opt.replicates;
+  std::vector<double> e(R), se(R);
+  const double t1 = now();
+  for (int r = 0; r < R; ++r) {
+    const ref::IntegralRef rr = reference_of(specs[k * R + r]);
+    double sum = 0, sq = 0;
+    for (uint64_t j = 0; j < used; j += (rr.strata ? 2 : 1)) {
+      const double v = ref::sample_value(rr, seed, j);
+      if (rr.strata) {  // neighbouring strata in pairs, as the kernel
+        const double v1 = ref::sample_value(rr, seed, j + 1);
+        sum += v + v1;
+        sq += (v - v1) * (v - v1);
+      } else {
+        sum += v;
+        sq += v * v;
+      }
+    }
+    e[r] = sum / double(used);
+    se[r] = rr.strata ? std::sqrt(sq) / double(used)
+                      : std::sqrt(std::max(0.0, sq / double(used) - e[r] * e[r]) / double(used - 1));
+  }
+  return level_of(used, e, se, rqmc, rep.truth[ci][k].value, (now() - t1) / R);
+}
+
+// Slopes, tolerances, consistency (Sidak over every tested series, family-wise 1e-3).
+void judge_series(ConvergenceReport& rep) {
+  const int R = rep.opt.replicates;
   int tested = 0;
   for (auto& s : rep.series) tested += s.estimator != "quadrature" && !s.levels.empty();
   rep.level = sidak_level(1e-3, std::max(1, tested));
@@ -399,8 +362,10 @@ ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in)
     s.p = t_two_sided_p(s.z, s.estimator == "rqmc" ? R - 1 : 0);
     s.consistent = !(s.p < rep.level);
   }
+}
 
-  // The target: GGX alpha = 0.01 at grazing view (cos 0.05), albedo, 1e-4 absolute, on the device.
+// The target: GGX alpha = 0.01 at grazing view (cos 0.05), albedo, 1e-4 absolute, on the device.
+void measure_target(ConvergenceReport& rep) {
   const size_t albedo = size_t(std::find(rep.checks.begin(), rep.checks.end(), "albedo") - rep.checks.begin());
   for (auto& s : rep.series) {
     const ConvergenceCase& c = rep.cases[s.case_index];
@@ -433,6 +398,81 @@ ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in)
   }
   rep.target.measured = !rep.target.best.empty() && rep.target.uniform_n > 0;
   if (rep.target.measured) rep.target.ratio = rep.target.uniform_n_variance / rep.target.best_n;
+}
+
+}  // namespace
+
+ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in) {
+  validate_convergence_options(opt_in);
+  const double t_start = now();
+  ConvergenceReport rep;
+  rep.opt = opt_in;
+  const auto& opt = rep.opt;
+  rep.cases = opt.cases.empty() ? default_convergence_cases() : opt.cases;
+  rep.checks = opt.checks.empty() ? std::vector<std::string>{"d_norm", "albedo"} : opt.checks;
+  const std::vector<std::string> ests = opt.estimators.empty() ? kEstimators : opt.estimators;
+  require_an_estimator(rep.checks, ests);
+  rep.device = rt.device().name;
+  rep.platform = rt.device().platform;
+  rep.date = utc_timestamp();
+  const size_t C = rep.cases.size();
+  const int R = opt.replicates;
+
+  for (auto& ch : rep.checks) {
+    std::vector<ConvergenceTruth> row;
+    for (auto& c : rep.cases) row.push_back(truth_of(ch, c));
+    rep.truth.push_back(row);
+  }
+
+  Integrator in(rt, convergence_terms());
+
+  for (size_t ci = 0; ci < rep.checks.size(); ++ci) {
+    const std::string& ch = rep.checks[ci];
+    for (size_t ei = 0; ei < ests.size(); ++ei) {
+      const std::string& est = ests[ei];
+      if (!estimator_applies(est, ch)) continue;
+      const bool rqmc = est == "rqmc";
+      std::vector<ConvergenceSeries> dev = empty_series(ch, est, "device", C), ref = empty_series(ch, est, "reference", C);
+      if (est == "quadrature") {
+        quadrature_levels(rep, ci, ref);
+        for (auto& s : ref) rep.series.push_back(s);
+        continue;
+      }
+      for (int lg = opt.min_log2; lg <= opt.max_log2; ++lg) {
+        const uint64_t n = uint64_t(1) << lg;
+        const uint64_t seed = opt.seed + uint64_t(lg) * 0x9E3779B97F4A7C15ull;  // independent runs per level
+        std::vector<IntegralSpec> specs;
+        for (size_t k = 0; k < C; ++k)
+          for (int r = 0; r < R; ++r) {
+            IntegralSpec s = spec_of(ch, rep.cases[k]);
+            s.estimator = estimator_id(est, rep.cases[k]);
+            s.stream = uint32_t(((ci * kEstimators.size() + ei) * C + k) * R + r);
+            specs.push_back(s);
+          }
+        const double t0 = now();
+        const std::vector<Estimate> es = in.run(specs, n, seed);
+        const double per_run = (now() - t0) / double(specs.size());
+        const uint64_t used = es.front().samples;
+        for (size_t k = 0; k < C; ++k) {
+          std::vector<double> e(R), se(R);
+          for (int r = 0; r < R; ++r) {
+            e[r] = es[k * R + r].mean;
+            se[r] = es[k * R + r].stderr_;
+          }
+          dev[k].levels.push_back(level_of(used, e, se, rqmc, rep.truth[ci][k].value, per_run));
+        }
+        if (!opt.reference || lg > opt.ref_max_log2) continue;
+        in.stratify(specs, n);  // the own d_norm estimator is stratified over its n samples
+        for (size_t k = 0; k < C; ++k) ref[k].levels.push_back(reference_level(rep, ci, k, specs, used, seed, rqmc));
+      }
+      for (auto& s : dev) rep.series.push_back(s);
+      for (auto& s : ref)
+        if (!s.levels.empty()) rep.series.push_back(s);  // none where ref_max_log2 < min_log2
+    }
+  }
+
+  judge_series(rep);
+  measure_target(rep);
   rep.seconds = now() - t_start;
   return rep;
 }

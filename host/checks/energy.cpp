@@ -10,7 +10,6 @@
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -158,6 +157,26 @@ void judge_model_gains(EnergyReport& rep) {
 // One quantity the adaptive loop refines: an E/A/B cell (one integral per
 // replicate yields E and, on the same points, B), an E_avg, or a whole
 // model's E(mu) or E_avg (E only).
+// The table of D x G at every alpha of the grid, its cells not yet run.
+EnergyTable empty_table(const Term& d, const Term& g, const std::vector<double>& alpha, size_t nm) {
+  EnergyTable t;
+  t.d = &d;
+  t.g = &g;
+  for (double a : alpha) {
+    double pd = native_from_alpha(d.roughness, a);
+    validate_param(d, 0, pd);
+    t.pd.push_back(pd);
+    t.pg.push_back(g.params.empty() ? 0.0 : std::min(native_from_alpha(g.roughness, a), g.params[0].hi));
+  }
+  const size_t na = alpha.size();
+  t.E.resize(nm * na);
+  t.A = t.B = t.E;
+  t.points.assign(nm * na, 0);
+  t.eavg.resize(na);
+  t.eavg_quad.resize(na);
+  return t;
+}
+
 struct Unit {
   size_t table, index;  // table (or rep.models) index; cell index, alpha index or mu index
   bool eavg;
@@ -197,6 +216,166 @@ double record_unit(EnergyReport& rep, const Unit& u, const std::vector<double>& 
   return std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
 }
 
+// R replicates (randomizations) per unit; an E/A/B cell's kernel integral
+// yields E and, on the same points, B (kernels/integrate.cl albedo_rqmc_value).
+std::vector<IntegralSpec> specs_of(const Unit& u, size_t R) {
+  std::vector<IntegralSpec> v;
+  for (size_t r = 0; r < R; ++r) {
+    IntegralSpec s = u.base;
+    s.stream = u.first_stream + uint32_t(r);
+    v.push_back(s);
+  }
+  return v;
+}
+
+// Pilot, then fresh samples: a pilot of min_points / 4 points per
+// replicate on streams of its own sizes each unit; the unit's estimate is
+// then a fresh run of the power-of-two multiple of min_points its pilot
+// error predicts (RQMC error falls as 1/N here: measured N^-1 at normal and
+// grazing view), up to max_points. Stopping on the estimate's own standard
+// error (the former adaptive passes) keeps the runs whose error happened to
+// come out small: 5 of 96 EON cells were beyond 3 SE, worst 5.4. With the
+// count fixed before the fresh samples are drawn, mean and replicate SE are
+// those of a fixed-size RQMC estimate, so the SE is unbiased.
+class PilotThenFresh {
+ public:
+  PilotThenFresh(EnergyReport& rep, Integrator& in, const std::vector<Unit>& units)
+      : rep_(rep), in_(in), units_(units), prog_(units.size()) {}
+
+  // The pilot on streams past every unit's own (from `free_stream` on), then
+  // the fresh run on the units' own streams.
+  void run(uint32_t free_stream) {
+    const EnergyOptions& opt = rep_.opt;
+    const uint64_t pilot = std::max<uint64_t>(64, opt.min_points / 4);
+    for (auto& p : prog_) p.want = pilot;
+    const std::vector<double> pilot_se = run_units(free_stream);
+    for (size_t ui = 0; ui < units_.size(); ++ui) {
+      Progress& p = prog_[ui];
+      const double need = std::isfinite(pilot_se[ui]) ? 1.25 * double(p.done) * pilot_se[ui] / opt.target : 0.0;
+      uint64_t want = opt.min_points;
+      while (want < opt.max_points && double(want) < need) want *= 2;
+      p.want = std::min<uint64_t>(want, opt.max_points);
+    }
+    run_units(0);
+  }
+
+ private:
+  struct Progress {
+    uint64_t done = 0, want = 0;
+    std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values
+  };
+
+  // Runs every unit at its `want` points on streams first_stream + shift + r
+  // and records its cells; returns each unit's largest standard error.
+  std::vector<double> run_units(uint32_t shift) {
+    const size_t R = size_t(rep_.opt.replicates);
+    std::vector<double> worst(units_.size(), 0.0);
+    std::map<uint64_t, std::vector<size_t>> passes;  // one pass per point count
+    for (size_t ui = 0; ui < units_.size(); ++ui) passes[prog_[ui].want].push_back(ui);
+    for (auto& [want, group] : passes) {
+      std::vector<IntegralSpec> specs;
+      std::vector<size_t> offset;
+      for (size_t ui : group) {
+        offset.push_back(specs.size());
+        for (auto& s : specs_of(units_[ui], R)) {
+          s.stream += shift;
+          specs.push_back(s);
+        }
+      }
+      std::vector<Estimate> est = in_.run(specs, want, rep_.opt.seed);
+      const uint64_t used = in_.samples_used(want);
+      rep_.samples += used * specs.size();
+      for (size_t k = 0; k < group.size(); ++k) {
+        Progress& p = prog_[group[k]];
+        p.sum.assign(R, 0.0);
+        p.b_sum.assign(R, 0.0);
+        for (size_t r = 0; r < R; ++r) {
+          p.sum[r] = est[offset[k] + r].mean * double(used);
+          p.b_sum[r] = est[offset[k] + r].b_mean * double(used);
+        }
+        p.done = used;
+        worst[group[k]] = record_unit(rep_, units_[group[k]], p.sum, p.b_sum, p.done);
+      }
+    }
+    return worst;
+  }
+
+  EnergyReport& rep_;
+  Integrator& in_;
+  const std::vector<Unit>& units_;
+  std::vector<Progress> prog_;
+};
+
+// E_avg by the midpoint rule over the mu grid, as a cross-check of the
+// dedicated integral (its error is the quadrature's O(1/n^2) plus noise).
+void add_quadrature_cross_check(EnergyReport& rep) {
+  const size_t nm = rep.mu.size();
+  for (auto& t : rep.tables)
+    for (size_t a = 0; a < rep.alpha.size(); ++a) t.eavg_quad[a] = eavg_by_midpoints(rep.mu, &t.E[a * nm]);
+  for (auto& me : rep.models) me.eavg_quad = eavg_by_midpoints(rep.mu, me.E.data());
+}
+
+// The cells above the target standard error, and the largest error and where.
+void track_largest_error(EnergyReport& rep) {
+  auto consider = [&](const Cell& c, const std::string& where) {
+    if (!(c.se <= rep.opt.target)) rep.above_target++;
+    if (!(c.se <= rep.max_se)) {
+      if (!std::isfinite(c.se) || c.se > rep.max_se) rep.max_se_at = where;
+      rep.max_se = std::isfinite(c.se) ? c.se : std::numeric_limits<double>::infinity();
+    }
+  };
+  const size_t nm = rep.mu.size();
+  for (auto& t : rep.tables)
+    for (size_t a = 0; a < rep.alpha.size(); ++a) {
+      for (size_t m = 0; m < nm; ++m) {
+        const size_t c = a * nm + m;
+        const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), rep.alpha[a], rep.mu[m]);
+        consider(t.E[c], "E " + w);
+        consider(t.A[c], "A " + w);
+        consider(t.B[c], "B " + w);
+      }
+      consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
+    }
+  for (auto& me : rep.models) {
+    for (size_t m = 0; m < nm; ++m) consider(me.E[m], fmt::format("E {} mu_l={:.4g}", me.point.name, rep.mu[m]));
+    consider(me.eavg, "E_avg " + me.point.name);
+  }
+}
+
+// "D/G/F" or "model ID": what an integral integrates, for messages.
+std::string subject_of(const IntegralSpec& s) {
+  if (const Model* m = model_by_number(s.model)) return "model " + m->id;
+  const auto& c = catalog();
+  return c[size_t(s.d)].id + "/" + c[size_t(s.g)].id + "/" + c[size_t(s.f)].id;
+}
+
+// The double reference on the identical first samples of every k-th integral.
+void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std::vector<Unit>& units) {
+  const EnergyOptions& opt = rep.opt;
+  std::vector<IntegralSpec> subset;
+  size_t k = 0;
+  for (auto& u : units)
+    for (auto& s : specs_of(u, size_t(opt.replicates)))
+      if (k++ % size_t(std::max(1, opt.reference_every)) == 0) {
+        subset.push_back(s);
+        if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc) && s.model == 0) {
+          s.check = static_cast<int32_t>(IntegralKind::AlbedoRqmcB);  // and its B channel
+          subset.push_back(s);
+        }
+      }
+  in.stratify(subset, opt.min_points);  // E_avg's view cosines are spaced by the point count
+  auto agree = compare_with_reference(in, subset, opt.reference_samples, opt.seed);
+  for (size_t j = 0; j < agree.size(); ++j) {
+    rep.reference_compared++;
+    if (agree[j].disagreement <= rep.reference_worst) continue;
+    rep.reference_worst = agree[j].disagreement;
+    const ref::IntegralRef r = reference_of(subset[j]);
+    rep.reference_worst_at = fmt::format("{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
+                                         subject_of(subset[j]), subset[j].check, r.width, r.cos_o, r.stream,
+                                         agree[j].kernel_mean, agree[j].reference_mean);
+  }
+}
+
 }  // namespace
 
 EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
@@ -214,21 +393,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   for (auto* d : terms_of(Kind::D))
     for (auto* g : terms_of(Kind::G)) {
       if (!opt.tables || !wanted(opt.models, d->id + "/" + g->id)) continue;
-      EnergyTable t;
-      t.d = d;
-      t.g = g;
-      for (double a : rep.alpha) {
-        double pd = native_from_alpha(d->roughness, a);
-        validate_param(*d, 0, pd);
-        t.pd.push_back(pd);
-        t.pg.push_back(g->params.empty() ? 0.0 : std::min(native_from_alpha(g->roughness, a), g->params[0].hi));
-      }
-      t.E.resize(nm * na);
-      t.A = t.B = t.E;
-      t.points.assign(nm * na, 0);
-      t.eavg.resize(na);
-      t.eavg_quad.resize(na);
-      rep.tables.push_back(t);
+      rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
       if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
       if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
     }
@@ -283,217 +448,17 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
     units.push_back({mi, 0, true, model_spec(IntegralKind::EavgRqmc, *mp.model, mp.p, 1.0), stream, true});
     stream += uint32_t(R);
   }
-  // R replicates (randomizations) per unit; an E/A/B cell's kernel integral
-  // yields E and, on the same points, B (kernels/albedo.cl albedo_rqmc_value).
-  auto specs_of = [&](const Unit& u) {
-    std::vector<IntegralSpec> v;
-    for (size_t r = 0; r < R; ++r) {
-      IntegralSpec s = u.base;
-      s.stream = u.first_stream + uint32_t(r);
-      v.push_back(s);
-    }
-    return v;
-  };
+  PilotThenFresh(rep, in, units).run(stream);
 
-  // Pilot, then fresh samples: a pilot of min_points / 4 points per
-  // replicate on streams of its own sizes each unit; the unit's estimate is
-  // then a fresh run of the power-of-two multiple of min_points its pilot
-  // error predicts (RQMC error falls as 1/N here: measured N^-1 at normal and
-  // grazing view), up to max_points. Stopping on the estimate's own standard
-  // error (the former adaptive passes) keeps the runs whose error happened to
-  // come out small: 5 of 96 EON cells were beyond 3 SE, worst 5.4. With the
-  // count fixed before the fresh samples are drawn, mean and replicate SE are
-  // those of a fixed-size RQMC estimate, so the SE is unbiased.
-  struct Progress {
-    uint64_t done = 0, want = 0;
-    std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values
-  };
-  std::vector<Progress> prog(units.size());
-  // Runs every unit at its `want` points on streams first_stream + shift + r
-  // and records its cells; returns each unit's largest standard error.
-  auto run_units = [&](uint32_t shift) {
-    std::vector<double> worst(units.size(), 0.0);
-    std::map<uint64_t, std::vector<size_t>> passes;  // one pass per point count
-    for (size_t ui = 0; ui < units.size(); ++ui) passes[prog[ui].want].push_back(ui);
-    for (auto& [want, group] : passes) {
-      std::vector<IntegralSpec> specs;
-      std::vector<size_t> offset;
-      for (size_t ui : group) {
-        offset.push_back(specs.size());
-        for (auto& s : specs_of(units[ui])) {
-          s.stream += shift;
-          specs.push_back(s);
-        }
-      }
-      std::vector<Estimate> est = in.run(specs, want, opt.seed);
-      const uint64_t used = in.samples_used(want);
-      rep.samples += used * specs.size();
-      for (size_t k = 0; k < group.size(); ++k) {
-        Progress& p = prog[group[k]];
-        p.sum.assign(R, 0.0);
-        p.b_sum.assign(R, 0.0);
-        for (size_t r = 0; r < R; ++r) {
-          p.sum[r] = est[offset[k] + r].mean * double(used);
-          p.b_sum[r] = est[offset[k] + r].b_mean * double(used);
-        }
-        p.done = used;
-        worst[group[k]] = record_unit(rep, units[group[k]], p.sum, p.b_sum, p.done);
-      }
-    }
-    return worst;
-  };
-  const uint64_t pilot = std::max<uint64_t>(64, opt.min_points / 4);
-  for (auto& p : prog) p.want = pilot;
-  const std::vector<double> pilot_se = run_units(stream);  // streams past every unit's own
-  for (size_t ui = 0; ui < units.size(); ++ui) {
-    Progress& p = prog[ui];
-    const double need = std::isfinite(pilot_se[ui]) ? 1.25 * double(p.done) * pilot_se[ui] / opt.target : 0.0;
-    uint64_t want = opt.min_points;
-    while (want < opt.max_points && double(want) < need) want *= 2;
-    p.want = std::min<uint64_t>(want, opt.max_points);
-  }
-  run_units(0);
-
-  // E_avg by the midpoint rule over the mu grid, as a cross-check of the
-  // dedicated integral (its error is the quadrature's O(1/n^2) plus noise).
-  for (auto& t : rep.tables)
-    for (size_t a = 0; a < na; ++a) t.eavg_quad[a] = eavg_by_midpoints(rep.mu, &t.E[a * nm]);
-  for (auto& me : rep.models) me.eavg_quad = eavg_by_midpoints(rep.mu, me.E.data());
-
-  auto consider = [&](const Cell& c, const std::string& where) {
-    if (!(c.se <= opt.target)) rep.above_target++;
-    if (!(c.se <= rep.max_se)) {
-      if (!std::isfinite(c.se) || c.se > rep.max_se) rep.max_se_at = where;
-      rep.max_se = std::isfinite(c.se) ? c.se : std::numeric_limits<double>::infinity();
-    }
-  };
-  for (auto& t : rep.tables)
-    for (size_t a = 0; a < na; ++a) {
-      for (size_t m = 0; m < nm; ++m) {
-        const size_t c = a * nm + m;
-        const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), rep.alpha[a], rep.mu[m]);
-        consider(t.E[c], "E " + w);
-        consider(t.A[c], "A " + w);
-        consider(t.B[c], "B " + w);
-      }
-      consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
-    }
-  for (auto& me : rep.models) {
-    for (size_t m = 0; m < nm; ++m) consider(me.E[m], fmt::format("E {} mu_l={:.4g}", me.point.name, rep.mu[m]));
-    consider(me.eavg, "E_avg " + me.point.name);
-  }
+  add_quadrature_cross_check(rep);
+  track_largest_error(rep);
   judge_model_gains(rep);
-
-  // The double reference on the identical first samples of every k-th integral.
-  if (opt.reference_samples > 0) {
-    std::vector<IntegralSpec> subset;
-    size_t k = 0;
-    for (auto& u : units)
-      for (auto& s : specs_of(u))
-        if (k++ % size_t(std::max(1, opt.reference_every)) == 0) {
-          subset.push_back(s);
-          if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc) && s.model == 0) {
-            s.check = static_cast<int32_t>(IntegralKind::AlbedoRqmcB);  // and its B channel
-            subset.push_back(s);
-          }
-        }
-    in.stratify(subset, opt.min_points);  // E_avg's view cosines are spaced by the point count
-    auto agree = compare_with_reference(in, subset, opt.reference_samples, opt.seed);
-    for (size_t j = 0; j < agree.size(); ++j) {
-      rep.reference_compared++;
-      if (agree[j].disagreement <= rep.reference_worst) continue;
-      rep.reference_worst = agree[j].disagreement;
-      const ref::IntegralRef r = reference_of(subset[j]);
-      const std::string what =
-          r.brdf.model ? "model " + r.brdf.model->id : r.brdf.d->id + "/" + r.brdf.g->id + "/" + r.brdf.f->id;
-      rep.reference_worst_at = fmt::format("{} kind={} width={:g} cos_o={:g} stream={} (kernel {:.9g}, reference {:.9g})",
-                                           what, subset[j].check, r.width, r.cos_o, r.stream, agree[j].kernel_mean,
-                                           agree[j].reference_mean);
-    }
-  }
+  if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units);
 
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double run_s = std::max(1e-9, rep.seconds - rep.build_seconds);
   rep.samples_per_second = double(rep.samples) / run_s;
   return rep;
-}
-
-// ---- baseline --------------------------------------------------------------
-
-BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string& text, double alpha_fw) {
-  using nlohmann::json;
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw Error(fmt::format("--baseline is not JSON: {}", e.what()));
-  }
-  auto num = [](const json& v) { return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN(); };
-  BaselineDiff out;
-  try {
-    if (j.at("schema").get<std::string>() != "mfv-energy/1")
-      throw Error("--baseline is not an mfv energy report (schema mfv-energy/1)");
-    const auto& grid = j.at("grid");
-    auto same = [](const json& a, const std::vector<double>& b) {
-      if (a.size() != b.size()) return false;
-      for (size_t i = 0; i < b.size(); ++i)
-        if (std::fabs(a[i].get<double>() - b[i]) > 1e-9 * std::max(1.0, std::fabs(b[i]))) return false;
-      return true;
-    };
-    if (!same(grid.at("mu"), now.mu) || !same(grid.at("alpha"), now.alpha))
-      throw Error(fmt::format("--baseline has a {}x{} grid; this run has {}x{}: rerun with the same --grid",
-                              grid.at("mu").size(), grid.at("alpha").size(), now.mu.size(), now.alpha.size()));
-    const double df_old = j.at("options").at("replicates").get<double>() - 1, df_new = now.opt.replicates - 1;
-    std::vector<BaselineValue> tests;
-    std::map<std::string, const json*> old;
-    for (auto& c : j.at("combinations")) old[c.at("d").get<std::string>() + "/" + c.at("g").get<std::string>()] = &c;
-    const size_t nm = now.mu.size();
-    for (auto& t : now.tables) {
-      auto it = old.find(t.name());
-      if (it == old.end()) {
-        out.notes.push_back(t.name() + " is not in the baseline");
-        continue;
-      }
-      const json& c = *it->second;
-      for (size_t a = 0; a < now.alpha.size(); ++a) {
-        for (size_t m = 0; m < nm; ++m) {
-          const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), now.alpha[a], now.mu[m]);
-          const size_t ci = a * nm + m;
-          tests.push_back({"E " + w, num(c.at("E")[a][m]), num(c.at("E_se")[a][m]), df_old, t.E[ci].mean, t.E[ci].se,
-                           df_new});
-          tests.push_back({"A " + w, num(c.at("A")[a][m]), num(c.at("A_se")[a][m]), df_old, t.A[ci].mean, t.A[ci].se,
-                           df_new});
-        }
-        tests.push_back({fmt::format("E_avg {} alpha={:.4g}", t.name(), now.alpha[a]), num(c.at("E_avg")[a]),
-                         num(c.at("E_avg_se")[a]), df_old, t.eavg[a].mean, t.eavg[a].se, df_new});
-      }
-    }
-    for (auto& [name, c] : old)
-      if (std::none_of(now.tables.begin(), now.tables.end(), [&](const EnergyTable& t) { return t.name() == name; }))
-        out.notes.push_back(name + " is in the baseline but not in this run");
-    // whole models, by point name (a baseline from before they existed has none)
-    std::map<std::string, const json*> old_models;
-    if (j.contains("models"))
-      for (auto& m : j.at("models")) old_models[m.at("name").get<std::string>()] = &m;
-    for (auto& me : now.models) {
-      auto it = old_models.find(me.point.name);
-      if (it == old_models.end()) {
-        out.notes.push_back(me.point.name + " is not in the baseline");
-        continue;
-      }
-      const json& c = *it->second;
-      for (size_t m = 0; m < nm; ++m)
-        tests.push_back({fmt::format("E {} mu_l={:.4g}", me.point.name, now.mu[m]), num(c.at("E")[m]),
-                         num(c.at("E_se")[m]), df_old, me.E[m].mean, me.E[m].se, df_new});
-      tests.push_back({"E_avg " + me.point.name, num(c.at("E_avg")), num(c.at("E_avg_se")), df_old, me.eavg.mean,
-                       me.eavg.se, df_new});
-    }
-    // the standard errors come from R-1 degrees of freedom each (replicates)
-    judge_baseline(tests, alpha_fw, out);
-  } catch (const json::exception& e) {
-    throw Error(fmt::format("--baseline is malformed: {}", e.what()));
-  }
-  return out;
 }
 
 }  // namespace mfv

@@ -4,7 +4,7 @@
 #include "checks/chi_square.hpp"
 #include "numeric/quadrature.hpp"
 #include "reference/estimators.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "rng/philox.hpp"
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"

@@ -7,6 +7,7 @@
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/error.hpp"
+#include "util/math_constants.hpp"
 #include "runtime/work_group.hpp"
 #include "util/progress.hpp"
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <iostream>
+#include <memory>
 
 namespace mfv::cli {
 
@@ -24,12 +25,22 @@ void add_devices(CLI::App& app, Globals&, int& rc) {
   });
 }
 
-void add_list(CLI::App& app, Globals&, int& rc) {
+namespace {
+
+// mfv list's command-line values, bound to its options (Globals::command_values keeps them).
+struct ListCommandOptions {
+  bool json = false;
+};
+
+}  // namespace
+
+void add_list(CLI::App& app, Globals& g, int& rc) {
   auto* cmd = app.add_subcommand("list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
-  static bool json = false;
-  cmd->add_flag("--json", json, "machine-readable output");
-  cmd->callback([&rc] {
-    if (json) {
+  auto values = std::make_shared<ListCommandOptions>();  // the command's values
+  g.command_values.push_back(values);
+  cmd->add_flag("--json", values->json, "machine-readable output");
+  cmd->callback([&rc, values] {
+    if (values->json) {
       nlohmann::json out = nlohmann::json::array();
       for (auto& t : catalog()) {
         nlohmann::json j{{"id", t.id},       {"kind", kind_name(t.kind)}, {"source", t.source},

@@ -4,13 +4,19 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace mfv::cli {
 
 struct Globals {
   std::string device;      // --device: index or name substring
   std::string kernel_dir;  // --kernel-dir: read kernels from here instead of the binary
+  // Each command's option values (a struct per cmd_*.cpp, bound to its
+  // options): kept here so that they live as long as the app that parses into
+  // them, whatever becomes of the command's callback.
+  std::vector<std::shared_ptr<void>> command_values;
 };
 
 void add_devices(CLI::App& app, Globals& g, int& rc);

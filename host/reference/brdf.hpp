@@ -1,8 +1,7 @@
 // The assembled reference BRDF, in double with GLM (twin of kernels/brdf.cl).
 #pragma once
 
-#include "catalog/catalog.hpp"
-#include "catalog/models.hpp"
+#include "reference/twins.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -11,12 +10,13 @@ namespace mfv::ref {
 // One BRDF: a D, G and F term with their native parameters, plus a Lambert
 // diffuse albedo kd (0 for a pure microfacet BRDF).
 struct BrdfSpec {
-  const Term* d = nullptr;
-  const Term* g = nullptr;
-  const Term* f = nullptr;
+  // The catalog's Term and Model (catalog/) derive from these twins.
+  const TermTwins* d = nullptr;
+  const TermTwins* g = nullptr;
+  const TermTwins* f = nullptr;
   double pd = 0, pg = 0, f0 = 0, f1 = 0, kd = 0;
   // A whole model instead of D x G x F: its p[0..5] are pd, pg, f0, f1, kd, p5.
-  const Model* model = nullptr;
+  const ModelTwins* model = nullptr;
   double p5 = 0;
   // Anisotropic terms (Term::aniso): the second widths along b = +y; 0 for
   // isotropic specs (twin of IntegralSpec::pd2, which D and G share).

@@ -3,13 +3,13 @@
 // Small, named guards instead of scattered clamps (STYLE.md, "Edge cases").
 #pragma once
 
+#include "util/math_constants.hpp"
+
 #include <algorithm>
 
 namespace mfv::ref::detail {
 
-// π to the precision of a double (the literal carries more digits than a
-// double holds; the compiler rounds it once, correctly).
-inline constexpr double kPi = 3.14159265358979323846264338327950288;
+using ::mfv::kPi;  // util/math_constants.hpp
 
 // Clamp a cosine into [0, 1].  Dot products of unit vectors can round a few
 // ULP outside [-1, 1]; the terms below are defined on [0, 1].

@@ -1,8 +1,9 @@
 #include "report/energy_report.hpp"
 #include "mfv_git_commit.h"
 
+#include "catalog/roughness.hpp"
 #include "report/files.hpp"
-#include "report/gnuplot.hpp"
+#include "report/energy_plots.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
 
@@ -43,8 +44,6 @@ std::string ident(const std::string& s) {
   for (char c : s) o += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   return o;
 }
-
-std::string file_stem(const EnergyTable& t) { return t.d->id + "__" + t.g->id; }
 
 }  // namespace
 
@@ -108,9 +107,80 @@ void print_baseline_console(const BaselineDiff& d) {
   if (d.moved.size() > 20) fmt::print("  ... and {} more\n", d.moved.size() - 20);
 }
 
+namespace {
+
+// One D/G table: [alpha index][mu index] arrays of E, A, B and their errors, E_avg per alpha.
+nlohmann::json table_json(const EnergyTable& t, size_t nm) {
+  using nlohmann::json;
+  const size_t na = t.eavg.size();
+  auto grid = [&](const std::vector<Cell>& v, bool se) {
+    json rows = json::array();
+    for (size_t a = 0; a < na; ++a) {
+      json row = json::array();
+      for (size_t m = 0; m < nm; ++m) row.push_back(se ? v[a * nm + m].se : v[a * nm + m].mean);
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  auto line = [&](const std::vector<Cell>& v, bool se) {
+    json row = json::array();
+    for (auto& c : v) row.push_back(se ? c.se : c.mean);
+    return row;
+  };
+  json pts = json::array();
+  for (size_t a = 0; a < na; ++a)
+    pts.push_back(std::vector<uint64_t>(t.points.begin() + long(a * nm), t.points.begin() + long((a + 1) * nm)));
+  return json{{"d", t.d->id},
+              {"g", t.g->id},
+              {"f", "none"},
+              {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
+              {"g_param", t.g->params.empty() ? json(nullptr)
+                                              : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
+              {"E", grid(t.E, false)},
+              {"E_se", grid(t.E, true)},
+              {"A", grid(t.A, false)},
+              {"A_se", grid(t.A, true)},
+              {"B", grid(t.B, false)},
+              {"B_se", grid(t.B, true)},
+              {"points_per_replicate", pts},
+              {"E_avg", line(t.eavg, false)},
+              {"E_avg_se", line(t.eavg, true)},
+              {"E_avg_quadrature", line(t.eavg_quad, false)},
+              {"E_avg_quadrature_se", line(t.eavg_quad, true)}};
+}
+
+// One whole-model point: E over the light cosines mu, E_avg, its gains and the catalog's expectation.
+nlohmann::json model_json(const ModelEnergy& me, const std::vector<double>& mu) {
+  using nlohmann::json;
+  json params = json::object(), E = json::array(), se = json::array();
+  for (size_t i = 0; i < me.point.model->params.size(); ++i) params[me.point.model->params[i].name] = me.point.p[i];
+  for (auto& c : me.E) E.push_back(c.mean), se.push_back(c.se);
+  return json{{"name", me.point.name},
+              {"model", me.point.model->id},
+              {"source", me.point.model->source},
+              {"params", params},
+              {"mu_is", "cosine of the light (E(l) = int f(l, v) (n.v) dv)"},
+              {"E", E},
+              {"E_se", se},
+              {"points_per_replicate", me.points},
+              {"E_avg", me.eavg.mean},
+              {"E_avg_se", me.eavg.se},
+              {"E_avg_quadrature", me.eavg_quad.mean},
+              {"E_avg_quadrature_se", me.eavg_quad.se},
+              {"energy_loss", me.loss()},
+              {"max_E", me.E[me.max_at].mean},
+              {"max_E_se", me.E[me.max_at].se},
+              {"max_E_mu", mu[me.max_at]},
+              {"excess_p", me.excess_p},
+              {"gains", me.gains}, {"unresolved", me.unresolved},
+              {"catalog_expect", expect_name(me.point.expect)},
+              {"catalog_why", me.point.why}};
+}
+
+}  // namespace
+
 std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   using nlohmann::json;
-  const size_t nm = rep.mu.size(), na = rep.alpha.size();
   json j;
   j["schema"] = "mfv-energy/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
@@ -122,7 +192,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   j["parameterization"] = kParam;
   j["method"] = kMethod;
   std::vector<double> r;
-  for (double a : rep.alpha) r.push_back(std::sqrt(a));
+  for (double a : rep.alpha) r.push_back(perceptual_from_alpha(a));
   j["grid"] = {{"definition", kGrid}, {"mu", rep.mu}, {"alpha", rep.alpha}, {"perceptual_r", r},
                {"layout", "arrays are [alpha index][mu index]"}};
   const auto& o = rep.opt;
@@ -140,68 +210,9 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                     {"bound", rep.reference_bound},       {"worst_at", rep.reference_worst_at},
                     {"ok", rep.reference_worst <= rep.reference_bound}};
   j["combinations"] = json::array();
-  for (auto& t : rep.tables) {
-    auto grid = [&](const std::vector<Cell>& v, bool se) {
-      json rows = json::array();
-      for (size_t a = 0; a < na; ++a) {
-        json row = json::array();
-        for (size_t m = 0; m < nm; ++m) row.push_back(se ? v[a * nm + m].se : v[a * nm + m].mean);
-        rows.push_back(row);
-      }
-      return rows;
-    };
-    auto line = [&](const std::vector<Cell>& v, bool se) {
-      json row = json::array();
-      for (auto& c : v) row.push_back(se ? c.se : c.mean);
-      return row;
-    };
-    json pts = json::array();
-    for (size_t a = 0; a < na; ++a)
-      pts.push_back(std::vector<uint64_t>(t.points.begin() + long(a * nm), t.points.begin() + long((a + 1) * nm)));
-    j["combinations"].push_back({{"d", t.d->id},
-                                 {"g", t.g->id},
-                                 {"f", "none"},
-                                 {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
-                                 {"g_param", t.g->params.empty() ? json(nullptr)
-                                                                 : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
-                                 {"E", grid(t.E, false)},
-                                 {"E_se", grid(t.E, true)},
-                                 {"A", grid(t.A, false)},
-                                 {"A_se", grid(t.A, true)},
-                                 {"B", grid(t.B, false)},
-                                 {"B_se", grid(t.B, true)},
-                                 {"points_per_replicate", pts},
-                                 {"E_avg", line(t.eavg, false)},
-                                 {"E_avg_se", line(t.eavg, true)},
-                                 {"E_avg_quadrature", line(t.eavg_quad, false)},
-                                 {"E_avg_quadrature_se", line(t.eavg_quad, true)}});
-  }
+  for (auto& t : rep.tables) j["combinations"].push_back(table_json(t, rep.mu.size()));
   j["models"] = json::array();
-  for (auto& me : rep.models) {
-    json params = json::object(), E = json::array(), se = json::array();
-    for (size_t i = 0; i < me.point.model->params.size(); ++i) params[me.point.model->params[i].name] = me.point.p[i];
-    for (auto& c : me.E) E.push_back(c.mean), se.push_back(c.se);
-    j["models"].push_back({{"name", me.point.name},
-                           {"model", me.point.model->id},
-                           {"source", me.point.model->source},
-                           {"params", params},
-                           {"mu_is", "cosine of the light (E(l) = int f(l, v) (n.v) dv)"},
-                           {"E", E},
-                           {"E_se", se},
-                           {"points_per_replicate", me.points},
-                           {"E_avg", me.eavg.mean},
-                           {"E_avg_se", me.eavg.se},
-                           {"E_avg_quadrature", me.eavg_quad.mean},
-                           {"E_avg_quadrature_se", me.eavg_quad.se},
-                           {"energy_loss", me.loss()},
-                           {"max_E", me.E[me.max_at].mean},
-                           {"max_E_se", me.E[me.max_at].se},
-                           {"max_E_mu", rep.mu[me.max_at]},
-                           {"excess_p", me.excess_p},
-                           {"gains", me.gains}, {"unresolved", me.unresolved},
-                           {"catalog_expect", expect_name(me.point.expect)},
-                           {"catalog_why", me.point.why}});
-  }
+  for (auto& me : rep.models) j["models"].push_back(model_json(me, rep.mu));
   return j.dump(1);
 }
 
@@ -307,97 +318,6 @@ std::string header_of(const EnergyReport& rep) {
   return s + "\n#endif /* MFV_KULLA_CONTY_H */\n";
 }
 
-// The plots (PNG and SVG, report/gnuplot.hpp); `names` gets the PNGs the
-// report shows. Nothing (with one printed line) where gnuplot is missing or fails.
-NamedBytes make_plots(const EnergyReport& rep, std::vector<std::string>& names) {
-  NamedBytes data;
-  const size_t nm = rep.mu.size(), na = rep.alpha.size();
-  std::vector<const Term*> ds;
-  for (auto& t : rep.tables)
-    if (std::find(ds.begin(), ds.end(), t.d) == ds.end()) ds.push_back(t.d);
-  for (auto& t : rep.tables) {
-    std::string f, e;
-    for (size_t a = 0; a < na; ++a) {
-      for (size_t m = 0; m < nm; ++m)
-        f += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[m]) * 180 / M_PI, rep.alpha[a],
-                         t.E[a * nm + m].mean, 1 - t.E[a * nm + m].mean);
-      f += "\n";
-      e += fmt::format("{:.9g} {:.9g} {:.3e}\n", rep.alpha[a], t.eavg[a].mean, t.eavg[a].se);
-    }
-    data.push_back({file_stem(t) + ".dat", f});
-    data.push_back({file_stem(t) + ".avg", e});
-  }
-  // Which alpha blocks the E(theta) curves show.
-  std::vector<size_t> cols;
-  for (double s : {0.01, 0.1, 0.3, 1.0}) {
-    size_t best = 0;
-    for (size_t a = 0; a < na; ++a)
-      if (std::fabs(std::log(rep.alpha[a] / s)) < std::fabs(std::log(rep.alpha[best] / s))) best = a;
-    if (std::find(cols.begin(), cols.end(), best) == cols.end()) cols.push_back(best);
-  }
-  std::string gp = "set encoding utf8\nset datafile missing 'nan'\n";
-  for (auto* d : ds) {
-    std::vector<const EnergyTable*> ts;
-    for (auto& t : rep.tables)
-      if (t.d == d) ts.push_back(&t);
-    const int n = int(ts.size());
-    const int cols_n = int(std::ceil(std::sqrt(double(n)))), rows_n = (n + cols_n - 1) / cols_n;
-    // heat maps of 1 - E over (theta, alpha), one panel per G
-    std::string png = "heat_" + d->id + ".png";
-    names.push_back(png);
-    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 420 * cols_n, 340 * rows_n, png);
-    gp += fmt::format("set multiplot layout {},{} title '1 − E(θ_{{view}}, α), D = {}, F = none (α = r^2)'\n",
-                      rows_n, cols_n, gnuplot_literal(d->id));
-    // x spans the data: the view cosines are cell midpoints (m + 1/2)/MU, so
-    // the first lies at θ = acos(1 - 1/(2 MU)) (10° for 32 cells), not at 0
-    gp += "set view map\nset logscale y\nset xlabel 'θ_{view} (deg)'\nset ylabel 'α'\nset cbrange [0:*]\n"
-          "set palette rgb 33,13,10\nset autoscale xfix\nset yrange [0.001:1]\n";
-    for (auto* t : ts)
-      gp += fmt::format("set title 'G = {}' noenhanced\nsplot '{}.dat' using 1:2:4 with pm3d notitle\n", t->g->id,
-                        file_stem(*t));
-    gp += "unset multiplot\nunset view\nunset logscale y\nunset cbrange\nunset yrange\nunset xrange\n";
-    // E(theta) curves for a few alpha, comparing the G terms
-    png = "curves_" + d->id + ".png";
-    names.push_back(png);
-    const int pc = int(cols.size()) > 1 ? 2 : 1, pr = (int(cols.size()) + pc - 1) / pc;
-    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output '{}'\n", 560 * pc, 400 * pr, png);
-    gp += fmt::format("set multiplot layout {},{} title 'E(θ_{{view}}) with F = 1, D = {}: G terms compared'\n", pr,
-                      pc, gnuplot_literal(d->id));
-    gp += "set key left bottom noenhanced font ',7'\nset xlabel 'θ_{view} (deg)'\nset ylabel 'E'\nset xrange [0:90]\n";
-    for (size_t c : cols) {
-      gp += fmt::format("set title 'α = {:.3g} (r = {:.3g})'\nplot ", rep.alpha[c], std::sqrt(rep.alpha[c]));
-      for (size_t i = 0; i < ts.size(); ++i)
-        gp += fmt::format("{}'{}.dat' every :::{}::{} using 1:3 with linespoints pt 7 ps 0.4 {} title '{}'",
-                          i ? ", " : "", file_stem(*ts[i]), c, c, series_colour(i), ts[i]->g->id);
-      gp += "\n";
-    }
-    gp += "unset multiplot\nunset xrange\n";
-  }
-  // E_avg(alpha) across combinations: one panel per D
-  {
-    names.push_back("eavg.png");
-    const int n = int(ds.size()), pc = n > 1 ? 2 : 1, pr = (n + pc - 1) / pc;
-    gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output 'eavg.png'\n", 560 * pc, 400 * pr);
-    gp += fmt::format("set multiplot layout {},{} title 'E_{{avg}}(α) = 2 ∫ E(μ) μ dμ, F = 1'\n", pr, pc);
-    gp += "set logscale x\nset key left bottom noenhanced font ',7'\nset xlabel 'α (= r^2)'\nset ylabel 'E_{avg}'\n";
-    for (auto* d : ds) {
-      gp += fmt::format("set title 'D = {}' noenhanced\nplot ", d->id);
-      size_t i = 0;
-      for (auto& t : rep.tables)
-        if (t.d == d) {
-          gp += fmt::format("{}'{}.avg' using 1:2 with linespoints pt 7 ps 0.4 {} title '{}'", i ? ", " : "",
-                            file_stem(t), series_colour(i), t.g->id);
-          ++i;
-        }
-      gp += "\n";
-    }
-    gp += "unset multiplot\n";
-  }
-  NamedBytes made = render_gnuplot(data, gp, names);
-  if (made.empty()) names.clear();
-  return made;
-}
-
 std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vector<std::string>& plots,
                       const BaselineDiff* base) {
   const auto& o = rep.opt;
@@ -477,12 +397,12 @@ std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyRepo
                                                                 const std::string& dir, const BaselineDiff* baseline) {
   std::vector<std::pair<std::string, std::string>> files;
   files.push_back({dir + "/energy.json", energy_json(rep, rt)});
-  for (auto& t : rep.tables) files.push_back({dir + "/csv/" + file_stem(t) + ".csv", csv_of(rep, t)});
+  for (auto& t : rep.tables) files.push_back({dir + "/csv/" + energy_file_stem(t) + ".csv", csv_of(rep, t)});
   std::vector<std::string> names;
   if (!rep.tables.empty()) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
     files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
     files.push_back({dir + "/kulla_conty.h", header_of(rep)});
-    for (auto& [n, png] : make_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
+    for (auto& [n, png] : energy_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
   }
   if (!rep.models.empty()) {
     files.push_back({dir + "/csv/models.csv", models_csv(rep)});

@@ -4,7 +4,7 @@
 #include "report/stability_report.hpp"
 #include "mfv_git_commit.h"
 
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/gnuplot.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"

@@ -1,12 +1,5 @@
-// The one error type the CLI turns into a one-line message and exit code 2.
+// Transitional: mfv::Error now lives in the lowest layer (util/error.hpp) so
+// that catalog and util need nothing above them. Kept so that branches in
+// flight still build; replace the include with "util/error.hpp" and delete.
 #pragma once
-#include <stdexcept>
-#include <string>
-
-namespace mfv {
-
-struct Error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-}  // namespace mfv
+#include "util/error.hpp"

@@ -12,6 +12,7 @@
 // they are also checked at 1/3 and 2/3 of their range.
 #include "scene/scene.hpp"
 
+#include "catalog/roughness.hpp"
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -57,7 +58,7 @@ std::vector<GltfChannelParams> SceneMaterial::channels() const {
   for (double rough : ends_and_inside(roughness))
     for (double strength : ends_and_inside(anisotropy_strength)) {
       // glTF Appendix B: alpha = roughness², floored where float32 estimators end
-      const double alpha = std::max(rough * rough, kSceneMinAlpha);
+      const double alpha = std::max(alpha_from_perceptual(rough), kSceneMinAlpha);
       // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength²) along the
       // anisotropy direction, alpha_b = alpha across it. anisotropyRotation turns
       // that direction about n; the model is evaluated in its own frame (t = +x),
@@ -91,14 +92,14 @@ std::vector<std::pair<double, double>> SceneMaterial::lobes() const {
 std::vector<double> SceneMaterial::alphas() const {
   if (!gltf) return {alpha};
   std::vector<double> out;
-  for (double rough : ends_and_inside(roughness)) push_unique(out, std::max(rough * rough, kSceneMinAlpha));
+  for (double rough : ends_and_inside(roughness)) push_unique(out, std::max(alpha_from_perceptual(rough), kSceneMinAlpha));
   return out;
 }
 
 std::vector<double> SceneMaterial::coat_alphas() const {
   std::vector<double> out;
   if (!coat_checked) return out;
-  for (double r : ends_and_inside(clearcoat_roughness)) push_unique(out, std::max(r * r, kSceneMinAlpha));
+  for (double r : ends_and_inside(clearcoat_roughness)) push_unique(out, std::max(alpha_from_perceptual(r), kSceneMinAlpha));
   return out;
 }
 

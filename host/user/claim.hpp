@@ -3,6 +3,7 @@
 // the double reference (host/reference/brdf.cpp) then judges it pointwise.
 #pragma once
 
+#include "catalog/catalog.hpp"
 #include "reference/brdf.hpp"
 #include "user/user_brdf.hpp"
 

@@ -2,7 +2,7 @@
 // declarations; errors are mfv::Error naming what was being read.
 #pragma once
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

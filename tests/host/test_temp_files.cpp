@@ -1,8 +1,8 @@
 // Temporary files are removed on SIGINT, SIGTERM and SIGHUP, and earlier
-// results survive (report/temp_files.hpp, report/files.hpp; issue 17).
-#include "report/files.hpp"
-#include "report/temp_files.hpp"
-#include "runtime/error.hpp"
+// results survive (util/temp_files.hpp, util/files.hpp; issue 17).
+#include "util/files.hpp"
+#include "util/temp_files.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 

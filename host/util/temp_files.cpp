@@ -1,6 +1,6 @@
-#include "report/temp_files.hpp"
+#include "util/temp_files.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

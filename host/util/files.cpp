@@ -1,7 +1,7 @@
-#include "report/files.hpp"
+#include "util/files.hpp"
 
-#include "report/temp_files.hpp"
-#include "runtime/error.hpp"
+#include "util/temp_files.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 
@@ -42,7 +42,7 @@ void prepare_output_dir(const std::string& dir) {
 void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
   namespace fs = std::filesystem;
   std::vector<std::string> temps;
-  std::vector<TempFile> registered;  // removed by a signal handler until renamed (report/temp_files.hpp)
+  std::vector<TempFile> registered;  // removed by a signal handler until renamed (util/temp_files.hpp)
   auto cleanup = [&] {
     std::error_code ec;
     for (auto& t : temps) fs::remove(t, ec);
