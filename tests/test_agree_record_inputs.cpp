@@ -19,7 +19,7 @@
 
 using namespace mfv;
 
-TEST_CASE("A BRDF record is compared with the reference at its own, not unit, directions", "[device][agree]") {
+TEST_CASE("A BRDF record is compared with the reference at its recorded directions and not at unit ones", "[device][agree]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   PointSpec p;
