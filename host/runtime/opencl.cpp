@@ -1,5 +1,6 @@
 #include "runtime/opencl.hpp"
 
+#include "runtime/build_options.hpp"
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
 #include "runtime/provenance.hpp"
@@ -149,6 +150,9 @@ DeviceInfo select_device(const std::string& selector) { return pick_device(list_
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
     : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
   local_size_cap_from_env();  // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
+  extra_options_ = cl_options_from_env();  // and a bad MFV_CL_OPTIONS
+  // a build that may flush float subnormals is checked as on a flush-to-zero device
+  if ((extra_options_ + " ").find(" -cl-denorms-are-zero ") != std::string::npos) info_.fp32_denorms = false;
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
   record_runtime(info_, kernel_dir_);
@@ -157,7 +161,7 @@ Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
 std::string Runtime::base_options() const {
   // Pinned: no fast-math, denormals kept, so float results are comparable
   // with the reference (kernels/rng.cl writes Philox out: no include path).
-  return "-cl-std=CL1.2";
+  return "-cl-std=CL1.2" + extra_options_;
 }
 
 std::string Runtime::kernel_text(const std::string& file) const {
@@ -217,6 +221,12 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
   }
   std::string printed = capture.restore();
   if (!printed.empty()) std::fputs(printed.c_str(), stderr);
+  // Others (Oclgrind, which also ignores -Werror) put a good build's
+  // warnings only in the build log: passed on too, so that a warning shows
+  // on every implementation (the portability tests look for none).
+  std::string log = trim(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
+  if (log.find("warning") != std::string::npos && printed.find("warning") == std::string::npos)
+    std::fprintf(stderr, "%s\n", log.c_str());
   stats_.builds += 1;
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return program;
