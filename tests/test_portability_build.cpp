@@ -166,3 +166,14 @@ TEST_CASE("MFV_CL_OPTIONS that is not build options or that the implementation r
   CHECK(r.code == 2);
   CHECK(r.out.rfind("mfv: error: kernel build failed", 0) == 0);
 }
+
+TEST_CASE("Every kernel program compiles warning-free with -Werror on rusticl without fp64",
+          "[portability][werror][rusticl]") {
+  // opt-in as the rusticl conformance test (tests/test_portability.cpp)
+  if (!std::getenv("MFV_PORTABILITY_RUSTICL")) {
+    WARN("rusticl -Werror test skipped: set MFV_PORTABILITY_RUSTICL=1");
+    return;
+  }
+  std::string dir = vendor_dir("rusticl");
+  if (!dir.empty()) builds_cleanly(vendor_env("rusticl", dir), "-Werror");
+}
