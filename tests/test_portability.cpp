@@ -5,44 +5,21 @@
 // work-group limit of 32. An implementation that is absent is skipped with
 // a message. Each runs the mfv binary with OCL_ICD_VENDORS pointing at that
 // implementation's own ICD folder, so nothing is registered system-wide.
+#include "ocl_vendors.hpp"
 #include "run_mfv.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 using mfv::test::run_mfv;
+using mfv::test::vendor_dir;
+using mfv::test::vendor_env;
 
 namespace {
 
 const std::string kExamples = std::string(MFV_TEST_DATA_DIR) + "/../../examples/brdf/";
-
-// The ICD folder of `name` under $MFV_OCL_CACHE (default ~/.cache/mfv/ocl),
-// or "" (with a message) when it or the library it names is missing.
-std::string vendor_dir(const std::string& name) {
-  namespace fs = std::filesystem;
-  const char* cache = std::getenv("MFV_OCL_CACHE");
-  const char* home = std::getenv("HOME");
-  fs::path root = cache ? fs::path(cache) : fs::path(home ? home : "/root") / ".cache/mfv/ocl";
-  fs::path dir = root / "vendors" / name, icd = dir / (name + ".icd");
-  std::string lib;
-  if (std::ifstream in(icd); in) std::getline(in, lib);
-  if (lib.empty() || !fs::exists(lib)) {
-    WARN(name << " OpenCL implementation not installed (" << icd.string()
-              << "); run scripts/install-ocl-extras.sh; its portability tests are skipped");
-    return "";
-  }
-  return dir.string();
-}
-
-std::string env_for(const std::string& name, const std::string& dir) {
-  std::string env = "OCL_ICD_VENDORS=" + dir;
-  if (name == "rusticl") env += " RUSTICL_ENABLE=llvmpipe";
-  return env;
-}
 
 // Small workloads of every command; each must exit 0 (verdicts as expected).
 // with_integrals = false leaves out run and check, whose large integrate
@@ -52,7 +29,7 @@ std::string env_for(const std::string& name, const std::string& dir) {
 void conforms(const std::string& name, bool with_integrals) {
   std::string dir = vendor_dir(name);
   if (dir.empty()) return;
-  const std::string env = env_for(name, dir);
+  const std::string env = vendor_env(name, dir);
   auto devs = run_mfv("devices", env);
   REQUIRE(devs.code == 0);
   const bool fp64 = devs.out.find(" yes ") != std::string::npos;

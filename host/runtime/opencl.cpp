@@ -1,5 +1,6 @@
 #include "runtime/opencl.hpp"
 
+#include "runtime/build_options.hpp"
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
 #include "runtime/kernel_includes.hpp"
@@ -44,6 +45,19 @@ std::string trim(std::string s) {
 // file descriptor 2 during clBuildProgram; they are held back while a build
 // runs so mfv's one `mfv: error:` line comes first, and then passed on
 // (warnings of a good build) or folded into the error's build log.
+// Others (Oclgrind, which also ignores -Werror; Intel) put a good build's
+// warnings only in the build log: its warning lines are passed on too, so
+// that a warning shows on every implementation (the portability tests look
+// for none). Left out: Intel's vectorizer saying a kernel "can't be
+// vectorized due to unsupported vec type hint", which is what
+// MFV_NO_IMPLICIT_VECTORIZE asks for (kernels/common.cl).
+void pass_on_warnings(const std::string& log) {
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("warning") != std::string::npos && line.find("unsupported vec type hint") == std::string::npos)
+      std::fprintf(stderr, "%s\n", trim(line).c_str());
+}
+
 class StderrCapture {
  public:
   StderrCapture() : file_(std::tmpfile()) {
@@ -151,6 +165,9 @@ DeviceInfo select_device(const std::string& selector) { return pick_device(list_
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
     : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
   local_size_cap_from_env();  // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
+  extra_options_ = cl_options_from_env();  // and a bad MFV_CL_OPTIONS
+  // a build that may flush float subnormals is checked as on a flush-to-zero device
+  if ((extra_options_ + " ").find(" -cl-denorms-are-zero ") != std::string::npos) info_.fp32_denorms = false;
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
   record_runtime(info_, kernel_dir_);
@@ -159,7 +176,7 @@ Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
 std::string Runtime::base_options() const {
   // Pinned: no fast-math, denormals kept, so float results are comparable
   // with the reference (kernels/rng.cl writes Philox out: no include path).
-  return "-cl-std=CL1.2";
+  return "-cl-std=CL1.2" + extra_options_;
 }
 
 std::string Runtime::kernel_text(const std::string& file) const {
@@ -225,6 +242,7 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
   }
   std::string printed = capture.restore();
   if (!printed.empty()) std::fputs(printed.c_str(), stderr);
+  if (printed.find("warning") == std::string::npos) pass_on_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
   stats_.builds += 1;
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return program;

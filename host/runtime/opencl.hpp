@@ -63,7 +63,8 @@ class Runtime {
                     const std::string& generated = "", const std::string& insert_before = "",
                     const std::vector<ExtraSource>& extra = {});
 
-  // Pinned options shared by every build, recorded in results files.
+  // Pinned options shared by every build, and MFV_CL_OPTIONS
+  // (runtime/build_options.hpp) where set, recorded in results files.
   std::string base_options() const;
   const BuildStats& build_stats() const { return stats_; }
 
@@ -72,6 +73,7 @@ class Runtime {
 
   DeviceInfo info_;
   std::string kernel_dir_;
+  std::string extra_options_;  // MFV_CL_OPTIONS
   cl::Context context_;
   cl::CommandQueue queue_;
   BuildStats stats_;
