@@ -420,10 +420,14 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
 namespace {
 
 // One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each.
-void worst_of(Runtime& rt, cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
-              uint32_t pairs, uint64_t seed, WorstPairs& out) {
+// `k` writes one asymmetry per pair; or, where `asym_pairs` is set (the
+// microfacet kernel), f(a, b) and f(b, a) of each pair, which asym_pairs
+// turns into the asymmetry (kernels/integrate.cl).
+void worst_of(Runtime& rt, cl::Kernel& k, cl::Kernel* asym_pairs, const std::vector<IntegralSpec>& specs,
+              const std::vector<size_t>& at, uint32_t pairs, uint64_t seed, WorstPairs& out) {
   const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
   const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
+  const size_t items = asym_pairs ? 2 * size_t(pairs) : pairs;  // work-items per integral
   size_t local = fit_local_size(k, rt.device().device, 256);  // the device's and kernel's limits
   while (pairs % local != 0) local /= 2;                          // a power of two that divides pairs
   for (size_t first = 0; first < at.size(); first += per_launch) {
@@ -431,11 +435,18 @@ void worst_of(Runtime& rt, cl::Kernel& k, const std::vector<IntegralSpec>& specs
     std::vector<IntegralSpec> batch;
     for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
     cl::Buffer sb(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
-    cl::Buffer ab(rt.context(), CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));
+    cl::Buffer ab(rt.context(), CL_MEM_READ_WRITE, count * items * sizeof(float));
     k.setArg(0, sb);
     k.setArg(1, static_cast<cl_ulong>(seed));
     k.setArg(2, ab);
-    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items, count), cl::NDRange(local, 1));
+    if (asym_pairs) {
+      cl::Buffer fb = ab;
+      ab = cl::Buffer(rt.context(), CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));
+      asym_pairs->setArg(0, fb);
+      asym_pairs->setArg(1, ab);
+      rt.queue().enqueueNDRangeKernel(*asym_pairs, cl::NullRange, cl::NDRange(count * pairs));
+    }
     std::vector<float> a(count * pairs);
     rt.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
     for (size_t i = 0; i < count; ++i) {
@@ -457,17 +468,19 @@ WorstPairs reciprocity_worst_pairs(Runtime& rt, const cl::Program& prog, const s
                                    uint32_t pairs, uint64_t seed) {
   WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
   if (specs.empty() || pairs == 0) return out;
-  cl::Kernel generic(prog, "reciprocity_values"), microfacet;
+  cl::Kernel generic(prog, "reciprocity_values"), microfacet, asym_pairs;
   // not in user programs (mfv check): asked by name, since a failed
   // clCreateKernel is an API error to checkers such as Oclgrind
   const std::string names = ";" + prog.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
-  if (names.find(";reciprocity_values_microfacet;") != std::string::npos)
+  if (names.find(";reciprocity_values_microfacet;") != std::string::npos) {
     microfacet = cl::Kernel(prog, "reciprocity_values_microfacet");
+    asym_pairs = cl::Kernel(prog, "reciprocity_asym_pairs");
+  }
   std::vector<size_t> fast, slow;
   for (size_t i = 0; i < specs.size(); ++i)
     (microfacet() && specs[i].model == 0 && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
-  if (!fast.empty()) worst_of(rt, microfacet, specs, fast, pairs, seed, out);
-  if (!slow.empty()) worst_of(rt, generic, specs, slow, pairs, seed, out);
+  if (!fast.empty()) worst_of(rt, microfacet, &asym_pairs, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(rt, generic, nullptr, specs, slow, pairs, seed, out);
   return out;
 }
 
