@@ -31,7 +31,7 @@ std::string ProgramCache::default_dir() {
   const std::string on = env("MFV_PROGRAM_CACHE");
   if (!on.empty() && on != "0" && on != "1")
     throw Error(fmt::format("MFV_PROGRAM_CACHE={}: expected 0 (off) or 1 (on)", on));
-  if (on == "0") return "";
+  if (on != "1") return "";  // off unless asked for (see program_cache.hpp)
   if (std::string d = env("MFV_CACHE_DIR"); !d.empty()) return d;
   if (std::string x = env("XDG_CACHE_HOME"); !x.empty()) return x + "/mfv";
   if (std::string h = env("HOME"); !h.empty()) return h + "/.cache/mfv";

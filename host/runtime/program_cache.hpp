@@ -7,7 +7,15 @@
 // another key is ignored (and replaced by the next build), never trusted.
 //
 // Where: $MFV_CACHE_DIR, else $XDG_CACHE_HOME/mfv, else $HOME/.cache/mfv.
-// Off: MFV_PROGRAM_CACHE=0 (1 or unset: on; any other value is an error).
+// On with MFV_PROGRAM_CACHE=1; off where it is 0 or unset (any other value
+// is an error). Off by default because on PoCL, asking a program for its
+// binary compiles every kernel in it (PoCL's binary holds the compiled
+// work-group functions): measured on `mfv run --check d_norm --model ggx`
+// with PoCL's own cache off, the first run took 20.6 s of CPU against 5.8 s
+// without mfv's cache, the next 4.5 s with builds down from 26.5 s to 0.7 s
+// (wall, load 15; docs/performance.md). PoCL's own kernel cache
+// (POCL_KERNEL_CACHE, on by default) already makes its second runs warm; this
+// cache is for drivers and set-ups without one.
 #pragma once
 
 #include <cstdint>
