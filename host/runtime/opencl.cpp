@@ -4,6 +4,7 @@
 #include "runtime/embedded_kernels.hpp"
 #include "runtime/error.hpp"
 #include "runtime/kernel_includes.hpp"
+#include "runtime/program_cache.hpp"
 #include "runtime/provenance.hpp"
 #include "util/parse.hpp"
 #include "runtime/work_group.hpp"
@@ -168,6 +169,7 @@ Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
   extra_options_ = cl_options_from_env();  // and a bad MFV_CL_OPTIONS
   // a build that may flush float subnormals is checked as on a flush-to-zero device
   if ((extra_options_ + " ").find(" -cl-denorms-are-zero ") != std::string::npos) info_.fp32_denorms = false;
+  cache_dir_ = ProgramCache::default_dir();  // as does a bad MFV_PROGRAM_CACHE
   context_ = cl::Context(info_.device);
   queue_ = cl::CommandQueue(context_, info_.device);
   record_runtime(info_, kernel_dir_);
@@ -191,6 +193,26 @@ std::string Runtime::kernel_text(const std::string& file) const {
   for (auto& k : embedded_kernels())
     if (file == k.name) return k.text;
   throw Error(fmt::format("internal: no embedded kernel named {}", file));
+}
+
+cl::Program Runtime::build_source(const std::string& source, const std::string& options) {
+  cl::Program program(context_, source);
+  StderrCapture capture;
+  try {
+    program.build(std::vector<cl::Device>{info_.device}, options.c_str());
+  } catch (const cl::BuildError& e) {
+    std::string log, printed = trim(capture.restore());
+    for (auto& [dev, text] : e.getBuildLog()) log += trim(text) + "\n";
+    if (!printed.empty() && log.find(printed) == std::string::npos) log += printed + "\n";
+    throw Error(fmt::format("kernel build failed on {} (options: {}); build log:\n{}", info_.name, options, log));
+  } catch (const cl::Error& e) {
+    capture.restore();
+    throw Error(fmt::format("kernel build failed on {}: {} ({})", info_.name, e.what(), e.err()));
+  }
+  std::string printed = capture.restore();
+  if (!printed.empty()) std::fputs(printed.c_str(), stderr);
+  if (printed.find("warning") == std::string::npos) pass_on_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
+  return program;
 }
 
 cl::Program Runtime::build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
@@ -226,23 +248,26 @@ cl::Program Runtime::build(const std::vector<std::string>& files, const std::vec
   std::string options = base_options();
   for (auto& d : defines) options += " -D" + d;
 
-  cl::Program program(context_, source);
   auto t0 = std::chrono::steady_clock::now();
-  StderrCapture capture;
-  try {
-    program.build(std::vector<cl::Device>{info_.device}, options.c_str());
-  } catch (const cl::BuildError& e) {
-    std::string log, printed = trim(capture.restore());
-    for (auto& [dev, text] : e.getBuildLog()) log += trim(text) + "\n";
-    if (!printed.empty() && log.find(printed) == std::string::npos) log += printed + "\n";
-    throw Error(fmt::format("kernel build failed on {} (options: {}); build log:\n{}", info_.name, options, log));
-  } catch (const cl::Error& e) {
-    capture.restore();
-    throw Error(fmt::format("kernel build failed on {}: {} ({})", info_.name, e.what(), e.err()));
+  const ProgramCache cache(cache_dir_);
+  const std::string key = cache.enabled() ? ProgramCache::key(info_, options, source) : "";
+  cl::Program program;
+  if (auto binary = cache.load(key)) {
+    try {
+      program = cl::Program(context_, {info_.device}, cl::Program::Binaries{*binary});
+      program.build(std::vector<cl::Device>{info_.device}, options.c_str());
+      stats_.cached += 1;
+    } catch (const cl::Error&) {
+      program = cl::Program();  // a binary the driver refuses (another driver build): from source
+    }
   }
-  std::string printed = capture.restore();
-  if (!printed.empty()) std::fputs(printed.c_str(), stderr);
-  if (printed.find("warning") == std::string::npos) pass_on_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
+  if (!program()) {
+    program = build_source(source, options);
+    if (cache.enabled()) {
+      const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+      if (binaries.size() == 1) cache.store(key, binaries[0]);
+    }
+  }
   stats_.builds += 1;
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return program;

@@ -38,6 +38,7 @@ DeviceInfo select_device(const std::string& selector);  // pick_device over list
 struct BuildStats {
   int builds = 0;
   double seconds = 0.0;  // wall time spent in clBuildProgram, kept apart from run time
+  int cached = 0;        // builds from a binary of the on-disk cache (runtime/program_cache.hpp)
 };
 
 class Runtime {
@@ -58,7 +59,9 @@ class Runtime {
   // Concatenates the named kernels/ files (with `generated` inserted before
   // the file named `insert_before`, or at the end, and any `extra` sources
   // where they ask) and builds them with the given -D definitions. Throws
-  // mfv::Error with the build log on failure.
+  // mfv::Error with the build log on failure. A binary of the same device,
+  // options and source in the on-disk cache (runtime/program_cache.hpp) is
+  // taken instead of the source, and every source build is stored there.
   cl::Program build(const std::vector<std::string>& files, const std::vector<std::string>& defines,
                     const std::string& generated = "", const std::string& insert_before = "",
                     const std::vector<ExtraSource>& extra = {});
@@ -70,10 +73,12 @@ class Runtime {
 
  private:
   std::string kernel_text(const std::string& file) const;
+  cl::Program build_source(const std::string& source, const std::string& options);
 
   DeviceInfo info_;
   std::string kernel_dir_;
   std::string extra_options_;  // MFV_CL_OPTIONS
+  std::string cache_dir_;  // "" = no on-disk program cache
   cl::Context context_;
   cl::CommandQueue queue_;
   BuildStats stats_;
