@@ -287,6 +287,7 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   combos("energy", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 6, 24, real_fs, {0.0});
   combos("energy_diffuse", IntegralKind::AlbedoMis, kSuiteBaseSamples / 2, 3, 8, {try_find_term("schlick", Kind::F)}, {0.5, 1.0});
   add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
+  add_sheen_plans(plans, opt);  // the sheen D and its visibility (suite_sheen.cpp)
   return plans;
 }
 
@@ -655,6 +656,7 @@ void validate_suite_options(const SuiteOptions& opt) {
     }
   }
   for (auto& name : aniso_model_names()) any = any || wanted(opt.models, name);
+  for (auto& name : sheen_model_names()) any = any || wanted(opt.models, name);
   if (!any) throw Error("no model matches the --model filter (names are D, D/G, D/G/F or model[case]: see 'mfv list')");
 }
 
