@@ -38,6 +38,11 @@ void lobe(Model& m, Width w, int param, int param2 = -1) {
 const char* kReciprocal = "";
 const char* kSteps = "the steps make the albedo jump, but f itself is symmetric";
 
+// The clearcoat models' reciprocity expectation (gltf_clearcoat, gltf_clearcoat_aniso).
+const char* const kCoatNotReciprocal =
+    "KHR_materials_clearcoat weights the coat by its Fresnel at n.v, not v.h (the spec's Discussion): "
+    "f(l, v) != f(v, l) wherever the coat and the base differ";
+
 std::vector<Model> build_models() {
   std::vector<Model> c;
   auto add = [&](std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> ps,
@@ -261,9 +266,6 @@ std::vector<Model> build_models() {
     lobe(m, Width::AlphaMin, 0, 5);
     m.ulp_budget = 48;
     m.unstable = "NaN with both directions at n.z = 2^-149 (l ~ -v along the horizon), as the gltf model it layers on";
-    const char* kCoatNotReciprocal =
-        "KHR_materials_clearcoat weights the coat by its Fresnel at n.v, not v.h (the spec's Discussion): "
-        "f(l, v) != f(v, l) wherever the coat and the base differ";
     m.cases = {{"coated chrome,cc=1,r=0.5,ccr=0.1", {0.25, 1.0, 1.0, 0.04, 0.04, 0.01, 1.0}, Expect::Hold, "",
                 Expect::Fail, kCoatNotReciprocal},
                {"coated grey plastic,cc=1,r=0.7,ccr=0.3", {0.49, 0.0, 0.5, 0.04, 0.04, 0.09, 1.0}, Expect::Hold, "",
@@ -287,10 +289,7 @@ std::vector<Model> build_models() {
                    r_::model_gltf_clearcoat_aniso);
     lobe(m, Width::AlphaMin, 0, 4);  // the narrower of base (along t) and coat, stretched to alpha_b across
     m.ulp_budget = 48;
-    m.unstable = "NaN with both directions at n.z = 2^-149 (l ~ -v along the horizon), as the gltf model it layers on";
-    const char* kCoatNotReciprocal =
-        "KHR_materials_clearcoat weights the coat by its Fresnel at n.v, not v.h (the spec's Discussion): "
-        "f(l, v) != f(v, l) wherever the coat and the base differ";
+    // stable: mfv stability's census finds no NaN or Inf (the anisotropic base's path has no 0·Inf at n.z = 2^-149)
     // the anisotropic chromes of the gltf model's cases under a coat of roughness 0.3 and 0.5
     m.cases = {{"coated aniso chrome,r=0.5,s=0.8,ccr=0.3", {0.73, 1.0, 1.0, 0.04, 0.09, 1.0, 0.25}, Expect::Hold, "",
                 Expect::Fail, kCoatNotReciprocal},
@@ -329,7 +328,10 @@ std::vector<Model> build_models() {
                hold("red sheen chrome,R,sr=0.3", {0.25, 1.0, 1.0, 0.04, 0.3, 1.0, 0.0}),
                hold("red sheen chrome,G,sr=0.3", {0.25, 1.0, 1.0, 0.04, 0.3, 0.0, 1.0}),
                hold("sheen grey plastic,s=1,sr=0.1", {0.49, 0.0, 0.5, 0.04, 0.1, 1.0, 1.0}),
-               {"velvet,s=1,sr=0.01", {0.64, 0.0, 0.1, 0.04, 0.01, 1.0, 1.0}, Expect::Fail, kSheenGrazingGain,
+               // may, not must: the gain sits at grazing light, where this estimator's proposal (the base's
+               // width) leaves the sheen lobe to the cosine lobe: flagged at seed 1, not at seed 11, scale 0.5
+               // (the lobe alone, charlie/charlie_sheen furnace, fails at every seed)
+               {"velvet,s=1,sr=0.01", {0.64, 0.0, 0.1, 0.04, 0.01, 1.0, 1.0}, Expect::May, kSheenGrazingGain,
                 Expect::Hold, ""}};
   }
   return c;
