@@ -77,17 +77,80 @@ static inline real model_gltf(real3 l, real3 v, const real* p) {
 // Parameters p[0..6]: alpha, metallic, base, f0, f0_max of the base material
 // (isotropic, specularFactor 1), clearcoat_alpha, clearcoat (last: 0 = no coat,
 // the default a whole model's p[6] takes, kernels/agree.cl).
+// mix(material, clearcoat_brdf(ca), clearcoat · fresnel_coat(V·Nc)), V = l (above)
+static inline real clearcoat_over(real material, real3 l, real3 v, real ca, real clearcoat) {
+  real NoL = l.z, NoV = v.z;
+  real s2, VoH;
+  real3 h = half_vector(l, v, &s2, &VoH);
+  if (!(VoH > R(0.0))) return R(0.0);  // l = -v: no half vector, G's χ⁺(v·h) = 0 (as model_gltf)
+  real layer = over_4_cosines(D_ggx(h.z, s2, ca) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, ca), NoL, NoV);
+  real x = R(1.0) - NoL;  // the spec's V·Nc (V = the catalog's first direction, see above)
+  real weight = clearcoat * (R(0.04) + R(0.96) * x * x * x * x * x);
+  return (R(1.0) - weight) * material + weight * layer;
+}
+
 static inline real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
+  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  real q[7] = {p[0], p[1], p[2], p[3], p[4], R(1.0), R(0.0)};
+  return clearcoat_over(model_gltf(l, v, q), l, v, p[5], p[6]);
+}
+
+// KHR_materials_clearcoat over a KHR_materials_anisotropy base (issue 21;
+// catalog "gltf_clearcoat_aniso"): the same layering over the anisotropic
+// glTF model. Parameters p[0..6]: alpha (alpha_t along t = +x), metallic,
+// base, f0 (also fresnel_mix's max: an upper bound on the base's energy, as
+// gltf_sheen), clearcoat_alpha, clearcoat, alpha_b (last: the second width,
+// which stretches the estimators' proposal to (alpha_t, alpha_b) as for gltf).
+static inline real model_gltf_clearcoat_aniso(real3 l, real3 v, const real* p) {
+  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), p[6]};
+  return clearcoat_over(model_gltf(l, v, q), l, v, p[4], p[5]);
+}
+
+// KHR_materials_sheen over the glTF model, one colour channel (issue 21;
+// catalog "gltf_sheen"). Reference twin: host/reference/model_gltf.cpp.
+// KHR_materials_sheen, "Implementation Notes":
+//   f = f_sheen + (f_diffuse + f_specular) · sheenAlbedoScaling
+//   f_sheen = sheenColor · D_charlie · V_charlie        (F = 1)
+//   sheenAlbedoScaling = min(1 − max3(sheenColor) E(n·v), 1 − max3(sheenColor) E(n·l))
+// with E the sheen lobe's directional albedo (white sheenColor), the table
+// sheen_E below, which `mfv energy` produces (table charlie/charlie_sheen).
+// The min over both directions keeps f reciprocal.
+// Parameters p[0..6]: alpha, metallic, base, f0 of the base material
+// (isotropic, specularFactor 1, f0_max = f0: fresnel_mix's base weight
+// 1 − F(f0_max) only shrinks as f0_max grows, so for channels below the
+// largest f0 this is an upper bound on the energy), sheen_alpha
+// (sheenRoughness), sheen (this channel's sheenColor), sheen_others (the
+// largest of the other two channels; 0 = a grey or single-channel sheen's
+// default). max3(sheenColor) = max(sheen, sheen_others).
+#include "abi/sheen_table.h"  // E_sheen, shared with the double reference
+
+static inline real sheen_E(real mu, real alpha) {
+  // bilinear in (mu, log10 alpha) on the table's grid: mu at cell midpoints
+  // (m + 0.5)/N, alpha = 10^(-3 + 3 j/(N - 1)) (checks/energy.cpp's grids)
+  real x = clamp(mu * (real)SHEEN_E_N - R(0.5), R(0.0), (real)(SHEEN_E_N - 1));
+  real y = clamp((log10(alpha) + R(3.0)) / R(3.0) * (real)(SHEEN_E_N - 1), R(0.0), (real)(SHEEN_E_N - 1));
+  int i = min((int)x, SHEEN_E_N - 2), j = min((int)y, SHEEN_E_N - 2);
+  real fx = x - (real)i, fy = y - (real)j;
+  real e0 = mix((real)SHEEN_E[j * SHEEN_E_N + i], (real)SHEEN_E[j * SHEEN_E_N + i + 1], fx);
+  real e1 = mix((real)SHEEN_E[(j + 1) * SHEEN_E_N + i], (real)SHEEN_E[(j + 1) * SHEEN_E_N + i + 1], fx);
+  return mix(e0, e1, fy);
+}
+
+static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
   real NoL = l.z, NoV = v.z;
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
-  real q[7] = {p[0], p[1], p[2], p[3], p[4], R(1.0), R(0.0)};
+  real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), R(0.0)};
   real material = model_gltf(l, v, q);
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);
   if (!(VoH > R(0.0))) return R(0.0);  // l = -v: no half vector, G's χ⁺(v·h) = 0 (as model_gltf)
-  real ca = p[5];
-  real layer = over_4_cosines(D_ggx(h.z, s2, ca) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, ca), NoL, NoV);
-  real x = R(1.0) - NoL;  // the spec's V·Nc (V = the catalog's first direction, see above)
-  real weight = p[6] * (R(0.04) + R(0.96) * x * x * x * x * x);
-  return (R(1.0) - weight) * material + weight * layer;
+  real sa = p[4], sheen = p[5];
+  // no sheen in this channel: no lobe (and no 0 · Inf where the cosines underflow)
+  real f_sheen = sheen > R(0.0)
+                     ? sheen * over_4_cosines(D_charlie(h.z, s2, sa) * G_charlie_sheen(NoL, NoV, h.z, VoH, sa), NoL, NoV)
+                     : R(0.0);
+  real max3 = max(sheen, p[6]);
+  real scaling = min(R(1.0) - max3 * sheen_E(NoV, sa), R(1.0) - max3 * sheen_E(NoL, sa));
+  return f_sheen + material * scaling;
 }

@@ -98,3 +98,17 @@ static inline real D_beckmann_aniso(real NoH, real hx, real hy, real ax, real ay
   real tx = hx / ax, ty = hy / ay;
   return beckmann_exp_over((tx * tx + ty * ty) / c2, MFV_PI * ax * ay * c2 * c2);
 }
+
+// ---- Sheen ------------------------------------------------------------------
+
+static inline real D_charlie(real NoH, real sin2H, real alpha) {
+  // Estevez and Kulla 2017 eq. 2 ("Charlie" sheen; KHR_materials_sheen
+  // "Sheen distribution", alphaG = sheenRoughness): (2 + 1/α) sin^(1/α)θ / (2π).
+  // sin^(1/α) = exp(log(sin²θ) / (2α)); log(sin²θ) = log1p(-cos²θ) where
+  // sin²θ is near 1 (the lobe's mass for small α sits at grazing m), so the
+  // exponent up to 1/(2α) = 500 does not amplify a rounded sin²θ.
+  if (NoH <= R(0.0)) return R(0.0);
+  real c = min(NoH, R(1.0));
+  real log_s2 = sin2H > R(0.5) ? log1p(-c * c) : log(sin2H);
+  return (R(2.0) + R(1.0) / alpha) * (R(0.5) * MFV_INV_PI) * exp(R(0.5) / alpha * log_s2);
+}

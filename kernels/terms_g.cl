@@ -170,3 +170,35 @@ static inline real G_smith_beckmann_aniso(real3 l, real3 v, real VoH, real ax, r
   if (l.z <= R(0.0) || v.z <= R(0.0) || VoH <= R(0.0)) return R(0.0);
   return G1_smith_beckmann_aniso(l.z, l.x, l.y, ax, ay) * G1_smith_beckmann_aniso(v.z, v.x, v.y, ax, ay);
 }
+
+// ---- Sheen --------------------------------------------------------------------
+
+// Estevez and Kulla 2017 §3: the fit of ln Λ of the Charlie D,
+// L(x) = a/(1 + b x^c) + d x + e, coefficients of α = 1 and α = 0 mixed by
+// (1 − α)² (KHR_materials_sheen "Sheen visibility").
+static inline real charlie_L(real x, real alpha) {
+  real t = (R(1.0) - alpha) * (R(1.0) - alpha);
+  real a = mix(R(21.5473), R(25.3245), t), b = mix(R(3.82987), R(3.32435), t);
+  real c = mix(R(0.19823), R(0.16801), t), d = mix(R(-1.97760), R(-1.27393), t);
+  real e = mix(R(-4.32054), R(-4.85967), t);
+  return a / (R(1.0) + b * pow(x, c)) + d * x + e;
+}
+
+static inline real Lambda_charlie(real NoV, real alpha) {
+  // exp(L(cosθ)) below cosθ = 0.5, exp(2 L(0.5) − L(1 − cosθ)) above
+  if (NoV <= R(0.0)) return INFINITY;
+  real c = min(NoV, R(1.0));
+  return c < R(0.5) ? exp(charlie_L(c, alpha)) : exp(R(2.0) * charlie_L(R(0.5), alpha) - charlie_L(R(1.0) - c, alpha));
+}
+
+static inline real G1_charlie(real NoV, real alpha) {
+  if (NoV <= R(0.0)) return R(0.0);
+  return R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));
+}
+
+static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // KHR_materials_sheen "Sheen visibility" (Charlie): V = 1/((1 + Λ(v) + Λ(l)) 4 (n·v)(n·l)),
+  // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))
+  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
+  return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
+}

@@ -34,7 +34,7 @@ namespace {
 
 const std::string kCorpus = std::string(MFV_TEST_DATA_DIR) + "/corpus";
 const std::vector<std::string> kScenes = {"helmet",    "flight",    "aniso_strength", "ior_grid",
-                                          "roughness", "clearcoat", "sheen_chair",    "specular"};
+                                          "roughness", "clearcoat", "sheen_chair",    "specular", "sheen", "coat_aniso"};
 
 bool any_has(const std::vector<std::string>& lines, const std::string& what) {
   return std::any_of(lines.begin(), lines.end(), [&](auto& l) { return l.find(what) != std::string::npos; });
@@ -69,6 +69,13 @@ TEST_CASE("every corpus scene loads with no .bin and no images beside it", "[sce
         slot(m["extensions"]["KHR_materials_specular"], "specularTexture");
       if (m.contains("extensions") && m["extensions"].contains("KHR_materials_anisotropy"))
         slot(m["extensions"]["KHR_materials_anisotropy"], "anisotropyTexture");
+      if (m.contains("extensions") && m["extensions"].contains("KHR_materials_sheen")) {
+        auto& sh = m["extensions"]["KHR_materials_sheen"];
+        const bool on = sh.contains("sheenColorFactor") && (sh["sheenColorFactor"][0].get<double>() > 0 ||
+                                                             sh["sheenColorFactor"][1].get<double>() > 0 ||
+                                                             sh["sheenColorFactor"][2].get<double>() > 0);
+        if (on) slot(sh, "sheenRoughnessTexture");  // read only where the sheen is on
+      }
     }
     CHECK(s.warnings.size() == read_uris.size());
     for (auto& uri : read_uris) CHECK(any_has(s.warnings, "'" + uri + "' is not beside the scene"));
@@ -160,7 +167,8 @@ TEST_CASE("each KHR material extension is accounted for per material", "[scene][
   CHECK(hard.whole_points()[0].p[6] == 1.0);  // clearcoat
   CHECK(named(c, "coat 0.5 rough 0.3").coat_alphas()[0] == Approx(0.09));
   Scene sh = load_scene(kCorpus + "/sheen_chair.gltf");
-  CHECK(any_has(named(sh, "fabric").account, "the sheen lobe is NOT checked"));
+  CHECK(any_has(named(sh, "fabric").account, "KHR_materials_sheen: checked as the gltf_sheen model"));
+  CHECK(named(sh, "fabric").whole_points().back().model->id == "gltf_sheen");
   CHECK(named(sh, "legs").account.empty());
 
   // KHR_materials_specular: f0 x specularColor above 1 is the spec's clamp, and said
@@ -451,4 +459,47 @@ TEST_CASE("KHR_materials_ior is checked through the exact dielectric Fresnel as 
         CHECK(c["verdict"] == "pass");
       }
   CHECK(exact == 6);  // each material's one roughness, at its own ior
+}
+
+TEST_CASE("sheen materials are checked with their lobe at the ends of their ranges", "[scene][corpus][sheen]") {
+  Scene s = load_scene(kCorpus + "/sheen.gltf");
+  const SceneMaterial& red = named(s, "red sheen chrome");
+  REQUIRE(red.sheen_checked);
+  // the red channel (sheen 1, others 0) and the green and blue (sheen 0, others 1), at sheenRoughness 0.3
+  auto pts = red.sheen_points();
+  auto has = [&](double sheen, double others) {
+    return std::any_of(pts.begin(), pts.end(), [&](auto& p) { return p[5] == sheen && p[6] == others && p[4] == Approx(0.3); });
+  };
+  CHECK(has(1.0, 0.0));
+  CHECK(has(0.0, 1.0));
+  size_t sheen_points = 0;
+  for (auto& w : red.whole_points()) sheen_points += w.model->id == "gltf_sheen";
+  CHECK(sheen_points == pts.size());
+  // a textured sheen roughness down to 0: checked from the Charlie D's floor 1e-3 up, and said
+  const SceneMaterial& tex = named(s, "textured sheen roughness");
+  CHECK(tex.sheen_roughness.lo == 0.0);
+  CHECK(any_has(tex.warnings, "sheenRoughness 0 is below 0.001"));
+  bool grazing_gain = false;
+  for (auto& w : tex.whole_points())
+    if (w.model->id == "gltf_sheen" && w.p[4] == Approx(1e-3)) grazing_gain = grazing_gain || w.energy == Expect::May;
+  CHECK(grazing_gain);  // E_sheen > 1 at grazing there (the fitted Lambda): may gain, said why
+  // sheenColorFactor 0 disables the layer
+  CHECK_FALSE(named(s, "sheen off").sheen_checked);
+  CHECK(named(s, "velvet").sheen_checked);
+}
+
+TEST_CASE("a clearcoat over an anisotropic base is checked with both lobes", "[scene][corpus][clearcoat]") {
+  Scene s = load_scene(kCorpus + "/coat_aniso.gltf");
+  const SceneMaterial& m = named(s, "coated brushed metal");
+  REQUIRE(m.coat_checked);
+  CHECK(any_has(m.account, "gltf_clearcoat_aniso"));
+  // alpha_t = mix(0.25, 1, 0.64) = 0.73, alpha_b = 0.25, the coat 0.09, clearcoat 1
+  auto pts = m.coat_aniso_points();
+  REQUIRE_FALSE(pts.empty());
+  CHECK(std::any_of(pts.begin(), pts.end(), [](auto& p) {
+    return p[0] == Approx(0.73) && p[6] == Approx(0.25) && p[4] == Approx(0.09) && p[5] == 1.0;
+  }));
+  size_t aniso = 0;
+  for (auto& w : m.whole_points()) aniso += w.model->id == "gltf_clearcoat_aniso";
+  CHECK(aniso == pts.size());
 }

@@ -215,6 +215,43 @@ std::vector<Term> build_catalog() {
   c.back().ulp_budget = 16;  // ~40 operations with three square roots; measured worst 8.6 ulps at grazing
   // silver, aluminium, gold, iron at ~550 nm (Palik)
   c.back().check_points = {{0.059, 3.6, "Ag"}, {0.96, 6.69, "Al"}, {0.43, 2.45, "Au"}, {2.87, 3.0, "Fe"}};
+
+  // KHR_materials_sheen: the Charlie sheen D and its visibility, a lobe of
+  // their own (Term::own_lobe). Appended last, so that the other terms keep
+  // their kernel ids. alphaG = sheenRoughness (the spec's "Sheen distribution").
+  const Param p_sheen{"alpha", 1e-3, 1.0, 0.5,
+                      "sheen roughness alphaG = sheenRoughness; below 1e-3 the lobe is a sliver at the horizon"};
+  {
+    auto* t = D("charlie", "D_charlie", "Estevez and Kulla 2017 eq. 2 (\"Charlie\" sheen); KHR_materials_sheen",
+                "(2 + 1/alpha) sin(theta)^(1/alpha) / (2 pi)", p_sheen, Roughness::Alpha, ref_::D_charlie);
+    t->ref_d_cs = ref_::D_charlie_cs;
+    t->own_lobe = true;
+    // exp(x), x = log(sin²θ) · 0.5/α, carries x's relative rounding (log, the
+    // quotient, the product: ~3 u) as |x| · 3u of D; above the agreement floor
+    // (1e-30) |x| <= ln(D_max / 1e-30) ~ 80: 240 ulps (measured worst 253 with
+    // the conditioning allowance, mfv agree --only charlie)
+    t->ulp_budget = 256;
+    // sin^(1/α)θ = (1 − cos²θ)^(1/(2α)) ≈ exp(−cos²θ/(2α)) falls to 1/e at
+    // cos²θ = 2α: slope tanθ ≈ 1/sqrt(2α), where the proposal's median slope
+    // then sits (the mass is at grazing m; the cosine lobe covers the normal)
+    t->proposal = [](double a) { return 1.0 / std::sqrt(2.0 * a); };
+  }
+  {
+    auto* t = G("charlie_sheen", "G_charlie_sheen",
+                "KHR_materials_sheen \"Sheen visibility\" (Charlie); Estevez and Kulla 2017 §3 (fitted Lambda)",
+                "1/(1 + Lambda(l) + Lambda(v)), ln Lambda = a/(1 + b x^c) + d x + e, mixed in (1 - alpha)^2",
+                p_sheen, Roughness::Alpha, ref_::G_charlie_sheen);
+    t->g1_kernel_fn = "G1_charlie";
+    t->ref_g1 = ref_::G1_charlie;
+    t->own_lobe = true;
+    // Λ = exp(L): L's absolute rounding becomes Λ's relative error; L sums terms
+    // up to a/(1 + b x^c) <= 25.3, |e| <= 4.9, |d x| <= 2 (~3 roundings of ~32:
+    // ~96 u), and G = 1/(1 + Λ(l) + Λ(v)) keeps it: 128 (measured worst 72)
+    t->ulp_budget = 128;
+    t->smith_for = {{"charlie", 0.0, 1e300,
+                     "Estevez and Kulla 2017 §3 fit ln Lambda of the Charlie D; masking takes the fit's error from "
+                     "the exact Lambda by quadrature (host/checks/suite_sheen.cpp)"}};
+  }
   return c;
 }
 
@@ -234,7 +271,16 @@ const std::vector<Term>& catalog() {
 std::vector<const Term*> terms_of(Kind k) {
   std::vector<const Term*> out;
   for (auto& t : catalog())
-    if (t.kind == k && !t.aniso) out.push_back(&t);
+    if (t.kind == k && !t.aniso && !t.own_lobe) out.push_back(&t);
+  return out;
+}
+
+double proposal_width(const Term& d, double alpha) { return d.proposal ? d.proposal(alpha) : alpha; }
+
+std::vector<const Term*> own_lobe_terms_of(Kind k) {
+  std::vector<const Term*> out;
+  for (auto& t : catalog())
+    if (t.kind == k && t.own_lobe) out.push_back(&t);
   return out;
 }
 

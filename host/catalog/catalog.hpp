@@ -74,6 +74,15 @@ struct Term : ref::TermTwins {
   // take the tangent components (kernels/terms_d.cl, terms_g.cl). terms_of()
   // leaves them out: its callers pass one width.
 
+  // A lobe of its own (the Charlie sheen D and its visibility): D and G pair
+  // only with each other (smith_for), one width, and are left out of the
+  // shared-width D x G grids (terms_of); d_norm, masking and furnace check
+  // them in host/checks/suite_sheen.cpp, agree and stability as every term.
+  bool own_lobe = false;
+  // The importance proposal's Cauchy-slope width at width alpha (null:
+  // alpha itself, right for lobes peaked at the normal); see proposal_width.
+  double (*proposal)(double alpha) = nullptr;
+
   // Agreement budget (kernel float vs double reference, identical inputs):
   // ULPs of the float result, and an absolute floor for results near zero.
   double ulp_budget = 8;
@@ -99,6 +108,9 @@ const Term* try_find_term(const std::string& id, Kind k);
 std::vector<const Term*> terms_of(Kind k);        // the isotropic terms (one width) of kind k
 std::vector<const Term*> aniso_terms_of(Kind k);  // the anisotropic ones (alpha_x, alpha_y)
 std::vector<const Term*> all_terms_of(Kind k);    // both
+std::vector<const Term*> own_lobe_terms_of(Kind k);  // Term::own_lobe (the sheen)
+// The proposal width the estimators take for D at width alpha (Term::proposal).
+double proposal_width(const Term& d, double alpha);
 
 // Parameter values checked at the boundary: NaN and out-of-range values are
 // rejected with a message naming the term, the parameter and its range.

@@ -25,6 +25,20 @@ std::vector<double> energy_mu_grid(int n) {
   return mu;
 }
 
+namespace {
+// The tables: every D x G of the shared-width grid, and each own lobe (the
+// sheen) with its G, whose table is E_sheen (KHR_materials_sheen's albedo scaling).
+std::vector<std::pair<const Term*, const Term*>> table_pairs() {
+  std::vector<std::pair<const Term*, const Term*>> pairs;
+  for (auto* d : terms_of(Kind::D))
+    for (auto* g : terms_of(Kind::G)) pairs.push_back({d, g});
+  for (auto* d : own_lobe_terms_of(Kind::D))
+    for (auto* g : own_lobe_terms_of(Kind::G))
+      if (g->fit_for(d->id)) pairs.push_back({d, g});
+  return pairs;
+}
+}  // namespace
+
 std::vector<double> energy_alpha_grid(int n) {
   std::vector<double> a;
   for (int j = 0; j < n; ++j) a.push_back(n == 1 ? 1.0 : std::pow(10.0, -3.0 + 3.0 * j / (n - 1)));
@@ -43,8 +57,7 @@ void validate_energy_options(const EnergyOptions& o) {
   for (auto& f : o.models) {
     bool hit = false;
     if (o.tables)
-      for (auto* d : terms_of(Kind::D))
-        for (auto* g : terms_of(Kind::G)) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
+      for (auto [d, g] : table_pairs()) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
     if (o.catalog_models)
       for (auto& m : models())
         for (auto& c : m.cases) hit = hit || model_case_name(m, c).find(f) != std::string::npos;
@@ -390,8 +403,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   const Term& none = find_term("none");
 
   TermSelection sel;
-  for (auto* d : terms_of(Kind::D))
-    for (auto* g : terms_of(Kind::G)) {
+  for (auto [d, g] : table_pairs()) {
       if (!opt.tables || !wanted(opt.models, d->id + "/" + g->id)) continue;
       rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
       if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
@@ -426,7 +438,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
       s.f = term_index(none);
       s.pd = float(t.pd[a]);
       s.pg = float(t.pg[a]);
-      s.width = float(rep.alpha[a]);
+      s.width = float(proposal_width(*t.d, rep.alpha[a]));
       s.cos_o = float(mu);
       return s;
     };

@@ -195,6 +195,14 @@ constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluat
 bool suite_check_wanted(const SuiteOptions& opt, const std::string& check);
 bool suite_model_wanted(const std::vector<std::string>& filter, const std::string& name);
 
+// The sheen lobes (Term::own_lobe, host/checks/suite_sheen.cpp): d_norm,
+// masking and furnace of the Charlie D with its visibility; their names for
+// the --model filter; the masking closed form G1(o)(1 + Λ_D(o)) with Λ_D by
+// quadrature of the reference D.
+void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt);
+std::vector<std::string> sheen_model_names();
+double sheen_masking_closed_form(const Term& d, const Term& g, double alpha, double cos_o);
+
 // The anisotropic D and Smith G cases (host/checks/suite_aniso.cpp): d_norm,
 // masking and furnace plans, and the model names they use.
 void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt);

@@ -251,6 +251,7 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   for (const CheckRow& row : dgf_check_rows())
     if (row.kind != IntegralKind::DNorm && suite_check_wanted(opt, row.check)) plans.push_back(dgf_plan(row, opt));
   add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
+  add_sheen_plans(plans, opt);  // the sheen D and its visibility (suite_sheen.cpp)
   return plans;
 }
 

@@ -1,11 +1,16 @@
 #include "reference/model_gltf.hpp"
 
 #include "reference/reference.hpp"
+#include "abi/sheen_table.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace mfv::ref {
 
@@ -50,19 +55,74 @@ double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
   return (1.0 - metallic) * dielectric + metallic * metal;
 }
 
-double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
-  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
-  // KHR_materials_clearcoat, "Implementation": coated_material = mix(material,
-  // clearcoat_brdf, clearcoat · (0.04 + 0.96 (1 − |V·Nc|)^5)), Nc = n
-  const double base[7] = {p[0], p[1], p[2], p[3], p[4], 1.0, 0.0};
-  const double material = model_gltf(l, v, base);
+namespace {
+// KHR_materials_clearcoat, "Implementation": coated_material = mix(material,
+// clearcoat_brdf, clearcoat · (0.04 + 0.96 (1 − |V·Nc|)^5)), Nc = n
+double coated(double material, const glm::dvec3& l, const glm::dvec3& v, double ca, double clearcoat) {
   // clearcoat_brdf = specular_brdf(α = clearcoatRoughness²): Appendix B.3.2 D·Vis, the
   // metal with F = 1 (base colour 1: conductor_fresnel = 1) of the glTF model itself
-  const double white_metal[7] = {p[5], 1.0, 1.0, 0.04, 0.04, 1.0, 0.0};
+  const double white_metal[7] = {ca, 1.0, 1.0, 0.04, 0.04, 1.0, 0.0};
   const double layer = model_gltf(l, v, white_metal);
   // V = l: the catalog's first direction is the spec's view (kernels/model_gltf.cl explains why)
-  const double weight = p[6] * (0.04 + 0.96 * std::pow(1.0 - std::min(l.z, 1.0), 5.0));
+  const double weight = clearcoat * (0.04 + 0.96 * std::pow(1.0 - std::min(l.z, 1.0), 5.0));
   return (1.0 - weight) * material + weight * layer;
+}
+}  // namespace
+
+double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
+  const double base[7] = {p[0], p[1], p[2], p[3], p[4], 1.0, 0.0};
+  return coated(model_gltf(l, v, base), l, v, p[5], p[6]);
+}
+
+double model_gltf_clearcoat_aniso(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
+  // the anisotropic base (KHR_materials_anisotropy: alpha_t = p[0], alpha_b = p[6]), f0_max = f0
+  const double base[7] = {p[0], p[1], p[2], p[3], p[3], 1.0, p[6]};
+  return coated(model_gltf(l, v, base), l, v, p[4], p[5]);
+}
+
+// The E_sheen table kernels/model_gltf.cl also includes: its float constants
+// are the kernel's, read here as doubles.
+const std::vector<double>& sheen_table_values() {
+  static const std::vector<double> v(std::begin(SHEEN_E), std::end(SHEEN_E));
+  return v;
+}
+
+int sheen_table_side() { return static_cast<int>(std::lround(std::sqrt(double(sheen_table_values().size())))); }
+
+double sheen_albedo_table(double mu, double alpha) {
+  // grid of checks/energy.cpp: mu_m = (m + 0.5)/N, alpha_j = 10^(-3 + 3j/(N - 1))
+  const auto& t = sheen_table_values();
+  const int n = sheen_table_side();
+  const double x = std::clamp(mu * n - 0.5, 0.0, double(n - 1));
+  const double y = std::clamp((std::log10(alpha) + 3.0) / 3.0 * (n - 1), 0.0, double(n - 1));
+  const int i = std::min(int(x), n - 2), j = std::min(int(y), n - 2);
+  const double fx = x - i, fy = y - j;
+  auto at = [&](int a, int m) { return t[size_t(a) * size_t(n) + size_t(m)]; };
+  const double lo = at(j, i) + fx * (at(j, i + 1) - at(j, i));
+  const double hi = at(j + 1, i) + fx * (at(j + 1, i + 1) - at(j + 1, i));
+  return lo + fy * (hi - lo);
+}
+
+double model_gltf_sheen(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;  // χ⁺: no reflection below the horizon
+  // KHR_materials_sheen, "Implementation Notes" (albedo-scaling technique):
+  //   f = sheenColor D V + (f_diffuse + f_specular) min(1 − max3 E(n·v), 1 − max3 E(n·l))
+  const double base[7] = {p[0], p[1], p[2], p[3], p[3], 1.0, 0.0};
+  const double material = model_gltf(l, v, base);
+  const glm::dvec3 sum = l + v;
+  const double len = glm::length(sum);
+  if (!(len > 0.0)) return 0.0;  // l = -v: no half vector
+  const double NoL = std::min(l.z, 1.0), NoV = std::min(v.z, 1.0);
+  const double NoH = std::min(sum.z / len, 1.0), VoH = std::min(0.5 * len, 1.0);
+  const double sin2H = (sum.x * sum.x + sum.y * sum.y) / (len * len);
+  // "Sheen distribution" and "Sheen visibility": V = G / (4 (n·l)(n·v))
+  const double D = D_charlie_cs(NoH * NoH, sin2H, p[4]);
+  const double V = G_charlie_sheen(NoL, NoV, NoH, VoH, p[4]) / (4.0 * NoL * NoV);
+  const double max3 = std::max(p[5], p[6]);
+  const double scaling = std::min(1.0 - max3 * sheen_albedo_table(NoV, p[4]), 1.0 - max3 * sheen_albedo_table(NoL, p[4]));
+  return (p[5] > 0.0 ? p[5] * D * V : 0.0) + material * scaling;  // no sheen: no lobe (as the kernel)
 }
 
 double albedo_gltf(double, const double* p) {

@@ -6,6 +6,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <vector>
+
 namespace mfv::ref {
 
 // f(l, v), l = light, v = view, unit (taken as given, as the other whole
@@ -14,6 +16,18 @@ double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p);
 // KHR_materials_clearcoat over it: p[0..6] = alpha, metallic, base, f0, f0_max,
 // clearcoat_alpha, clearcoat ("gltf_clearcoat"; V = l, see kernels/model_gltf.cl).
 double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// The same over the anisotropic base: p[0..6] = alpha_t, metallic, base, f0,
+// clearcoat_alpha, clearcoat, alpha_b ("gltf_clearcoat_aniso").
+double model_gltf_clearcoat_aniso(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// KHR_materials_sheen over it: p[0..6] = alpha, metallic, base, f0, sheen_alpha,
+// sheen, sheen_others ("gltf_sheen"; see kernels/model_gltf.cl).
+double model_gltf_sheen(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// E_sheen(mu, alpha) from the table kernels/model_gltf.cl holds (parsed from
+// its text, bilinear in (mu, log10 alpha), written here independently).
+double sheen_albedo_table(double mu, double alpha);
+// The table's numbers, [alpha][mu], and its side N.
+const std::vector<double>& sheen_table_values();
+int sheen_table_side();
 // Exact albedo where known: a dielectric without a specular layer (metallic 0,
 // weight 0) is Lambert, E = base; NaN elsewhere.
 double albedo_gltf(double cos_l, const double* p);

@@ -29,6 +29,9 @@ double D_beckmann_ct82_cs(double cos2, double sin2, double m);
 // Phong and seed 004's rho form: (n·h)^e = exp((e/2) log1p(−sin²θ)) near the peak.
 double D_phong_cs(double cos2, double sin2, double alpha_p);
 double D_blinn_rho_cs(double cos2, double sin2, double rho);
+// Estevez and Kulla 2017 "Charlie" sheen: (2 + 1/α) sin^(1/α)θ / (2π), α in (0, 1]
+double D_charlie(double NoH, double alpha);
+double D_charlie_cs(double cos2, double sin2, double alpha);
 
 // ---- Anisotropic D, tangent frame t = +x, b = +y, n = +z ------------------
 // m: the microfacet normal (need not be unit: it is made unit first); ax, ay:
@@ -46,6 +49,9 @@ double G1_smith_beckmann(double NoV, double alpha);        // 1 / (1 + Lambda)
 double G1_smith_beckmann_approx(double NoV, double alpha); // seed 000 rational
 double G1_smith_phong(double NoV, double alpha_p);         // seed 000, a = sqrt(ap/2+1)/tan
 double G1_smith_ggx(double NoV, double alpha);             // seed 000 "GGX"
+// Estevez and Kulla 2017's fitted Λ of the Charlie sheen D (KHR_materials_sheen "Sheen visibility")
+double Lambda_charlie(double NoV, double alpha);
+double G1_charlie(double NoV, double alpha);              // 1 / (1 + Lambda_charlie)
 
 // Anisotropic Smith: the isotropic Λ at the projected width
 // α_o = sqrt(cos²φ ax² + sin²φ ay²) of the direction v's azimuth φ (Heitz 2014).
@@ -68,6 +74,8 @@ double G_smith_phong(double NoL, double NoV, double NoH, double VoH, double alph
 double G_smith_ggx(double NoL, double NoV, double NoH, double VoH, double alpha);
 double G_smith_ggx_correlated(double NoL, double NoV, double NoH, double VoH, double alpha);
 double G_hammon_002(double NoL, double NoV, double NoH, double VoH, double alpha);
+// KHR_materials_sheen's Charlie visibility times 4 NoL NoV: 1 / (1 + Λ(l) + Λ(v))
+double G_charlie_sheen(double NoL, double NoV, double NoH, double VoH, double alpha);
 // Anisotropic separable Smith G1(l) G1(v) (directions l, v; VoH for the χ+ test).
 double G_smith_ggx_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
 double G_smith_beckmann_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);

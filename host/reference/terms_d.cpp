@@ -198,3 +198,26 @@ double D_beckmann_aniso_slice(double NoH, double alpha) {
 }
 
 }  // namespace mfv::ref
+
+// ---- Sheen ------------------------------------------------------------------
+
+namespace mfv::ref {
+
+double D_charlie_cs(double cos2, double sin2, double alpha) {
+    // Estevez and Kulla 2017, "Production Friendly Microfacet Sheen BRDF",
+    // eq. 2 (KHR_materials_sheen "Sheen distribution", alphaG = sheenRoughness):
+    //   D(m) = (2 + 1/α) sin^(1/α)θ / (2π)
+    // Normalised: ∫ D cosθ dω = (2 + 1/α) ∫_0^1 s^(1/α + 1) ds = 1 (s = sinθ).
+    // sin^(1/α)θ = (sin²θ)^(1/(2α)); the mass sits at grazing m (fibres), none
+    // at the normal (D = 0 there for every α < ∞).
+    if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
+    return (2.0 + 1.0 / alpha) * std::pow(std::min(sin2, 1.0), 0.5 / alpha) / (2.0 * kPi);
+}
+
+double D_charlie(double NoH, double alpha) {
+    if (NoH <= 0.0) return 0.0;  // χ+(m·n)
+    const double c = saturate(NoH);
+    return D_charlie_cs(c * c, sin2_from_cos(c), alpha);
+}
+
+}  // namespace mfv::ref

@@ -277,3 +277,47 @@ double G_smith_beckmann_aniso_slice(double NoL, double NoV, double, double VoH, 
 }
 
 }  // namespace mfv::ref
+
+// ---- Sheen --------------------------------------------------------------------
+
+namespace mfv::ref {
+
+namespace {
+// Estevez and Kulla 2017, "Production Friendly Microfacet Sheen BRDF", §3:
+// their fit of ln Λ for the Charlie D, L(x) = a/(1 + b x^c) + d x + e, with
+// the coefficients of α = 0 and α = 1 (their table) interpolated in (1 − α)²,
+// as KHR_materials_sheen "Sheen visibility" writes it:
+// mix(p(α = 1), p(α = 0), (1 − α)²).
+double charlie_L(double x, double alpha) {
+    const double t = (1.0 - alpha) * (1.0 - alpha);
+    auto mix = [t](double at1, double at0) { return at1 * (1.0 - t) + at0 * t; };
+    const double a = mix(21.5473, 25.3245), b = mix(3.82987, 3.32435), c = mix(0.19823, 0.16801);
+    const double d = mix(-1.97760, -1.27393), e = mix(-4.32054, -4.85967);
+    return a / (1.0 + b * std::pow(x, c)) + d * x + e;
+}
+}  // namespace
+
+double Lambda_charlie(double NoV, double alpha) {
+    // Λ(cosθ) = exp(L(cosθ)) for cosθ < 0.5, exp(2 L(0.5) − L(1 − cosθ))
+    // above (Estevez and Kulla 2017 §3, which mirrors the fit about 0.5 for
+    // the near-normal half). A cosine that rounded above 1 is the normal.
+    if (NoV <= 0.0) return std::numeric_limits<double>::infinity();  // grazing: fully masked
+    const double c = std::min(NoV, 1.0);
+    return c < 0.5 ? std::exp(charlie_L(c, alpha)) : std::exp(2.0 * charlie_L(0.5, alpha) - charlie_L(1.0 - c, alpha));
+}
+
+double G1_charlie(double NoV, double alpha) {
+    if (NoV <= 0.0) return 0.0;
+    return 1.0 / (1.0 + Lambda_charlie(NoV, alpha));
+}
+
+double G_charlie_sheen(double NoL, double NoV, double, double VoH, double alpha) {
+    // KHR_materials_sheen "Sheen visibility" (the Charlie visibility the spec
+    // recommends): V = 1 / ((1 + Λ(n·v) + Λ(n·l)) 4 (n·v)(n·l)), so
+    // G = 4 (n·l)(n·v) V = 1 / (1 + Λ(l) + Λ(v)): Heitz 2014 eq. 99's
+    // height-correlated form with the Charlie Λ.
+    if (NoL <= 0.0 || NoV <= 0.0 || VoH <= 0.0) return 0.0;
+    return 1.0 / (1.0 + Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha));
+}
+
+}  // namespace mfv::ref

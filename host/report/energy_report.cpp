@@ -1,4 +1,5 @@
 #include "report/energy_report.hpp"
+#include "report/sheen_table.hpp"
 #include "mfv_git_commit.h"
 
 #include "catalog/roughness.hpp"
@@ -402,6 +403,8 @@ std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyRepo
   if (!rep.tables.empty()) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
     files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
     files.push_back({dir + "/kulla_conty.h", header_of(rep)});
+    const std::string sheen = sheen_table_block(rep);  // KHR_materials_sheen's E_sheen (kernels/abi/sheen_table.h)
+    if (!sheen.empty()) files.push_back({dir + "/sheen_table.h", sheen});
     for (auto& [n, png] : energy_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
   }
   if (!rep.models.empty()) {

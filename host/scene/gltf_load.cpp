@@ -27,9 +27,10 @@ namespace {
 using nlohmann::json;
 
 // Extensions mfv models (their parameters enter the glTF model)...
-const std::set<std::string> kModelled = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_anisotropy"};
+const std::set<std::string> kModelled = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_anisotropy",
+                                          "KHR_materials_sheen"};
 // ... that it accounts for per material without a surface check (see account_extension) ...
-const std::set<std::string> kAccounted = {"KHR_materials_clearcoat",   "KHR_materials_sheen",
+const std::set<std::string> kAccounted = {"KHR_materials_clearcoat",
                                           "KHR_materials_transmission", "KHR_materials_volume",
                                           "KHR_materials_emissive_strength", "KHR_materials_unlit"};
 // ... and that change nothing a BSDF check sees (geometry, texture coordinates, encodings, lights, instancing).
@@ -122,16 +123,6 @@ void account_extension(SceneMaterial& m, const std::string& ext, const json& v) 
     const double s = number_or(v, "emissiveStrength", 1.0, m, p);
     if (s < 0.0) throw Error(fmt::format("{} = {:g} is negative", at(m, p + "emissiveStrength"), s));
     m.account.push_back("KHR_materials_emissive_strength: emission, not reflection: nothing to check on a surface BSDF");
-  } else if (ext == "KHR_materials_sheen") {
-    const auto col = v.contains("sheenColorFactor") ? number_array(v["sheenColorFactor"], 3, at(m, p + "sheenColorFactor"))
-                                                    : std::vector<double>{0, 0, 0};
-    for (int k = 0; k < 3; ++k) check_unit_range(m, fmt::format("{}sheenColorFactor[{}]", p, k), col[size_t(k)]);
-    const double r = number_or(v, "sheenRoughnessFactor", 0.0, m, p);
-    check_unit_range(m, p + "sheenRoughnessFactor", r);
-    if (col[0] > 0 || col[1] > 0 || col[2] > 0 || v.contains("sheenColorTexture"))
-      m.account.push_back(fmt::format("KHR_materials_sheen (sheenColorFactor ({:g}, {:g}, {:g}), sheenRoughnessFactor "
-                                      "{:g}): the sheen lobe is NOT checked (mfv has no sheen model yet); the base "
-                                      "material below it is", col[0], col[1], col[2], r));
   }
 }
 
@@ -147,19 +138,51 @@ void read_clearcoat(SceneMaterial& m, Images& images, const json& v) {
   if (!(c > 0.0)) return;  // clearcoatFactor 0 disables the layer (the spec), whatever its texture
   m.clearcoat = textured(m, images, v, p, {"clearcoatTexture", 0, false}, c, m.account);
   m.clearcoat_roughness = textured(m, images, v, p, {"clearcoatRoughnessTexture", 1, false}, r, m.account);
-  if (m.anisotropy_strength.hi > 0.0 || m.specular.lo != 1.0 || m.specular.hi != 1.0) {
-    m.account.push_back("KHR_materials_clearcoat: the coat is NOT checked: the gltf_clearcoat model layers it over an "
-                        "isotropic base with specularFactor 1, and this base is not one");
+  if (m.specular.lo != 1.0 || m.specular.hi != 1.0) {
+    m.account.push_back("KHR_materials_clearcoat: the coat is NOT checked: the gltf_clearcoat models layer it over a "
+                        "base with specularFactor 1, and this base is not one");
     return;
   }
   m.coat_checked = true;
-  m.account.push_back(fmt::format("KHR_materials_clearcoat: checked as the gltf_clearcoat model (fresnel_coat over "
+  const bool aniso = m.anisotropy_strength.hi > 0.0;
+  m.account.push_back(fmt::format("KHR_materials_clearcoat: checked as the {} model (fresnel_coat over "
                                   "the base) over clearcoat [{:.4g}, {:.4g}], clearcoatRoughness [{:.4g}, {:.4g}]",
+                                  aniso ? "gltf_clearcoat_aniso (anisotropic base) and gltf_clearcoat" : "gltf_clearcoat",
                                   m.clearcoat.lo, m.clearcoat.hi, m.clearcoat_roughness.lo, m.clearcoat_roughness.hi));
   if (m.clearcoat_roughness.lo * m.clearcoat_roughness.lo < kSceneMinAlpha)
     m.warnings.push_back(fmt::format("clearcoatRoughness {:g} gives a coat alpha below {:g}: the coat is checked at "
                                      "alpha = {:g} (clearcoatRoughness 0.01)",
                                      m.clearcoat_roughness.lo, kSceneMinAlpha, kSceneMinAlpha));
+}
+
+// KHR_materials_sheen: sheenColor = sheenColorFactor x sheenColorTexture.rgb
+// (sRGB), sheenRoughness = sheenRoughnessFactor x sheenRoughnessTexture.a
+// (linear); checked through "gltf_sheen" (the Charlie lobe with the spec's
+// albedo scaling over an isotropic base). A black sheenColor disables the layer.
+void read_sheen(SceneMaterial& m, Images& images, const json& v) {
+  const std::string p = "KHR_materials_sheen.";
+  std::vector<double> col{0, 0, 0};
+  if (v.contains("sheenColorFactor")) col = number_array(v["sheenColorFactor"], 3, at(m, p + "sheenColorFactor"));
+  for (int k = 0; k < 3; ++k) check_unit_range(m, fmt::format("{}sheenColorFactor[{}]", p, k), col[size_t(k)]);
+  const double r = number_or(v, "sheenRoughnessFactor", 0.0, m, p);
+  check_unit_range(m, p + "sheenRoughnessFactor", r);
+  if (!(col[0] > 0 || col[1] > 0 || col[2] > 0)) return;  // sheenColorFactor 0 (the default): no sheen, whatever the texture
+  for (size_t k = 0; k < 3; ++k)
+    m.sheen_color[k] = textured(m, images, v, p, {"sheenColorTexture", int(k), true}, col[k], m.account);
+  m.sheen_roughness = textured(m, images, v, p, {"sheenRoughnessTexture", 3, false}, r, m.account);
+  m.sheen_checked = true;
+  m.account.push_back(fmt::format(
+      "KHR_materials_sheen: checked as the gltf_sheen model (Charlie sheen over the base, albedo scaling 1 - "
+      "max3(sheenColor) E_sheen) over sheenColor [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}], "
+      "sheenRoughness [{:.4g}, {:.4g}]{}",
+      m.sheen_color[0].lo, m.sheen_color[0].hi, m.sheen_color[1].lo, m.sheen_color[1].hi, m.sheen_color[2].lo,
+      m.sheen_color[2].hi, m.sheen_roughness.lo, m.sheen_roughness.hi,
+      m.anisotropy_strength.hi > 0.0 ? " (over the isotropic base points only: an anisotropic base is not layered)" : ""));
+  const double floor = gltf_sheen_model().params[4].lo;
+  if (m.sheen_roughness.lo < floor)
+    m.warnings.push_back(fmt::format("sheenRoughness {:g} is below {:g}, where the Charlie lobe is a sliver at the "
+                                     "horizon: the sheen is checked at {:g}",
+                                     m.sheen_roughness.lo, floor, floor));
 }
 
 SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
@@ -242,6 +265,7 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
                                      "direction's own frame, where the BRDF does not depend on it",
                                      m.factors.anisotropy_rotation));
   read_clearcoat(m, images, ext_of("KHR_materials_clearcoat"));
+  read_sheen(m, images, ext_of("KHR_materials_sheen"));
   for (auto& [name, v] : ext.items()) {
     if (kModelled.count(name)) continue;
     if (kAccounted.count(name)) account_extension(m, name, v);

@@ -24,6 +24,8 @@ bool GltfChannelParams::operator==(const GltfChannelParams& o) const {
 
 const Model& gltf_model() { return *try_find_model("gltf"); }
 const Model& gltf_clearcoat_model() { return *try_find_model("gltf_clearcoat"); }
+const Model& gltf_sheen_model() { return *try_find_model("gltf_sheen"); }
+const Model& gltf_clearcoat_aniso_model() { return *try_find_model("gltf_clearcoat_aniso"); }
 
 Expect gltf_energy_expect(const GltfChannelParams& c) {
   const bool plain = c.metallic >= 1.0 || (1.0 - c.metallic) * c.base <= 0.0 || c.weight <= 0.0;

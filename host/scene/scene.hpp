@@ -51,6 +51,8 @@ struct GltfChannelParams {
 // The catalog's glTF model (host/catalog/models.cpp "gltf") and its clearcoat layering ("gltf_clearcoat").
 const Model& gltf_model();
 const Model& gltf_clearcoat_model();
+const Model& gltf_sheen_model();
+const Model& gltf_clearcoat_aniso_model();
 // Its albedo must stay <= 1 where fresnel_mix is not involved: a pure metal
 // (one GGX lobe with F <= 1), no diffuse base, or no specular layer (a
 // Lambert base <= 1); elsewhere it may exceed 1 (kGltfFresnelMixGain).
@@ -85,6 +87,12 @@ struct SceneMaterial {
   // "gltf_clearcoat" model where coat_checked (host/scene/scene_points.cpp)
   ParamRange clearcoat, clearcoat_roughness;
   bool coat_checked = false;
+  // KHR_materials_sheen: sheenColor = sheenColorFactor x texture RGB (sRGB),
+  // sheenRoughness = sheenRoughnessFactor x texture A; checked through the
+  // "gltf_sheen" model where sheen_checked (host/scene/scene_points.cpp)
+  std::array<ParamRange, 3> sheen_color;
+  ParamRange sheen_roughness;
+  bool sheen_checked = false;
   // KHR_materials_ior with 1 <= ior <= 10 (the dielectric F term's range): the
   // specular lobe is also checked with the exact dielectric Fresnel at eta = ior
   bool ior_exact = false;
@@ -105,6 +113,11 @@ struct SceneMaterial {
   // ranges) and the coat's GGX widths
   std::vector<ModelParams> coat_points() const;
   std::vector<double> coat_alphas() const;
+  // ... and over the anisotropic channel points: the "gltf_clearcoat_aniso" model's
+  std::vector<ModelParams> coat_aniso_points() const;
+  // sheen_checked: the "gltf_sheen" model's points (isotropic base channels x
+  // each sheen channel and the largest of the other two x sheen roughness)
+  std::vector<ModelParams> sheen_points() const;
   // glTF: the whole-model points energy and reciprocity run at (channels(), or coat_points())
   std::vector<WholePoint> whole_points() const;
   std::string model() const;                        // "gltf" or "d/g/f"

@@ -13,6 +13,8 @@
 #include "scene/scene.hpp"
 
 #include "catalog/roughness.hpp"
+#include "reference/model_gltf.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -110,8 +112,46 @@ std::vector<ModelParams> SceneMaterial::coat_points() const {
   std::vector<ModelParams> out;
   if (!coat_checked) return out;
   for (auto& c : channels())
-    for (double cc : ends(clearcoat))
-      for (double ca : coat_alphas()) push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, c.f0_max, ca, cc});
+    if (!(c.alpha_b > 0.0))
+      for (double cc : ends(clearcoat))
+        for (double ca : coat_alphas()) push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, c.f0_max, ca, cc});
+  return out;
+}
+
+// The same over the anisotropic channel points (KHR_materials_anisotropy):
+// the "gltf_clearcoat_aniso" model, both lobes.
+std::vector<ModelParams> SceneMaterial::coat_aniso_points() const {
+  std::vector<ModelParams> out;
+  if (!coat_checked) return out;
+  for (auto& c : channels())
+    if (c.alpha_b > 0.0)
+      for (double cc : ends(clearcoat))
+        for (double ca : coat_alphas()) push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, ca, cc, c.alpha_b});
+  return out;
+}
+
+// KHR_materials_sheen: f = sheen D V + base (1 − max3 max(E(n·v), E(n·l)))
+// (min(1 − m a, 1 − m b) = 1 − m max(a, b) for m >= 0) is affine in this
+// channel's sheen and in max3 apart, so the energy is extreme at their ends:
+// each channel's sheenColor ends with the ends of the largest of the other
+// two; the sheen roughness enters non-linearly: ends and inside. The base is
+// each isotropic channel point (an anisotropic base is not layered here).
+std::vector<ModelParams> SceneMaterial::sheen_points() const {
+  std::vector<ModelParams> out;
+  if (!sheen_checked) return out;
+  const double lo_alpha = gltf_sheen_model().params[4].lo;  // the Charlie D's range starts at 1e-3
+  for (auto& c : channels()) {
+    if (c.alpha_b > 0.0) continue;
+    for (size_t k = 0; k < 3; ++k) {
+      const ParamRange& a = sheen_color[(k + 1) % 3];
+      const ParamRange& b = sheen_color[(k + 2) % 3];
+      const ParamRange others{std::max(a.lo, b.lo), std::max(a.hi, b.hi), "max of the other channels"};
+      for (double s : ends(sheen_color[k]))
+        for (double o : ends(others))
+          for (double r : ends_and_inside(sheen_roughness))
+            push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, std::max(r, lo_alpha), s, o});
+    }
+  }
   return out;
 }
 
@@ -124,12 +164,32 @@ std::string WholePoint::key() const {
 std::vector<WholePoint> SceneMaterial::whole_points() const {
   std::vector<WholePoint> out;
   if (!gltf || !not_checked.empty()) return out;
-  if (!coat_checked) {
+  if (!coat_checked)
     for (auto& c : channels()) {
       const Expect e = gltf_energy_expect(c);
       out.push_back({&gltf_model(), c.params(), e, e == Expect::Hold ? "" : kGltfFresnelMixGain, Expect::Hold, ""});
     }
-    return out;
+  for (auto& p : sheen_points()) {  // the sheen layer over the base (gltf_sheen), beside the base's own points
+    // Where the sheen lobe alone reflects more than 1 (E_sheen > 1 at grazing,
+    // small sheen roughness: mfv energy's table) the layer may gain energy
+    double e_max = 0;
+    for (int m = 0; m < 64; ++m) e_max = std::max(e_max, ref::sheen_albedo_table((m + 0.5) / 64, p[4]));
+    const bool gain = p[5] > 0.0 && e_max > 1.0;
+    out.push_back({&gltf_sheen_model(), p, gain ? Expect::May : Expect::Hold,
+                   gain ? fmt::format("E_sheen reaches {:.3g} at grazing for sheenRoughness {:g} (the Charlie "
+                                      "visibility's fitted Lambda under-masks there)", e_max, p[4])
+                        : "",
+                   Expect::Hold, ""});
+  }
+  if (!coat_checked) return out;
+  for (auto& p : coat_aniso_points()) {
+    const GltfChannelParams base{p[0], p[1], p[2], p[3], p[3], 1.0, p[6]};
+    const Expect e = gltf_energy_expect(base);
+    out.push_back({&gltf_clearcoat_aniso_model(), p, e, e == Expect::Hold ? "" : kGltfFresnelMixGain,
+                   p[5] > 0.0 ? Expect::May : Expect::Hold,
+                   p[5] > 0.0 ? "KHR_materials_clearcoat weights the coat by its Fresnel at n.v, not v.h (the spec's "
+                                "Discussion): f(l, v) != f(v, l)"
+                              : ""});
   }
   for (auto& p : coat_points()) {
     const GltfChannelParams base{p[0], p[1], p[2], p[3], p[4], 1.0, 0.0};
@@ -153,6 +213,8 @@ void set_factor_ranges(SceneMaterial& m) {
   m.anisotropy_strength = fixed(m.factors.anisotropy_strength);
   m.clearcoat = fixed(0.0);
   m.clearcoat_roughness = fixed(0.0);
+  for (auto& c : m.sheen_color) c = fixed(0.0);
+  m.sheen_roughness = fixed(0.0);
   for (size_t k = 0; k < 3; ++k) {
     m.base[k] = fixed(m.factors.base[k]);
     m.specular_color[k] = fixed(m.factors.specular_color[k]);

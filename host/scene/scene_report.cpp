@@ -102,7 +102,12 @@ std::string ranges_text(const SceneMaterial& m) {
   if (m.anisotropy_strength.hi > 0) s += "; " + range_text("anisotropyStrength", m.anisotropy_strength);
   if (m.coat_checked) {
     s += "; " + range_text("clearcoat", m.clearcoat) + "; " + range_text("clearcoatRoughness", m.clearcoat_roughness);
-    s += fmt::format(" ({} gltf_clearcoat points)", m.coat_points().size());
+    s += fmt::format(" ({} gltf_clearcoat points, {} gltf_clearcoat_aniso points)", m.coat_points().size(),
+                     m.coat_aniso_points().size());
+  }
+  if (m.sheen_checked) {
+    for (size_t k = 0; k < 3; ++k) s += "; " + range_text(fmt::format("sheenColor[{}]", k).c_str(), m.sheen_color[k]);
+    s += "; " + range_text("sheenRoughness", m.sheen_roughness) + fmt::format(" ({} gltf_sheen points)", m.sheen_points().size());
   }
   return s + fmt::format(" ({} parameter points; the ends of every range, roughness and anisotropy also inside)",
                          m.channels().size());

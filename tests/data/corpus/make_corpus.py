@@ -68,6 +68,7 @@ def main():
     png("rough_only.png", grid4([z, ramp(128, 255), [0] * 16]), 3)
     png("aniso.png", grid4([[255] * 16, [128] * 16, ramp(64, 255)]), 3)
     png("specular.png", grid4([[255] * 16, [255] * 16, [255] * 16, ramp(128, 255)]), 4)
+    png("sheen_rough.png", grid4([z, z, z, ramp(0, 204)]), 4)  # A: sheen roughness 0..0.8
 
     # 1. a damaged-helmet-like textured PBR material (albedo, metal-rough, normal, occlusion, emissive)
     write("helmet.gltf", scene(
@@ -139,6 +140,30 @@ def main():
          {"name": "textured specular", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.3},
           "extensions": {"KHR_materials_specular": {"specularTexture": tex(0)}}}],
         images=["specular.png"], extensions_used=["KHR_materials_specular"]))
+
+    # 9. sheen (issue 21, the Charlie lobe checked): velvet over a dark dielectric, a red sheen over
+    #    chrome, a textured sheen roughness down to 0 (the 1e-3 floor), and a sheen over an anisotropic base
+    write("sheen.gltf", scene(
+        [{"name": "velvet", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.1, 0.3, 1], "metallicFactor": 0,
+          "roughnessFactor": 0.8},
+          "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5}}},
+         {"name": "red sheen chrome", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1,
+          "roughnessFactor": 0.5},
+          "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 0.0, 0.0], "sheenRoughnessFactor": 0.3}}},
+         {"name": "textured sheen roughness", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.6},
+          "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.5], "sheenRoughnessFactor": 1.0,
+                                                 "sheenRoughnessTexture": tex(0)}}},
+         {"name": "sheen off", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.6},
+          "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0, 0, 0], "sheenRoughnessFactor": 0.5}}}],
+        images=["sheen_rough.png"], extensions_used=["KHR_materials_sheen"]))
+
+    # 10. clearcoat over an anisotropic base (issue 21: both lobes): brushed metal under a coat
+    write("coat_aniso.gltf", scene(
+        [{"name": "coated brushed metal", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1],
+          "metallicFactor": 1, "roughnessFactor": 0.5},
+          "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8},
+                         "KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.3}}}],
+        extensions_used=["KHR_materials_anisotropy", "KHR_materials_clearcoat"]))
 
 
 if __name__ == "__main__":
