@@ -4,7 +4,7 @@
 # ${CMAKE_BINARY_DIR}/layers/NAME/, that holds one link, NAME -> host/NAME. A
 # layer's compile line carries its root and, through target_link_libraries,
 # the roots of the layers below it, never those above: an include that runs up
-# the layers ("report/files.hpp" from checks/) is "No such file or directory",
+# the layers ("report/junit.hpp" from checks/) is "No such file or directory",
 # and tests/layering/ shows that it is.
 #
 # mfv_layer(NAME [DEPENDS LOWER...] [SOURCES EXTRA...])

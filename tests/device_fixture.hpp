@@ -2,7 +2,7 @@
 // skipped with a message instead of failing.
 #pragma once
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/opencl.hpp"
 
 #include <catch2/catch.hpp>

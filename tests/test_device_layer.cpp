@@ -5,7 +5,7 @@
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -5,7 +5,7 @@
 // option takes exactly the values the strict parsers take (util/parse.hpp).
 #include "cli/app.hpp"
 #include "host/fuzz_util.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <functional>

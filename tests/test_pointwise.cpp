@@ -7,7 +7,7 @@
 #include "checks/stability.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/kernel_includes.hpp"
 
 #include <catch2/catch.hpp>

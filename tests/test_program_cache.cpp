@@ -4,7 +4,7 @@
 // it is off unless MFV_PROGRAM_CACHE=1, and a bad value is a one-line error.
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/opencl.hpp"
 #include "runtime/program_cache.hpp"
 #include "test_files.hpp"

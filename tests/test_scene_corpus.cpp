@@ -7,7 +7,7 @@
 // per material; a bad number is one line naming file, material and field.
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_filters.hpp"
 #include "scene/texture_range.hpp"

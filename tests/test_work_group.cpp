@@ -7,7 +7,7 @@
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/work_group.hpp"
 
 #include <catch2/catch.hpp>

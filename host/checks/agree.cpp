@@ -7,7 +7,7 @@
 #include "reference/brdf.hpp"
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/progress.hpp"
 
 #include <glm/geometric.hpp>

@@ -6,7 +6,7 @@
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "util/files.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/provenance.hpp"
 
 #include <fmt/format.h>

@@ -5,7 +5,7 @@
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 #include "checks/check_table.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

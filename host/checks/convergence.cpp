@@ -9,7 +9,7 @@
 #include "reference/brdf.hpp"
 #include "reference/estimators.hpp"
 #include "util/files.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "util/progress.hpp"

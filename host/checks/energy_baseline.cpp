@@ -2,7 +2,7 @@
 // Welch's t on the two estimates and their replicate standard errors.
 #include "checks/energy.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -8,7 +8,7 @@
 #include "rng/philox.hpp"
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/provenance.hpp"
 #include "util/progress.hpp"
 

@@ -6,7 +6,7 @@
 #include "checks/stability_cases.hpp"
 #include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/math_constants.hpp"
 #include "runtime/work_group.hpp"
 #include "util/progress.hpp"

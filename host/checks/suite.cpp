@@ -7,7 +7,7 @@
 #include "checks/reference_compare.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "util/progress.hpp"

@@ -9,7 +9,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

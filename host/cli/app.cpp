@@ -1,7 +1,7 @@
 #include "cli/app.hpp"
 
 #include "cli/strict_numbers.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <string>
 

@@ -2,7 +2,7 @@
 #include "checks/bench.hpp"
 #include "checks/bench_case.hpp"
 #include "cli/commands.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 

@@ -3,9 +3,9 @@
 // codes as mfv run, so it drops into a CI job.
 #include "cli/commands.hpp"
 #include "cli/report_errors.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/suite_report.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "user/time_limit.hpp"
 #include "user/user_check.hpp"
 

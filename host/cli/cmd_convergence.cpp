@@ -1,7 +1,7 @@
 // mfv convergence: error against samples and wall time per estimator, device and reference.
 #include "checks/convergence.hpp"
 #include "cli/commands.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 

@@ -2,8 +2,8 @@
 #include "checks/energy.hpp"
 #include "cli/commands.hpp"
 #include "report/energy_report.hpp"
-#include "report/files.hpp"
-#include "runtime/error.hpp"
+#include "util/files.hpp"
+#include "util/error.hpp"
 #include "scene/scene_filters.hpp"
 
 #include <fmt/format.h>

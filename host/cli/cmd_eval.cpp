@@ -5,7 +5,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/agree.hpp"
 #include "cli/commands.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <fmt/format.h>

@@ -4,8 +4,8 @@
 #include "report/energy_report.hpp"
 #include "report/suite_baseline.hpp"
 #include "report/suite_report.hpp"
-#include "report/files.hpp"
-#include "runtime/error.hpp"
+#include "util/files.hpp"
+#include "util/error.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <fmt/format.h>

@@ -1,9 +1,9 @@
 // mfv samplers: quadrature and chi-square tests of every sampling routine.
 #include "checks/samplers.hpp"
 #include "cli/commands.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/sampler_plots.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

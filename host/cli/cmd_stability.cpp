@@ -4,8 +4,8 @@
 #include "checks/stability.hpp"
 #include "report/stability_report.hpp"
 #include "cli/commands.hpp"
-#include "report/files.hpp"
-#include "runtime/error.hpp"
+#include "util/files.hpp"
+#include "util/error.hpp"
 #include "scene/scene_filters.hpp"
 
 #include <fmt/format.h>

@@ -1,6 +1,6 @@
 #include "cli/report_errors.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <CL/opencl.hpp>
 #include <CLI/CLI.hpp>

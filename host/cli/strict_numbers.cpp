@@ -1,6 +1,6 @@
 #include "cli/strict_numbers.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <string>

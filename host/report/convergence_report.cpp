@@ -3,7 +3,7 @@
 // 1e-4, 1e-5) and gnuplot log-log plots of error against samples and time.
 #include "checks/convergence.hpp"
 #include "mfv_git_commit.h"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/gnuplot.hpp"
 #include "runtime/provenance.hpp"
 

@@ -3,9 +3,9 @@
 #include "mfv_git_commit.h"
 
 #include "catalog/roughness.hpp"
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/energy_plots.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/provenance.hpp"
 
 #include <fmt/format.h>

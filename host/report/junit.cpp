@@ -1,6 +1,6 @@
 #include "report/junit.hpp"
 
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/suite_report.hpp"
 #include "util/version.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "util/files.hpp"
 #include "report/gnuplot.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/provenance.hpp"
 
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #include "report/suite_baseline.hpp"
 
 #include "report/suite_report.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

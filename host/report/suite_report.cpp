@@ -1,7 +1,7 @@
 #include "report/suite_report.hpp"
 #include "mfv_git_commit.h"
 
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "runtime/provenance.hpp"
 #include "report/junit.hpp"
 #include "util/version.hpp"

@@ -1,6 +1,6 @@
 #include "runtime/build_options.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
 #include "runtime/integrator.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/work_group.hpp"
 
 #include <fmt/format.h>

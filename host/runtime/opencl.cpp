@@ -2,7 +2,7 @@
 
 #include "runtime/build_options.hpp"
 #include "runtime/embedded_kernels.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/kernel_includes.hpp"
 #include "runtime/program_cache.hpp"
 #include "runtime/provenance.hpp"

@@ -1,6 +1,6 @@
 #include "runtime/program_cache.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "runtime/opencl.hpp"
 #include "runtime/provenance.hpp"
 

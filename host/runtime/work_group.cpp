@@ -1,6 +1,6 @@
 #include "runtime/work_group.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

@@ -9,7 +9,7 @@
 // optional BIN chunk); the KHR_materials_* extension specifications.
 #include "scene/scene.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "scene/gltf_file.hpp"
 #include "scene/json_input.hpp"
 #include "scene/texture_range.hpp"

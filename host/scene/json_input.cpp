@@ -1,6 +1,6 @@
 #include "scene/json_input.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

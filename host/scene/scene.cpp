@@ -1,7 +1,7 @@
 #include "scene/scene.hpp"
 
 #include "catalog/roughness.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "scene/json_input.hpp"
 
 #include <fmt/format.h>

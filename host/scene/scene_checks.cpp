@@ -2,7 +2,7 @@
 
 #include "catalog/roughness.hpp"
 #include "catalog/models.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
 // Console, results.json and report.md sections of mfv run --scene: one entry
 // per material, by name; what was left out against the full catalog; time.
-#include "report/files.hpp"
+#include "util/files.hpp"
 #include "report/junit.hpp"
 #include "report/suite_report.hpp"
 #include "scene/scene_checks.hpp"

@@ -1,6 +1,6 @@
 #include "scene/texture_range.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <stb/stb_image.h>

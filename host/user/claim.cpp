@@ -1,7 +1,7 @@
 #include "user/claim.hpp"
 
 #include "catalog/catalog.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <fmt/format.h>

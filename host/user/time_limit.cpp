@@ -1,6 +1,6 @@
 #include "user/time_limit.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 #include "user/user_brdf.hpp"
 
 #include "catalog/roughness.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <fmt/format.h>

@@ -4,7 +4,7 @@
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
 #include "user/user_detail.hpp"
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

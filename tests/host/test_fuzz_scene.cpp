@@ -5,7 +5,7 @@
 // beside the build for replay: MFV_FUZZ_SEED=<seed> reproduces it.
 #include "fuzz_util.hpp"
 
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>

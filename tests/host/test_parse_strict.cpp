@@ -1,7 +1,7 @@
 // Strict numbers (util/parse.hpp): counts and seeds never wrap, saturate or
 // truncate; NaN and Inf are rejected (issue 17). Host-only: also run under
 // AddressSanitizer and UBSan (cmake/Sanitize.cmake).
-#include "runtime/error.hpp"
+#include "util/error.hpp"
 #include "util/parse.hpp"
 
 #include <catch2/catch.hpp>
