@@ -2,8 +2,8 @@
 // skipped with a message instead of failing.
 #pragma once
 
-#include "util/error.hpp"
 #include "runtime/opencl.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -14,7 +14,8 @@ class PlantedKernelDir {
  public:
   PlantedKernelDir() {
     namespace fs = std::filesystem;
-    dir_ = fs::temp_directory_path() / fs::path("mfv_kernels_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
+    dir_ = fs::temp_directory_path() /
+           fs::path("mfv_kernels_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
     fs::remove_all(dir_);
     fs::copy(MFV_KERNEL_SOURCE_DIR, dir_, fs::copy_options::recursive);
   }

@@ -5,8 +5,8 @@
 #include "scene/scene.hpp"
 #include "test_files.hpp"
 
-#include <catch2/catch.hpp>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -21,7 +21,8 @@ struct TempDir {
   std::filesystem::path dir;
   TempDir() {
     static int n = 0;
-    dir = std::filesystem::temp_directory_path() / ("mfv_scene_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    dir = std::filesystem::temp_directory_path() /
+          ("mfv_scene_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
   }

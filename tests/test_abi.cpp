@@ -6,8 +6,8 @@
 #include "kernel_dir.hpp"
 #include "runtime/integrator.hpp"
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include <cstddef>
 #include <string>
@@ -17,9 +17,10 @@ using namespace mfv;
 
 namespace {
 
-#define MFV_SPEC_FIELDS(X) \
-  X(check) X(d) X(g) X(f) X(pd) X(pg) X(f0) X(f1) X(kd) X(width) X(cos_o) X(p5) X(stream) X(strata) X(model) \
-  X(channel) X(pd2) X(phi_o) X(estimator) X(pg2)
+#define MFV_SPEC_FIELDS(X)                                                                                            \
+  X(check)                                                                                                            \
+  X(d) X(g) X(f) X(pd) X(pg) X(f0) X(f1) X(kd) X(width) X(cos_o) X(p5) X(stream) X(strata) X(model) X(channel) X(pd2) \
+      X(phi_o) X(estimator) X(pg2)
 
 struct Field {
   const char* name;
@@ -79,7 +80,8 @@ TEST_CASE("The shared layout header is read from --kernel-dir as the kernel file
   check_layout(device_offsets(rt));
   // a field moved in the folder's header moves on the device: the header is read from there
   REQUIRE(dir.replace("abi/integral.h", "  mfv_i32 check MFV_INIT(0);  /* MFV_CHECK_* */\n", ""));
-  REQUIRE(dir.replace("abi/integral.h", "  float pg2 MFV_INIT(0);", "  float pg2 MFV_INIT(0);\n  mfv_i32 check MFV_INIT(0);"));
+  REQUIRE(dir.replace("abi/integral.h", "  float pg2 MFV_INIT(0);",
+                      "  float pg2 MFV_INIT(0);\n  mfv_i32 check MFV_INIT(0);"));
   const std::vector<cl_uint> moved = device_offsets(rt);
   CHECK(moved[1] == sizeof(IntegralSpec) - 4);  // check is now the last field
 }

@@ -54,8 +54,8 @@ TEST_CASE("Agreement catches a kernel term that is off by one part in ten thousa
   Runtime* probe = test::device_runtime();
   if (!probe) return;
   test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                      "return R(1.0001) / (MFV_PI * a2 * k * k);"));
+  REQUIRE(
+      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.0001) / (MFV_PI * a2 * k * k);"));
   Runtime rt("", dir.path());
   AgreeOptions opt;
   opt.samples = 5000;
@@ -109,7 +109,8 @@ TEST_CASE("A kernel that does not compile reports its build log with the real fi
   }
 }
 
-TEST_CASE("mfv agree covers the anisotropic terms: kernel and reference on identical inputs", "[device][aniso][agree]") {
+TEST_CASE("mfv agree covers the anisotropic terms: kernel and reference on identical inputs",
+          "[device][aniso][agree]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   AgreeOptions opt;

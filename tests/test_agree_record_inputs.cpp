@@ -20,7 +20,8 @@
 
 using namespace mfv;
 
-TEST_CASE("A BRDF record is compared with the reference at its recorded directions and not at unit ones", "[device][agree]") {
+TEST_CASE("A BRDF record is compared with the reference at its recorded directions and not at unit ones",
+          "[device][agree]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   PointSpec p;
@@ -28,7 +29,7 @@ TEST_CASE("A BRDF record is compared with the reference at its recorded directio
   p.d = &find_term("phong");
   p.g = &find_term("cook_torrance");
   p.f = &find_term("conductor");
-  const float in[6] = {-0x1.0bc118p-1f, -0x1.892fdcp-1f, 0x1.7ab6c2p-2f,    // wi, |wi| = 1 + 7.3e-7
+  const float in[6] = {-0x1.0bc118p-1f, -0x1.892fdcp-1f, 0x1.7ab6c2p-2f,   // wi, |wi| = 1 + 7.3e-7
                        -0x1.c4deaep-1f, -0x1.dbd176p-2f, 0x1.543c48p-5f};  // wo
   for (int k = 0; k < 6; ++k) p.inputs[k] = in[k];
   const float params[5] = {0x1.b3724cp-6f, 0x1.196f8ap-7f, 0x1.02eb74p-2f, 0x1.ff25f6p-5f, 0x1.237518p-9f};

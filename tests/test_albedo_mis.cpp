@@ -54,8 +54,8 @@ TEST_CASE("AlbedoMis: kernel and double reference agree on the same points", "[i
   std::vector<IntegralSpec> specs = {
       mis_spec("ggx", "smith_ggx_correlated", "none", 0.5, 0.5, 0, 0, 0),
       mis_spec("ggx", "smith_ggx_correlated", "schlick", 0.01, 1e-3, 0.04, 0, 1),  // stiff and grazing
-      mis_spec("beckmann", "smith_beckmann", "schlick", 0.8, 0.2, 0.5, 0.3, 2),   // another family, with kd
-      mis_spec("ggx", "smith_beckmann", "none", 1e-4, 1.0, 0, 0, 3),              // near-specular, normal view
+      mis_spec("beckmann", "smith_beckmann", "schlick", 0.8, 0.2, 0.5, 0.3, 2),    // another family, with kd
+      mis_spec("ggx", "smith_beckmann", "none", 1e-4, 1.0, 0, 0, 3),               // near-specular, normal view
   };
   in.stratify(specs, 1 << 14);
   for (const auto& a : compare_with_reference(in, specs, 256, 5)) {
@@ -84,13 +84,16 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
   Integrator in(*rt, selection());
   // E(mu) of GGX + height-correlated Smith G2, F = 1, by quadrature
   // (the peers' ggx_np.py; 7 digits): (alpha, mu) = (0.5, 0.5), (0.1, 0.1)
-  struct Case { double alpha, mu, truth; };
+  struct Case {
+    double alpha, mu, truth;
+  };
   const Case cases[] = {{0.5, 0.5, 0.6982507}, {0.1, 0.1, 0.8834550}};
   // t at a two-sided 1e-3 with 31 degrees of freedom (student_t_two_sided_quantile)
   const double t3 = stats::student_t_two_sided_quantile(1e-3, kMisReplicates - 1);
   for (const Case& c : cases) {
     std::vector<IntegralSpec> specs;
-    for (uint32_t k = 0; k < 48; ++k) specs.push_back(mis_spec("ggx", "smith_ggx_correlated", "none", c.alpha, c.mu, 0, 0, k));
+    for (uint32_t k = 0; k < 48; ++k)
+      specs.push_back(mis_spec("ggx", "smith_ggx_correlated", "none", c.alpha, c.mu, 0, 0, k));
     const auto est = in.run(specs, 1 << 13, 11);
     // z of each of 48 independent integrals: none beyond t(1e-3) (P(any) ~ 5 %
     // would flake: use the 1e-3 level per integral and allow one), and the
@@ -116,8 +119,8 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
 
 // The verdict of `check` on `model` with one replacement planted in a kernel
 // file; gate_ok: whether the whole run still passed the gate.
-static Verdict planted_verdict(const char* file, const char* from, const char* to, const SuiteOptions& opt, const char* check,
-                        const char* model, bool& gate_ok) {
+static Verdict planted_verdict(const char* file, const char* from, const char* to, const SuiteOptions& opt,
+                               const char* check, const char* model, bool& gate_ok) {
   test::PlantedKernelDir dir;
   REQUIRE(dir.replace(file, from, to));
   Runtime planted("", dir.path());

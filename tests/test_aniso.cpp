@@ -7,13 +7,13 @@
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
-#include "suite_verdicts.hpp"
 #include "numeric/quadrature.hpp"
 #include "reference/reference.hpp"
 #include "runtime/dispatch.hpp"
+#include "suite_verdicts.hpp"
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 #include <glm/geometric.hpp>
 
 #include <cmath>
@@ -93,9 +93,9 @@ TEST_CASE("Anisotropic reference terms: the normal, the horizon, tan = 0 and wid
   for (auto [ax, ay] : {std::pair{0.05, 0.5}, {1e-7, 1e-3}, {10.0, 1e-7}}) {
     CHECK(ref::D_ggx_aniso({0, 0, 1}, ax, ay) == Approx(1 / (M_PI * ax * ay)).epsilon(1e-15));
     CHECK(ref::D_beckmann_aniso({0, 0, 1}, ax, ay) == Approx(1 / (M_PI * ax * ay)).epsilon(1e-15));
-    CHECK(ref::G1_smith_ggx_aniso({0, 0, 1}, ax, ay) == 1.0);       // tanθ = 0
+    CHECK(ref::G1_smith_ggx_aniso({0, 0, 1}, ax, ay) == 1.0);  // tanθ = 0
     CHECK(ref::G1_smith_beckmann_aniso({0, 0, 1}, ax, ay) == 1.0);
-    CHECK(ref::G1_smith_ggx_aniso({1, 0, 0}, ax, ay) == 0.0);       // grazing: fully masked
+    CHECK(ref::G1_smith_ggx_aniso({1, 0, 0}, ax, ay) == 0.0);  // grazing: fully masked
     CHECK(ref::G1_smith_beckmann_aniso({0, 1, 0}, ax, ay) == 0.0);
   }
   CHECK(ref::D_ggx_aniso({1, 0, 0}, 0.05, 0.5) == 0.0);  // below and at the horizon: χ+(m·n)
@@ -149,7 +149,8 @@ TEST_CASE("Anisotropic kernel terms equal the isotropic kernel terms at alpha_x 
            &find_term("smith_aniso_beckmann")};
   sel.g1 = true;
   // out[8 i + k]: D and G1 of both families, isotropic and anisotropic, at point i
-  std::string src = fmt::format(R"(
+  std::string src =
+      fmt::format(R"(
 __kernel void iso_limit(__global const float* in, __global float* out) {{
   size_t i = get_global_id(0);
   real c = in[4 * i], phi = in[4 * i + 1], a = in[4 * i + 2];
@@ -164,9 +165,8 @@ __kernel void iso_limit(__global const float* in, __global float* out) {{
   out[8 * i + 7] = eval_G1_aniso({7}, c, hx, hy, a, a);
 }}
 )",
-                                term_index(*sel.d[0]), term_index(*sel.d[2]), term_index(*sel.d[1]),
-                                term_index(*sel.d[3]), term_index(*sel.g[0]), term_index(*sel.g[2]),
-                                term_index(*sel.g[1]), term_index(*sel.g[3]));
+                  term_index(*sel.d[0]), term_index(*sel.d[2]), term_index(*sel.d[1]), term_index(*sel.d[3]),
+                  term_index(*sel.g[0]), term_index(*sel.g[2]), term_index(*sel.g[1]), term_index(*sel.g[3]));
   cl::Program prog = rt->build({"common.cl", "terms_d.cl", "terms_g.cl", "terms_f.cl"}, {}, generate_dispatch(sel), "",
                                {{"iso_limit.cl", src, ""}});
   std::vector<float> in;
@@ -224,7 +224,8 @@ TEST_CASE("d_norm and masking pass on the anisotropic terms and fail on planted 
   // G1 with alpha_x for every azimuth instead of alpha(phi_o)
   {
     test::PlantedKernelDir dir;
-    REQUIRE(dir.replace("terms_g.cl", "real q = sqr(ax * vx) + sqr(ay * vy);", "real q = sqr(ax * vx) + sqr(ax * vy);"));
+    REQUIRE(
+        dir.replace("terms_g.cl", "real q = sqr(ax * vx) + sqr(ay * vy);", "real q = sqr(ax * vx) + sqr(ax * vy);"));
     Runtime planted("", dir.path());
     SuiteReport bad = run_suite(planted, only({"masking"}, {"aniso_ggx/smith_aniso_ggx"}, 0.25));
     CHECK(verdict_of(bad, "masking", "aniso_ggx/smith_aniso_ggx") == Verdict::Fail);

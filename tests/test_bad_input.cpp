@@ -24,9 +24,9 @@
 #include <string>
 
 using mfv::test::Run;
+using mfv::test::run_mfv;
 using mfv::test::Scratch;
 using mfv::test::slurp;
-using mfv::test::run_mfv;
 namespace fs = std::filesystem;
 
 namespace {
@@ -97,7 +97,8 @@ TEST_CASE("Bad numbers, outputs and directions get one mfv: error line and exit 
   }
 }
 
-TEST_CASE("Device selection prefers an exact --device name and lists the devices an ambiguous name matches", "[cli][device-select]") {
+TEST_CASE("Device selection prefers an exact --device name and lists the devices an ambiguous name matches",
+          "[cli][device-select]") {
   auto dev = [](int i, const char* platform, const char* name, const char* type) {
     mfv::DeviceInfo d;
     d.index = i;
@@ -111,10 +112,10 @@ TEST_CASE("Device selection prefers an exact --device name and lists the devices
                                        dev(2, "NVIDIA CUDA", "NVIDIA H200", "GPU")};
   CHECK(mfv::pick_device(devs, "").index == 2);
   CHECK(mfv::pick_device(devs, "1").index == 1);
-  CHECK(mfv::pick_device(devs, "intel(r) xeon(r) cpu").index == 1);           // exact device name
-  CHECK(mfv::pick_device(devs, "Intel(R) OpenCL").index == 1);                // exact platform name
-  CHECK(mfv::pick_device(devs, "NVIDIA CUDA NVIDIA H200").index == 2);       // "platform device"
-  CHECK(mfv::pick_device(devs, "h200").index == 2);                           // a substring of one device
+  CHECK(mfv::pick_device(devs, "intel(r) xeon(r) cpu").index == 1);     // exact device name
+  CHECK(mfv::pick_device(devs, "Intel(R) OpenCL").index == 1);          // exact platform name
+  CHECK(mfv::pick_device(devs, "NVIDIA CUDA NVIDIA H200").index == 2);  // "platform device"
+  CHECK(mfv::pick_device(devs, "h200").index == 2);                     // a substring of one device
   CHECK(mfv::pick_device(devs, "Portable").index == 0);
   CHECK_THROWS_WITH(mfv::pick_device(devs, "Intel"),
                     Catch::Contains("matches 2 devices") && Catch::Contains("#0") && Catch::Contains("#1"));
@@ -146,8 +147,9 @@ TEST_CASE("mfv eval evaluates anisotropic terms from a half vector or view, with
   const mfv::Term& s = mfv::find_term("smith_aniso_ggx");
   CHECK(eval_value(g.out, "reference") == Approx(s.ref_g1_aniso(glm::dvec3(x, y, z), 0.1, 0.3)).epsilon(1e-6));
 
-  Run b = run_mfv("eval aniso_ggx/smith_aniso_ggx/schlick --param alpha_x=0.1 --param alpha_y=0.3 --wi 0.6,0,0.8 "
-                  "--wo 0,0.6,0.8");
+  Run b = run_mfv(
+      "eval aniso_ggx/smith_aniso_ggx/schlick --param alpha_x=0.1 --param alpha_y=0.3 --wi 0.6,0,0.8 "
+      "--wo 0,0.6,0.8");
   INFO(b.out);
   CHECK(b.code == 0);
 }
@@ -167,10 +169,12 @@ TEST_CASE("mfv eval takes a unit direction typed to float precision", "[cli][eva
 
 TEST_CASE("mfv check: a BRDF that returns NaN everywhere fails reciprocity", "[check][bad-input][device]") {
   Scratch s("mfv_bad_nan");
-  std::string nan = s.file("nan.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                                     "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
-  std::string lambert = s.file("lambert.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                                             "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(0.3f); }\n");
+  std::string nan = s.file("nan.cl",
+                           "// mfv: param alpha 0.01 1 roughness\n"
+                           "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
+  std::string lambert = s.file("lambert.cl",
+                               "// mfv: param alpha 0.01 1 roughness\n"
+                               "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(0.3f); }\n");
   Run r = run_mfv("check --brdf " + nan + " --check reciprocity --samples 256");
   if (no_device(r)) return;
   INFO(r.out);
@@ -186,11 +190,14 @@ TEST_CASE("mfv check: a computed out-of-range params[k] reads NaN and fails, in 
   Scratch s("mfv_bad_oob");
   auto file = [&](const char* name, int offset) {
     // the index is computed, so the static check (which reads literal indices) lets it through
-    return s.file(name, "// mfv: param kd 0 1 default 0.5\n"
-                        "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
-                        "  int k = " + std::to_string(offset) + " + (int)(wi.z * 0.0f);\n"
-                        "  return (float3)(params[k] / M_PI_F);\n"
-                        "}\n");
+    return s.file(name,
+                  "// mfv: param kd 0 1 default 0.5\n"
+                  "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
+                  "  int k = " +
+                      std::to_string(offset) +
+                      " + (int)(wi.z * 0.0f);\n"
+                      "  return (float3)(params[k] / M_PI_F);\n"
+                      "}\n");
   };
   Run bad = run_mfv("check --brdf " + file("oob.cl", 3) + " --check furnace --samples 256");
   if (no_device(bad)) return;
@@ -205,11 +212,12 @@ TEST_CASE("mfv check: a computed out-of-range params[k] reads NaN and fails, in 
 TEST_CASE("mfv check: user code that never returns is stopped at --timeout with exit 2 and no process left",
           "[check][timeout][device]") {
   Scratch s("mfv_bad_loop");
-  std::string loop = s.file("loop_forever.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                                               "float3 brdf(float3 wi, float3 wo, const float* p) {\n"
-                                               "  for (;;) {}\n"
-                                               "  return (float3)(0.1f);\n"
-                                               "}\n");
+  std::string loop = s.file("loop_forever.cl",
+                            "// mfv: param alpha 0.01 1 roughness\n"
+                            "float3 brdf(float3 wi, float3 wo, const float* p) {\n"
+                            "  for (;;) {}\n"
+                            "  return (float3)(0.1f);\n"
+                            "}\n");
   auto t0 = std::chrono::steady_clock::now();
   Run r = run_mfv("check --brdf " + loop + " --timeout 4 --samples 256");
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -226,10 +234,11 @@ TEST_CASE("mfv check: user code that never returns is stopped at --timeout with 
 
 TEST_CASE("mfv check: a build error's first line is mfv's error line", "[check][bad-input][device]") {
   Scratch s("mfv_bad_syntax");
-  std::string bad = s.file("syntax.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                                        "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
-                                        "  return (float3)(undeclared_name);\n"
-                                        "}\n");
+  std::string bad = s.file("syntax.cl",
+                           "// mfv: param alpha 0.01 1 roughness\n"
+                           "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
+                           "  return (float3)(undeclared_name);\n"
+                           "}\n");
   Run r = run_mfv("check --brdf " + bad);
   if (no_device(r)) return;
   INFO(r.out);

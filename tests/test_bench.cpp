@@ -17,8 +17,8 @@ TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cl
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("mfv_bench_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  auto r = run_mfv("bench --integrals 8 --samples 4096 --ref-samples 128 --repeats 3 --threads 2 --out " +
-                   dir.string());
+  auto r =
+      run_mfv("bench --integrals 8 --samples 4096 --ref-samples 128 --repeats 3 --threads 2 --out " + dir.string());
   INFO(r.out);
   REQUIRE(r.code == 0);
   std::ifstream in(dir / "bench.json");
@@ -47,14 +47,12 @@ TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cl
 }
 
 TEST_CASE("mfv bench rejects bad options with one line", "[bench][cli]") {
-  for (const char* args : {"bench --repeats 0", "bench --integrand furnace", "bench --samples 1",
-                           "bench --case ggx", "bench --case ggx/smith_ggx_correlated/none:0.5",
-                           "bench --case nope/smith_ggx_correlated/none:0.5:0.5", "bench --case ggx/ggx/none:0.5:0.5",
-                           "bench --case ggx/smith_ggx_correlated/none:x:0.5",
-                           "bench --case ggx/smith_ggx_correlated/none:0.5:0",
-                           "bench --case ggx/smith_ggx_correlated/none:0.5:1.5",
-                           "bench --case ggx/smith_ggx_correlated/none:-1:0.5",
-                           "bench --case ggx/smith_ggx_correlated/none/x:0.5:0.5"}) {
+  for (const char* args :
+       {"bench --repeats 0", "bench --integrand furnace", "bench --samples 1", "bench --case ggx",
+        "bench --case ggx/smith_ggx_correlated/none:0.5", "bench --case nope/smith_ggx_correlated/none:0.5:0.5",
+        "bench --case ggx/ggx/none:0.5:0.5", "bench --case ggx/smith_ggx_correlated/none:x:0.5",
+        "bench --case ggx/smith_ggx_correlated/none:0.5:0", "bench --case ggx/smith_ggx_correlated/none:0.5:1.5",
+        "bench --case ggx/smith_ggx_correlated/none:-1:0.5", "bench --case ggx/smith_ggx_correlated/none/x:0.5:0.5"}) {
     auto r = run_mfv(args);
     INFO(args << ": " << r.out);
     CHECK(r.code == 2);

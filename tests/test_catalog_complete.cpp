@@ -5,8 +5,8 @@
 #include "catalog/catalog.hpp"
 #include "checks/suite.hpp"
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <fstream>
@@ -26,7 +26,9 @@ std::string kernel_text(Kind k) {
   return ss.str();
 }
 
-std::string file_of(Kind k) { return std::string("kernels/terms_") + (k == Kind::D ? "d" : k == Kind::G ? "g" : "f") + ".cl"; }
+std::string file_of(Kind k) {
+  return std::string("kernels/terms_") + (k == Kind::D ? "d" : k == Kind::G ? "g" : "f") + ".cl";
+}
 
 bool defines(const std::string& text, const std::string& fn) {
   return std::regex_search(text, std::regex("static inline real " + fn + "\\("));
@@ -37,8 +39,7 @@ bool reference_ok(const Term& t) {
   const double p = t.params.empty() ? 0.0 : t.params[0].fallback;
   const double p1 = t.params.size() > 1 ? t.params[1].fallback : 0.0;
   switch (t.kind) {
-    case Kind::D:
-      return t.ref_d && std::isfinite(t.ref_d(0.8, p)) && (!t.aniso || t.ref_d_aniso);
+    case Kind::D: return t.ref_d && std::isfinite(t.ref_d(0.8, p)) && (!t.aniso || t.ref_d_aniso);
     case Kind::G:
       return t.ref_g && std::isfinite(t.ref_g(0.7, 0.6, 0.9, 0.8, p)) && (t.g1_kernel_fn.empty() || t.ref_g1) &&
              (!t.aniso || t.ref_g1_aniso);
@@ -64,15 +65,18 @@ std::vector<std::string> gaps(const std::vector<const Term*>& terms, const std::
     if (!defines(text, t->kernel_fn))
       out.push_back(fmt::format("{}: kernel function {} is not defined in {}", name, t->kernel_fn, file_of(t->kind)));
     if (!t->g1_kernel_fn.empty() && !defines(text, t->g1_kernel_fn))
-      out.push_back(fmt::format("{}: G1 kernel function {} is not defined in {}", name, t->g1_kernel_fn, file_of(t->kind)));
+      out.push_back(
+          fmt::format("{}: G1 kernel function {} is not defined in {}", name, t->g1_kernel_fn, file_of(t->kind)));
     if (!reference_ok(*t))
-      out.push_back(fmt::format("{}: no reference twin (host/reference/terms_*.cpp) in its catalog entry, or it is not "
-                                "finite at the default parameter",
-                                name));
+      out.push_back(
+          fmt::format("{}: no reference twin (host/reference/terms_*.cpp) in its catalog entry, or it is not "
+                      "finite at the default parameter",
+                      name));
     if (!in_plans.count(t))
-      out.push_back(fmt::format("{}: no expected verdicts (mfv run checks it nowhere: a D x G grid, "
-                                "host/checks/suite_aniso.cpp or suite_sheen.cpp)",
-                                name));
+      out.push_back(
+          fmt::format("{}: no expected verdicts (mfv run checks it nowhere: a D x G grid, "
+                      "host/checks/suite_aniso.cpp or suite_sheen.cpp)",
+                      name));
   }
   return out;
 }
@@ -84,7 +88,8 @@ std::vector<Plan> run_plans() {
 
 }  // namespace
 
-TEST_CASE("Every catalog term has its kernel function, its reference twin and expected verdicts", "[catalog][complete]") {
+TEST_CASE("Every catalog term has its kernel function, its reference twin and expected verdicts",
+          "[catalog][complete]") {
   std::vector<const Term*> terms;
   for (auto& t : catalog()) terms.push_back(&t);
   for (auto& gap : gaps(terms, run_plans())) FAIL_CHECK(gap);

@@ -25,7 +25,6 @@ namespace {
 
 const std::string kExamples = std::string(MFV_KERNEL_SOURCE_DIR) + "/../examples/brdf/";
 
-
 // A scratch file for one test.
 struct TempFile {
   std::string path;
@@ -53,7 +52,8 @@ TEST_CASE("mfv check passes the correct GGX example on every check and writes CI
                   out.string());
   INFO(r.out);
   CHECK(r.code == 0);
-  for (auto* c : {"d_norm", "masking", "furnace", "energy", "reciprocity", "finite", "agree"}) CHECK(has_line(r.out, "pass", c));
+  for (auto* c : {"d_norm", "masking", "furnace", "energy", "reciprocity", "finite", "agree"})
+    CHECK(has_line(r.out, "pass", c));
   std::string junit = slurp((out / "junit.xml").string());
   CHECK(junit.find("testsuite name=\"mfv check ") != std::string::npos);
   CHECK(junit.find("failures=\"0\"") != std::string::npos);
@@ -148,15 +148,16 @@ TEST_CASE("mfv check: a compile error points into the user's file; bad contracts
   CHECK(one_error_line(rn));
   CHECK(rn.out.find("defines no 'float3 brdf(") != std::string::npos);
 
-  TempFile miss("miss.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                           "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(p[1]); }\n");
+  TempFile miss("miss.cl",
+                "// mfv: param alpha 0.01 1 roughness\n"
+                "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(p[1]); }\n");
   Run rm = run_mfv("check --brdf " + miss.path);
   CHECK(one_error_line(rm));
   CHECK(rm.out.find("reads p[1] but 1 parameter is declared (alpha)") != std::string::npos);
 
-  for (const char* args : {"--param alpha=3", "--param alpha=nan", "--param alpha", "--as ggx/smith_ggx/schlick --map beta=alpha",
-                           "--as ggx/smith_ggx", "--check d_norm --param alpha=0.3 --check nonsense", "--channel x",
-                           "--map alpha=alpha"}) {
+  for (const char* args : {"--param alpha=3", "--param alpha=nan", "--param alpha",
+                           "--as ggx/smith_ggx/schlick --map beta=alpha", "--as ggx/smith_ggx",
+                           "--check d_norm --param alpha=0.3 --check nonsense", "--channel x", "--map alpha=alpha"}) {
     Run rb = run_mfv("check --brdf " + kExamples + "ggx.cl " + args);
     INFO(args << ": " << rb.out);
     CHECK(one_error_line(rb));
@@ -168,8 +169,9 @@ TEST_CASE("mfv check: a compile error points into the user's file; bad contracts
 }
 
 TEST_CASE("mfv check: a BRDF returning NaN is a check failure naming the input, not a crash", "[check][cli]") {
-  TempFile nan("nan.cl", "// mfv: param alpha 0.01 1 roughness\n"
-                         "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
+  TempFile nan("nan.cl",
+               "// mfv: param alpha 0.01 1 roughness\n"
+               "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
   Run r = run_mfv("check --brdf " + nan.path + " --check furnace finite --samples 256");
   INFO(r.out);
   CHECK(r.code == 1);

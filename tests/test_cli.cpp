@@ -64,23 +64,19 @@ TEST_CASE("Bad input gets a one-line error naming the cause and exit code 2", "[
     const char* args;
     const char* expect;
   };
-  auto c = GENERATE(Case{"eval nosuchterm", "unknown term 'nosuchterm'"},
-                    Case{"eval ggx --param alpha=-1", "out of range"},
-                    Case{"eval ggx --param alpha=nan", "is NaN"},
-                    Case{"eval ggx --param alpha=abc", "not a number"},
-                    Case{"eval ggx --param eta=1.5", "belongs to none"},
-                    Case{"eval ggx/smith_ggx/schlick --param f0=1.5", "out of range"},
-                    Case{"eval ggx/schlick/smith_ggx", "must name a D, a G and an F"},
-                    Case{"eval ggx/smith_ggx/schlick --wi 1,2", "three comma-separated"},
-                    Case{"eval ggx/smith_ggx/schlick --alpha 0", "positive"},
-                    Case{"eval ggx --g1", "no Smith G1"},
-                    Case{"--device no-such-device eval ggx", "no OpenCL device matches"},
-                    Case{"--device 99 eval ggx", "no OpenCL device with index 99"},
-                    Case{"agree --samples -5", "--samples"},
-                    Case{"agree --samples 0", "--samples"},
-                    Case{"agree --only nothing-matches --samples 10", "matches no agreement case"},
-                    Case{"--kernel-dir /no/such/dir list", "--kernel-dir"},
-                    Case{"frobnicate", "frobnicate"});
+  auto c =
+      GENERATE(Case{"eval nosuchterm", "unknown term 'nosuchterm'"}, Case{"eval ggx --param alpha=-1", "out of range"},
+               Case{"eval ggx --param alpha=nan", "is NaN"}, Case{"eval ggx --param alpha=abc", "not a number"},
+               Case{"eval ggx --param eta=1.5", "belongs to none"},
+               Case{"eval ggx/smith_ggx/schlick --param f0=1.5", "out of range"},
+               Case{"eval ggx/schlick/smith_ggx", "must name a D, a G and an F"},
+               Case{"eval ggx/smith_ggx/schlick --wi 1,2", "three comma-separated"},
+               Case{"eval ggx/smith_ggx/schlick --alpha 0", "positive"}, Case{"eval ggx --g1", "no Smith G1"},
+               Case{"--device no-such-device eval ggx", "no OpenCL device matches"},
+               Case{"--device 99 eval ggx", "no OpenCL device with index 99"}, Case{"agree --samples -5", "--samples"},
+               Case{"agree --samples 0", "--samples"},
+               Case{"agree --only nothing-matches --samples 10", "matches no agreement case"},
+               Case{"--kernel-dir /no/such/dir list", "--kernel-dir"}, Case{"frobnicate", "frobnicate"});
   CAPTURE(c.args);
   Run r = run_mfv(c.args);
   CAPTURE(r.out);

@@ -7,9 +7,9 @@
 #include "run_mfv.hpp"
 #include "test_files.hpp"
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -60,7 +60,8 @@ TEST_CASE("progress appears in a piped run within seconds, on stderr only, and -
         // may open them only after the first grep, which would then read the
         // previous run's progress
         ": > {2}; : > {3}; {0} {1} > {2} 2> {3} & pid=$!; t=0; while [ $t -lt {4} ]; do "
-        "if grep -q '^mfv: ' {3}; then break; fi; sleep 0.5; t=$((t+1)); done; kill $pid 2>/dev/null; wait $pid; echo $t",
+        "if grep -q '^mfv: ' {3}; then break; fi; sleep 0.5; t=$((t+1)); done; kill $pid 2>/dev/null; wait $pid; echo "
+        "$t",
         MFV_BINARY, args, s / "out.txt", s / "err.txt", max_halves);
     return std::stoi(shell(cmd));
   };
@@ -82,10 +83,11 @@ TEST_CASE("on a terminal, progress is a bar with the time left, redrawn in place
   Scratch s("mfv_tty");
   // stop the run once the bar has been drawn twice (or after 30 s on a
   // loaded machine); timeout passes the kill on to script and its child
-  shell(fmt::format("timeout 30 script -qec '{0} {1}' /dev/null > {2} 2>&1 & pid=$!; t=0; while [ $t -lt 60 ]; do "
-                    "if [ $(grep -o '% \\[' {2} | wc -l) -ge 2 ]; then break; fi; sleep 0.5; t=$((t+1)); done; "
-                    "kill $pid 2>/dev/null; wait $pid",
-                    MFV_BINARY, kLongRun, s / "tty.txt"));
+  shell(
+      fmt::format("timeout 30 script -qec '{0} {1}' /dev/null > {2} 2>&1 & pid=$!; t=0; while [ $t -lt 60 ]; do "
+                  "if [ $(grep -o '% \\[' {2} | wc -l) -ge 2 ]; then break; fi; sleep 0.5; t=$((t+1)); done; "
+                  "kill $pid 2>/dev/null; wait $pid",
+                  MFV_BINARY, kLongRun, s / "tty.txt"));
   const std::string tty = slurp(s.dir / "tty.txt");
   INFO(tty.substr(0, 2000));
   CHECK(tty.find("\r\033[K") != std::string::npos);
@@ -143,9 +145,10 @@ TEST_CASE("mfv run --baseline rejects what is not a usable results.json with one
   CHECK(r.out.find(c.says) != std::string::npos);
 }
 
-TEST_CASE("mfv samplers draws an observed/expected/difference image of a failed chi-square test, and of every "
-          "test with --plots",
-          "[cli][ux][samplers][planted]") {
+TEST_CASE(
+    "mfv samplers draws an observed/expected/difference image of a failed chi-square test, and of every "
+    "test with --plots",
+    "[cli][ux][samplers][planted]") {
   if (shell("command -v gnuplot").empty()) return;
   Scratch s("mfv_sampler_plots");
   const std::string small = " samplers --samples 65536 --bins 16x32 --device-only --out ";

@@ -1,9 +1,9 @@
 // mfv convergence: the quadrature truth against closed forms, every estimator
 // unbiased on smooth cases (device and reference, same samples), RQMC's
 // slope beating MC's, a planted wrong pdf caught, bad input, report files.
+#include "catalog/catalog.hpp"
 #include "checks/convergence.hpp"
 #include "checks/integrate.hpp"
-#include "catalog/catalog.hpp"
 #include "kernel_dir.hpp"
 #include "numeric/hemisphere_quadrature.hpp"
 #include "run_mfv.hpp"
@@ -136,7 +136,8 @@ TEST_CASE("RQMC converges faster than MC on a smooth albedo", "[convergence]") {
 TEST_CASE("a planted wrong pdf makes its estimator inconsistent with the truth", "[convergence]") {
   mfv::test::PlantedKernelDir dir;
   // uniform hemisphere weighted by π instead of 2π: the pdf of a unit disk, not of the hemisphere
-  REQUIRE(dir.replace("convergence.cl", "real inv_pdf = est == MFV_EST_UNIFORM ? R(2.0) * MFV_PI", "real inv_pdf = est == MFV_EST_UNIFORM ? MFV_PI"));
+  REQUIRE(dir.replace("convergence.cl", "real inv_pdf = est == MFV_EST_UNIFORM ? R(2.0) * MFV_PI",
+                      "real inv_pdf = est == MFV_EST_UNIFORM ? MFV_PI"));
   Runtime rt("", dir.path());
   ConvergenceOptions o;
   o.cases = {{"ggx", 0.5, 0.5}};
@@ -153,10 +154,10 @@ TEST_CASE("a planted wrong pdf makes its estimator inconsistent with the truth",
 }
 
 TEST_CASE("mfv convergence rejects bad input with one line and exit 2", "[convergence][cli]") {
-  for (const char* args : {"--estimator bogus", "--check masking", "--case phong:0.1:0.5", "--case ggx:0:0.5",
-                           "--case ggx:2:0.5", "--case ggx:nan:0.5", "--case ggx:0.1:0", "--case ggx:0.1:nan",
-                           "--case ggx:0.1", "--case ggx:0.1:0.5x", "--check d_norm --estimator vndf",
-                           "--replicates 1", "--min-log2 3", "--max-log2 40"}) {
+  for (const char* args :
+       {"--estimator bogus", "--check masking", "--case phong:0.1:0.5", "--case ggx:0:0.5", "--case ggx:2:0.5",
+        "--case ggx:nan:0.5", "--case ggx:0.1:0", "--case ggx:0.1:nan", "--case ggx:0.1", "--case ggx:0.1:0.5x",
+        "--check d_norm --estimator vndf", "--replicates 1", "--min-log2 3", "--max-log2 40"}) {
     auto r = mfv::test::run_mfv(std::string("convergence ") + args);
     INFO(args << ": " << r.out);
     CHECK(r.code == 2);
@@ -171,10 +172,11 @@ TEST_CASE("mfv convergence writes its report", "[convergence][cli]") {
   fs::remove_all(dir);
   fs::create_directories(dir);
   // --out without a folder writes results/convergence under the working directory
-  auto r = mfv::test::run_mfv("convergence --case ggx:0.01:0.05 --check albedo --estimator uniform --estimator rqmc "
-                              "--estimator quadrature --min-log2 7 --max-log2 9 --ref-max-log2 8 --quad-max-order 4 "
-                              "--out",
-                              "cd " + dir.string() + " &&");
+  auto r = mfv::test::run_mfv(
+      "convergence --case ggx:0.01:0.05 --check albedo --estimator uniform --estimator rqmc "
+      "--estimator quadrature --min-log2 7 --max-log2 9 --ref-max-log2 8 --quad-max-order 4 "
+      "--out",
+      "cd " + dir.string() + " &&");
   INFO(r.out);
   REQUIRE(r.code == 0);
   CHECK(r.out.find("target (GGX alpha = 0.01") != std::string::npos);
@@ -186,6 +188,7 @@ TEST_CASE("mfv convergence writes its report", "[convergence][cli]") {
   CHECK(j["target"]["measured"] == true);
   CHECK(j["target"]["ratio"].get<double>() > 100);
   CHECK(fs::exists(out / "convergence.md"));
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) CHECK(fs::exists(out / "plots/albedo_ggx_a0.01_cos0.05.png"));
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+    CHECK(fs::exists(out / "plots/albedo_ggx_a0.01_cos0.05.png"));
   fs::remove_all(dir);
 }

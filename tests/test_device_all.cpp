@@ -10,8 +10,9 @@ using mfv::test::run_mfv;
 
 TEST_CASE("bench --device all puts every device in one table", "[device][bench]") {
   if (!mfv::test::device_runtime()) return;
-  auto r = run_mfv("--device all bench --integrals 4 --samples 1024 --ref-samples 64 --repeats 1 --threads 1 "
-                   "--integrand d_norm");
+  auto r = run_mfv(
+      "--device all bench --integrals 4 --samples 1024 --ref-samples 64 --repeats 1 --threads 1 "
+      "--integrand d_norm");
   CAPTURE(r.out);
   REQUIRE(r.code == 0);
   for (auto& d : mfv::list_devices()) {

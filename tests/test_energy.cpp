@@ -130,8 +130,9 @@ TEST_CASE("the visible-normal proposal is unbiased for Ds of other shapes, and a
     const char *d, *g;
     double alpha, mu;
   };
-  const std::vector<Case> cases = {
-      {"phong", "smith_phong", 0.8, 0.05}, {"beckmann", "smith_beckmann", 0.5, 0.05}, {"ggx", "cook_torrance", 0.2, 0.3}};
+  const std::vector<Case> cases = {{"phong", "smith_phong", 0.8, 0.05},
+                                   {"beckmann", "smith_beckmann", 0.5, 0.05},
+                                   {"ggx", "cook_torrance", 0.2, 0.3}};
   TermSelection sel;
   for (const Case& k : cases) {
     sel.d.push_back(&find_term(k.d));
@@ -171,7 +172,7 @@ TEST_CASE("the visible-normal proposal is unbiased for Ds of other shapes, and a
       const double se = std::sqrt(ss / (reps - 1) / reps);
       const double z = std::abs(mean - m[c].mean) / std::hypot(se, m[c].stderr_);
       UNSCOPED_INFO(cases[c].d << "/" << cases[c].g << ": " << mean << " +- " << se << " vs " << m[c].mean << " +- "
-                                << m[c].stderr_ << ", z = " << z);
+                               << m[c].stderr_ << ", z = " << z);
       worst = std::max(worst, z);
     }
     return worst;

@@ -13,7 +13,8 @@ using namespace mfv;
 namespace {
 // Every program starts with common.cl: the pragma then covers all kernels.
 void contract_off(test::PlantedKernelDir& dir) {
-  REQUIRE(dir.replace("common.cl", "// Shared by every program", "#pragma OPENCL FP_CONTRACT OFF\n// Shared by every program"));
+  REQUIRE(dir.replace("common.cl", "// Shared by every program",
+                      "#pragma OPENCL FP_CONTRACT OFF\n// Shared by every program"));
 }
 
 AgreeReport agree_only(Runtime& rt, std::vector<std::string> only, uint64_t samples, bool fp64 = false) {
@@ -73,7 +74,8 @@ TEST_CASE("float64 anisotropic D and G1 and whole models agree without the norma
     WARN("device has no cl_khr_fp64; float64 agreement skipped");
     return;
   }
-  AgreeReport rep = agree_only(*rt, {"D aniso", "G1 smith_aniso", "MODEL torrance_sparrow", "MODEL gltf"}, 100000, true);
+  AgreeReport rep =
+      agree_only(*rt, {"D aniso", "G1 smith_aniso", "MODEL torrance_sparrow", "MODEL gltf"}, 100000, true);
   CHECK(rep.results.size() >= 5);
   for (auto& r : rep.results) {
     CAPTURE(r.name, r.max_ulps, r.worst);

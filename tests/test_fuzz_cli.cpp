@@ -67,10 +67,15 @@ TEST_CASE("Random command lines parse or fail with a parse error, never otherwis
       size_t at = args.empty() ? 0 : size_t(rng() % args.size());
       const auto& dict = mfv::fuzz::dictionary();
       switch (rng() % 4) {
-        case 0: if (!args.empty()) args[at] = dict[size_t(rng() % dict.size())]; break;
+        case 0:
+          if (!args.empty()) args[at] = dict[size_t(rng() % dict.size())];
+          break;
         case 1: args.insert(args.begin() + long(at), names[size_t(rng() % names.size())]); break;
-        case 2: if (!args.empty()) args.erase(args.begin() + long(at)); break;
-        default: if (!args.empty()) args[at] = mfv::fuzz::mutate(args[at], rng);
+        case 2:
+          if (!args.empty()) args.erase(args.begin() + long(at));
+          break;
+        default:
+          if (!args.empty()) args[at] = mfv::fuzz::mutate(args[at], rng);
       }
     }
     CAPTURE(seed);
@@ -101,18 +106,37 @@ TEST_CASE("Every numeric option takes exactly what the strict parsers take", "[f
       if (t == "UINT" || t == "INT" || t == "FLOAT") numeric.push_back({sub->get_name(), o->get_name(false, true), t});
     }
   REQUIRE(numeric.size() >= 20);  // --seed, --samples, --scale ... of every subcommand
-  const std::vector<std::string> values = {"-1", "18446744073709551615", "18446744073709551616", "1e23", "2e19",
-                                           "1e17", "nan", "inf", "-inf", "1e400", "", " 1", "1.5", "0x10", "7",
-                                           "9223372036854775808", "-9223372036854775809", "1e3", "abc"};
+  const std::vector<std::string> values = {"-1",
+                                           "18446744073709551615",
+                                           "18446744073709551616",
+                                           "1e23",
+                                           "2e19",
+                                           "1e17",
+                                           "nan",
+                                           "inf",
+                                           "-inf",
+                                           "1e400",
+                                           "",
+                                           " 1",
+                                           "1.5",
+                                           "0x10",
+                                           "7",
+                                           "9223372036854775808",
+                                           "-9223372036854775809",
+                                           "1e3",
+                                           "abc"};
   for (auto& n : numeric)
     for (auto& v : values) {
       CAPTURE(n.sub, n.name, n.type, v);
       bool strict_ok = true;
       std::string canonical = v;
       try {
-        if (n.type == "UINT") canonical = std::to_string(mfv::parse_unsigned("x", v));
-        else if (n.type == "INT") canonical = std::to_string(mfv::parse_signed("x", v));
-        else mfv::parse_finite("x", v);
+        if (n.type == "UINT")
+          canonical = std::to_string(mfv::parse_unsigned("x", v));
+        else if (n.type == "INT")
+          canonical = std::to_string(mfv::parse_signed("x", v));
+        else
+          mfv::parse_finite("x", v);
       } catch (const mfv::Error&) {
         strict_ok = false;
       }

@@ -33,8 +33,8 @@ IntegralSpec albedo(const std::string& d, const std::string& g, const std::strin
 void require_same(const std::vector<Estimate>& fast, const std::vector<Estimate>& general) {
   REQUIRE(fast.size() == general.size());
   for (size_t i = 0; i < fast.size(); ++i) {
-    INFO("integral " << i << ": fast " << fast[i].mean << " +- " << fast[i].stderr_ << ", general "
-                     << general[i].mean << " +- " << general[i].stderr_);
+    INFO("integral " << i << ": fast " << fast[i].mean << " +- " << fast[i].stderr_ << ", general " << general[i].mean
+                     << " +- " << general[i].stderr_);
     CHECK(fast[i].samples == general[i].samples);
     // the same float samples, summed in double in another order
     CHECK(std::fabs(fast[i].mean - general[i].mean) <= 1e-12 * std::max(1.0, std::fabs(general[i].mean)));
@@ -55,9 +55,9 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
   std::vector<IntegralSpec> specs = {
       albedo("ggx", "smith_ggx_correlated", "schlick", 0.3, 0.7, 0.04, 0.0, 0),
       albedo("ggx", "smith_ggx_correlated", "schlick", 0.01, 1e-3, 0.04, 0.0, 1),  // stiff and grazing
-      albedo("ggx", "smith_ggx_correlated", "none", 1e-4, 1.0, 1.0, 0.0, 2),      // near-specular, normal view
-      albedo("beckmann", "smith_beckmann", "schlick", 0.5, 0.2, 0.5, 0.3, 3),    // another pair, with kd
-      albedo("ggx", "smith_beckmann", "none", 0.8, 0.05, 1.0, 0.0, 4),           // mismatched G
+      albedo("ggx", "smith_ggx_correlated", "none", 1e-4, 1.0, 1.0, 0.0, 2),       // near-specular, normal view
+      albedo("beckmann", "smith_beckmann", "schlick", 0.5, 0.2, 0.5, 0.3, 3),      // another pair, with kd
+      albedo("ggx", "smith_beckmann", "none", 0.8, 0.05, 1.0, 0.0, 4),             // mismatched G
   };
   IntegralSpec masking = specs[0];  // masking: masking_values on the fast path
   masking.check = static_cast<int32_t>(IntegralKind::Masking);

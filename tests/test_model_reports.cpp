@@ -27,7 +27,6 @@ using mfv::test::slurp;
 
 namespace {
 
-
 struct TempDir {
   fs::path dir = fs::temp_directory_path() / ("mfv_model_reports_" + std::to_string(::getpid()));
   TempDir() { fs::remove_all(dir); }
@@ -39,8 +38,10 @@ struct TempDir {
 TEST_CASE("mfv energy: seed 004's Phong (n = 1) gains energy and Lambert keeps E = 1 within its error",
           "[device][energy][models]") {
   TempDir t;
-  auto r = run_mfv("energy --models 'phong_004[n=1]' --models 'lambert[kd=1]' --grid 8x2 --target 1e-3 "
-                   "--max-points 4096 --out " + t.dir.string());
+  auto r = run_mfv(
+      "energy --models 'phong_004[n=1]' --models 'lambert[kd=1]' --grid 8x2 --target 1e-3 "
+      "--max-points 4096 --out " +
+      t.dir.string());
   INFO(r.out);
   REQUIRE(r.code == 0);
   nlohmann::json j = nlohmann::json::parse(slurp(t.dir / "energy.json"));
@@ -81,9 +82,10 @@ TEST_CASE("mfv energy: seed 004's Phong (n = 1) gains energy and Lambert keeps E
   CHECK(run_mfv("energy --models 'nosuchmodel['").code == 2);
 }
 
-TEST_CASE("mfv stability sweeps every whole model: 0 below the horizon, finite wherever the reference is or "
-          "the catalog says where not",
-          "[device][stability][models]") {
+TEST_CASE(
+    "mfv stability sweeps every whole model: 0 below the horizon, finite wherever the reference is or "
+    "the catalog says where not",
+    "[device][stability][models]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   StabilityOptions opt;

@@ -106,7 +106,8 @@ TEST_CASE("Whole models: every closed-form albedo matches a quadrature of the re
   for (double mu : {1e-6, 0.01, 0.5, 1.0}) CHECK(model("eon").ref_albedo(mu, eon.data()) == Approx(1.0).epsilon(1e-12));
 }
 
-TEST_CASE("Whole models: reference edge cases (horizon, normal incidence, grazing, rough limits)", "[models][reference]") {
+TEST_CASE("Whole models: reference edge cases (horizon, normal incidence, grazing, rough limits)",
+          "[models][reference]") {
   const glm::dvec3 n(0, 0, 1), below(0.6, 0, -0.8), horizon(1, 0, 0), grazing(std::sqrt(1 - 1e-12), 0, 1e-6);
   for (auto& m : models()) {
     INFO(m.id);
@@ -131,7 +132,8 @@ TEST_CASE("Whole models: reference edge cases (horizon, normal incidence, grazin
   CHECK(model("radiance_002").ref(l, v, metal.data()) == Approx(model("radiance_002_fixed").ref(l, v, metal.data())));
 }
 
-TEST_CASE("glTF KHR_materials_anisotropy: the anisotropic path's isotropic limit and reciprocity", "[models][reference]") {
+TEST_CASE("glTF KHR_materials_anisotropy: the anisotropic path's isotropic limit and reciprocity",
+          "[models][reference]") {
   const Model& m = model("gltf");
   REQUIRE(m.params.size() == 7);
   // p[6] = 0: today's isotropic glTF BRDF; p[6] = alpha: the anisotropic
@@ -223,7 +225,8 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
     return Verdict::Pass;
   };
   CHECK(verdict("closed_form", "eon[rho=1,r=1]") == Verdict::Fail);
-  CHECK(verdict("energy", "eon[rho=1,r=1]") == Verdict::Pass);  // losing energy is allowed; only the closed form sees it
+  CHECK(verdict("energy", "eon[rho=1,r=1]") ==
+        Verdict::Pass);  // losing energy is allowed; only the closed form sees it
   CHECK(verdict("closed_form", "phong_normalized[n=10]") == Verdict::Fail);
   CHECK(verdict("energy", "phong_normalized[n=10]") == Verdict::Fail);
   CHECK(verdict("energy", "gltf[aniso chrome,r=0.5,s=0.8]") == Verdict::Fail);
@@ -250,9 +253,9 @@ TEST_CASE("mfv list, eval and run cover whole models, and bad input is one error
   CHECK(r.out.find("M ward_004") != std::string::npos);
   CHECK(r.out.find("reciprocity fail") != std::string::npos);
 
-  for (const char* args : {"eval lambert --param kd=2", "eval eon --param r=nan", "eval eon --alpha 0.3",
-                           "eval eon --param sigma=0.3", "eval nosuch_model", "run --model 'nosuch['",
-                           "run --check closed_forms"}) {
+  for (const char* args :
+       {"eval lambert --param kd=2", "eval eon --param r=nan", "eval eon --alpha 0.3", "eval eon --param sigma=0.3",
+        "eval nosuch_model", "run --model 'nosuch['", "run --check closed_forms"}) {
     INFO(args);
     auto e = run_mfv(args);
     CHECK(e.code == 2);

@@ -7,8 +7,8 @@
 #include "checks/stability.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
-#include "util/error.hpp"
 #include "runtime/kernel_includes.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -70,7 +70,8 @@ TEST_CASE("The pointwise record layout reads the same in OpenCL C and in C++", "
       "#include \"abi/pointwise.h\"\n"
       "__kernel void layout(__global int* o) {\n"
       "  o[0] = PW_RECORD; o[1] = PW_VALUE; o[2] = PW_VALUE_LO; o[3] = PW_P0; o[4] = PW_PG;\n"
-      "  o[5] = PW_ALPHA_Y; o[6] = PW_SIN2H; o[7] = PW_M_X; o[8] = PW_USER_G1_WI; o[9] = PW_VARIANT; o[10] = PW_PARAMS;\n"
+      "  o[5] = PW_ALPHA_Y; o[6] = PW_SIN2H; o[7] = PW_M_X; o[8] = PW_USER_G1_WI; o[9] = PW_VARIANT; o[10] = "
+      "PW_PARAMS;\n"
       "}\n";
   cl::Program prog = rt->build({"common.cl"}, {}, "", "", {{"layout_probe.cl", probe, ""}});
   cl::Kernel k(prog, "layout");
@@ -80,8 +81,8 @@ TEST_CASE("The pointwise record layout reads the same in OpenCL C and in C++", "
   rt->queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
   rt->queue().enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(cl_int), out.data());
   using namespace pw;
-  const std::vector<cl_int> host = {PW_RECORD, PW_VALUE,      PW_VALUE_LO,   PW_P0,     PW_PG,    PW_ALPHA_Y,
-                                    PW_SIN2H,  PW_M_X, PW_USER_G1_WI, PW_VARIANT, PW_PARAMS};
+  const std::vector<cl_int> host = {PW_RECORD, PW_VALUE, PW_VALUE_LO,   PW_P0,      PW_PG,    PW_ALPHA_Y,
+                                    PW_SIN2H,  PW_M_X,   PW_USER_G1_WI, PW_VARIANT, PW_PARAMS};
   CHECK(out == host);
   // every slot of a record is inside it, and the outputs do not overlap the inputs
   CHECK(PW_VALUE > PW_M_Z);

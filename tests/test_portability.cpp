@@ -60,7 +60,8 @@ void conforms(const std::string& name, bool with_integrals) {
 
 TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel", true); }
 
-TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64", "[portability][rusticl]") {
+TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64",
+          "[portability][rusticl]") {
   // rusticl compiles the agree program (every term and model) for minutes
   // when Mesa's shader cache is cold (measured > 5 min at load 5): over CI's
   // share on a fresh machine, so it runs when asked for
@@ -77,15 +78,15 @@ TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kerne
   if (dir.empty()) return;
   // Oclgrind prints each finding on stderr (run_mfv captures it); one
   // finding stops nothing, so every command's output is searched.
-  const std::string env = "OCL_ICD_VENDORS=" + dir +
-                          " OCLGRIND_CHECK_API=1 OCLGRIND_DATA_RACES=1 OCLGRIND_MAX_WGSIZE=32";
+  const std::string env =
+      "OCL_ICD_VENDORS=" + dir + " OCLGRIND_CHECK_API=1 OCLGRIND_DATA_RACES=1 OCLGRIND_MAX_WGSIZE=32";
   for (std::string args : {
            // integrate, albedo_values, sum_values, sample_values, reciprocity
            std::string("run --check energy --check reciprocity --scale 0.002 --model ggx/smith_ggx/schlick"),
-           std::string("agree --samples 64 --only 'D ggx' --only 'MODEL gltf'"),  // agree_eval
-           std::string("eval ggx --NoH 0.9"),                                     // eval_records
-           std::string("stability --terms-only --only 'D ggx'"),                  // stability_eval
-           std::string("samplers --samples 4096 --device-only"),                  // draw_samples
+           std::string("agree --samples 64 --only 'D ggx' --only 'MODEL gltf'"),                       // agree_eval
+           std::string("eval ggx --NoH 0.9"),                                                          // eval_records
+           std::string("stability --terms-only --only 'D ggx'"),                                       // stability_eval
+           std::string("samplers --samples 4096 --device-only"),                                       // draw_samples
            "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64",  // user_eval
        }) {
     auto r = run_mfv(args, env);

@@ -44,7 +44,7 @@ const std::string kExamples = std::string(MFV_TEST_DATA_DIR) + "/../../examples/
 // workload (the builds are the point; verdicts are the conformance tests').
 struct Program {
   std::string args;
-  bool fp64;  // needs cl_khr_fp64: builds with MFV_DOUBLE, where float promoted to double is meant
+  bool fp64;            // needs cl_khr_fp64: builds with MFV_DOUBLE, where float promoted to double is meant
   bool doubles = fp64;  // builds a MFV_DOUBLE program (run: the reference twin on fp64 devices)
 };
 const std::vector<Program>& programs() {
@@ -52,11 +52,11 @@ const std::vector<Program>& programs() {
       // integrate.cl (MFV_ACC_DOUBLE on fp64 devices), and on fp64 devices
       // its MFV_DOUBLE twin for the same-sample reference comparison
       {"run --check closed_form --scale 0.01 --model 'lambert['", false, true},
-      {"agree --samples 64 --only 'D ggx'", false},                // agree.cl, float
-      {"agree --fp64 --samples 64 --only 'D ggx'", true},          // agree.cl, MFV_DOUBLE
-      {"samplers --samples 4096 --device-only", false},            // samplers.cl
-      {"stability --terms-only --only 'D ggx'", false},            // stability.cl, float
-      {"stability --fp64 --terms-only --only 'D ggx'", true},      // stability.cl, MFV_DOUBLE
+      {"agree --samples 64 --only 'D ggx'", false},            // agree.cl, float
+      {"agree --fp64 --samples 64 --only 'D ggx'", true},      // agree.cl, MFV_DOUBLE
+      {"samplers --samples 4096 --device-only", false},        // samplers.cl
+      {"stability --terms-only --only 'D ggx'", false},        // stability.cl, float
+      {"stability --fp64 --terms-only --only 'D ggx'", true},  // stability.cl, MFV_DOUBLE
       {"check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64 --check reciprocity",
        false},  // user_brdf.cl with MFV_USER_HAS_D, MFV_USER_HAS_G1
       {"check --brdf " + kExamples + "lambert.cl --samples 64 --check reciprocity", false},  // neither

@@ -4,10 +4,10 @@
 // it is off unless MFV_PROGRAM_CACHE=1, and a bad value is a one-line error.
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
-#include "util/error.hpp"
 #include "runtime/opencl.hpp"
 #include "runtime/program_cache.hpp"
 #include "test_files.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -24,8 +24,10 @@ namespace {
 struct EnvVar {
   std::string name;
   EnvVar(const char* n, const char* value) : name(n) {
-    if (value) ::setenv(n, value, 1);
-    else ::unsetenv(n);
+    if (value)
+      ::setenv(n, value, 1);
+    else
+      ::unsetenv(n);
   }
   ~EnvVar() { ::unsetenv(name.c_str()); }
 };
@@ -124,7 +126,8 @@ TEST_CASE("A changed source or option is a new cache entry", "[device][program_c
   CHECK(rt.build_stats().cached == 1);
 }
 
-TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing; a bad value is an error", "[device][program_cache][bad_input]") {
+TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing; a bad value is an error",
+          "[device][program_cache][bad_input]") {
   if (!test::device_runtime()) return;
   test::Scratch dir("mfv_program_cache_off");
   for (const char* value : {"0", static_cast<const char*>(nullptr)}) {

@@ -4,8 +4,8 @@
 // agrees with its reference and every scene check fails on a planted defect.
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
-#include "scene_files.hpp"
 #include "scene/scene.hpp"
+#include "scene_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -82,7 +82,7 @@ TEST_CASE("glTF materials map to the glTF BRDF's parameters", "[scene]") {
 
 TEST_CASE("KHR_materials_anisotropy maps to alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha", "[scene]") {
   Scene s = load_scene(kData + "/aniso.gltf");
-  REQUIRE(s.materials.size() == 4);  // a material library: every material
+  REQUIRE(s.materials.size() == 4);                          // a material library: every material
   const SceneMaterial& brushed = named(s, "brushed steel");  // roughness 0.5, strength 0.8, rotation 0.5
   auto ch = brushed.channels();
   REQUIRE(ch.size() == 1);
@@ -140,7 +140,7 @@ TEST_CASE("material files name D, G, F and native parameters", "[scene]") {
   CHECK(steel.f1 == Approx(3.0));
   const SceneMaterial& phong = named(s, "old phong");
   CHECK(phong.pd == 100);
-  CHECK(phong.pg == 100);  // smith_phong takes alpha_p too
+  CHECK(phong.pg == 100);                                // smith_phong takes alpha_p too
   CHECK(phong.alpha == Approx(std::sqrt(2.0 / 102.0)));  // the width, for the proposal
   CHECK(phong.kd == 0.5);
   CHECK(named(s, "white plastic").channels().size() == 1);  // a grey material is one channel
@@ -174,11 +174,13 @@ TEST_CASE("bad scenes: one line, exit 2, earlier results untouched", "[scene][cl
       {edited_gltf(t, "ior.gltf",
                    [](nlohmann::json& j) { j["materials"][3]["extensions"]["KHR_materials_ior"]["ior"] = 0.5; }),
        "ior = 0.5 is out of range"},
-      {t.write("m1.json", "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith\", \"f\": \"none\", "
-                          "\"alpha\": 0.1}]}"),
+      {t.write("m1.json",
+               "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith\", \"f\": \"none\", "
+               "\"alpha\": 0.1}]}"),
        "unknown G term 'smith'"},
-      {t.write("m2.json", "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"schlick\", "
-                          "\"alpha\": 0.1}]}"),
+      {t.write("m2.json",
+               "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"schlick\", "
+               "\"alpha\": 0.1}]}"),
        "needs parameter f0"},
       {t.write("m3.json", "{\"materials\": [{\"name\": \"x\", \"model\": \"gltf\", \"roughnes\": 0.1}]}"),
        "unknown key 'roughnes'"},
@@ -223,8 +225,10 @@ TEST_CASE("the glTF model's kernel agrees with its reference and a planted Fresn
 TEST_CASE("mfv run --scene runs only the scene's sets and reports per material", "[device][scene]") {
   TempDir t;
   const std::string out = (t.dir / "out").string();
-  auto r = run_mfv("run --scene " + kData + "/materials.json --check furnace --check energy --check energy_diffuse --check reciprocity "
-                   "--seed 3 --out " + out);
+  auto r = run_mfv("run --scene " + kData +
+                   "/materials.json --check furnace --check energy --check energy_diffuse --check reciprocity "
+                   "--seed 3 --out " +
+                   out);
   INFO(r.out);
   CHECK(r.code == 0);
   nlohmann::json j = nlohmann::json::parse(slurp(out + "/results.json"));

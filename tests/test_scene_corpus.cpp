@@ -7,11 +7,11 @@
 // per material; a bad number is one line naming file, material and field.
 #include "kernel_dir.hpp"
 #include "run_mfv.hpp"
-#include "util/error.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_filters.hpp"
 #include "scene/texture_range.hpp"
 #include "scene_files.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -33,8 +33,8 @@ using mfv::test::TempDir;
 namespace {
 
 const std::string kCorpus = std::string(MFV_TEST_DATA_DIR) + "/corpus";
-const std::vector<std::string> kScenes = {"helmet",    "flight",    "aniso_strength", "ior_grid",
-                                          "roughness", "clearcoat", "sheen_chair",    "specular", "sheen", "coat_aniso"};
+const std::vector<std::string> kScenes = {"helmet",    "flight",      "aniso_strength", "ior_grid", "roughness",
+                                          "clearcoat", "sheen_chair", "specular",       "sheen",    "coat_aniso"};
 
 bool any_has(const std::vector<std::string>& lines, const std::string& what) {
   return std::any_of(lines.begin(), lines.end(), [&](auto& l) { return l.find(what) != std::string::npos; });
@@ -59,7 +59,8 @@ TEST_CASE("every corpus scene loads with no .bin and no images beside it", "[sce
     std::set<std::string> read_uris;
     for (auto& m : j["materials"]) {
       auto slot = [&](const nlohmann::json& parent, const char* key) {
-        if (parent.contains(key)) read_uris.insert(j["images"][j["textures"][parent[key]["index"].get<int>()]["source"].get<int>()]["uri"]);
+        if (parent.contains(key))
+          read_uris.insert(j["images"][j["textures"][parent[key]["index"].get<int>()]["source"].get<int>()]["uri"]);
       };
       if (m.contains("pbrMetallicRoughness")) {
         slot(m["pbrMetallicRoughness"], "baseColorTexture");
@@ -71,9 +72,9 @@ TEST_CASE("every corpus scene loads with no .bin and no images beside it", "[sce
         slot(m["extensions"]["KHR_materials_anisotropy"], "anisotropyTexture");
       if (m.contains("extensions") && m["extensions"].contains("KHR_materials_sheen")) {
         auto& sh = m["extensions"]["KHR_materials_sheen"];
-        const bool on = sh.contains("sheenColorFactor") && (sh["sheenColorFactor"][0].get<double>() > 0 ||
-                                                             sh["sheenColorFactor"][1].get<double>() > 0 ||
-                                                             sh["sheenColorFactor"][2].get<double>() > 0);
+        const bool on = sh.contains("sheenColorFactor") &&
+                        (sh["sheenColorFactor"][0].get<double>() > 0 || sh["sheenColorFactor"][1].get<double>() > 0 ||
+                         sh["sheenColorFactor"][2].get<double>() > 0);
         if (on) slot(sh, "sheenRoughnessTexture");  // read only where the sheen is on
       }
     }
@@ -129,12 +130,13 @@ TEST_CASE("images beside the scene give each textured parameter its texels' rang
 
 TEST_CASE("a .glb reads images from its BIN chunk and names them where the chunk is absent", "[scene][corpus]") {
   const std::string png = slurp(kCorpus + "/mr.png");
-  nlohmann::json j = {{"asset", {{"version", "2.0"}}},
-                      {"materials", {{{"name", "m"}, {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}}}}},
-                      {"textures", {{{"source", 0}}}},
-                      {"images", {{{"bufferView", 0}, {"mimeType", "image/png"}}}},
-                      {"bufferViews", {{{"buffer", 0}, {"byteLength", png.size()}}}},
-                      {"buffers", {{{"byteLength", png.size()}}}}};
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"materials", {{{"name", "m"}, {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}}}}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"bufferView", 0}, {"mimeType", "image/png"}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", png.size()}}}},
+      {"buffers", {{{"byteLength", png.size()}}}}};
   TempDir t;
   Scene with = load_scene(t.write("with.glb", glb_of(j.dump(), png)));
   CHECK(named(with, "m").roughness.lo == Approx(51 / 255.0));
@@ -212,8 +214,10 @@ TEST_CASE("bad numbers in scenes and material files: one line naming file, mater
           "[scene][cli]") {
   TempDir t;
   auto gltf = [&](const std::string& name, const std::string& pbr, const std::string& ext = "") {
-    return t.write(name, "{\"asset\": {\"version\": \"2.0\"}, \"materials\": [{\"name\": \"m\", "
-                         "\"pbrMetallicRoughness\": {" + pbr + "}" + (ext.empty() ? "" : ", \"extensions\": {" + ext + "}") + "}]}");
+    return t.write(name,
+                   "{\"asset\": {\"version\": \"2.0\"}, \"materials\": [{\"name\": \"m\", "
+                   "\"pbrMetallicRoughness\": {" +
+                       pbr + "}" + (ext.empty() ? "" : ", \"extensions\": {" + ext + "}") + "}]}");
   };
   auto file = [&](const std::string& name, const std::string& mat) {
     return t.write(name, "{\"materials\": [{\"name\": \"m\", " + mat + "}]}");
@@ -224,17 +228,23 @@ TEST_CASE("bad numbers in scenes and material files: one line naming file, mater
   std::vector<Bad> bad = {
       {file("overflow.json", "\"model\": \"gltf\", \"roughness\": 1e400"), "materials[0].roughness: number overflow"},
       {gltf("overflow.gltf", "\"roughnessFactor\": 1e400"), "pbrMetallicRoughness.roughnessFactor: number overflow"},
-      {gltf("nan.gltf", "\"roughnessFactor\": \"NaN\""), "material 'm' (materials[0]): pbrMetallicRoughness.roughnessFactor = \"NaN\" is not a number"},
+      {gltf("nan.gltf", "\"roughnessFactor\": \"NaN\""),
+       "material 'm' (materials[0]): pbrMetallicRoughness.roughnessFactor = \"NaN\" is not a number"},
       {gltf("null.gltf", "\"roughnessFactor\": null"), "roughnessFactor = null is not a number"},
       {gltf("true.gltf", "\"roughnessFactor\": true"), "roughnessFactor = true is not a number"},
       {gltf("metal.gltf", "\"metallicFactor\": \"0.2\""), "metallicFactor = \"0.2\" is not a number"},
       {gltf("red.gltf", "\"baseColorFactor\": \"red\""), "baseColorFactor = \"red\" must be an array of 4 numbers"},
       {gltf("rgb.gltf", "\"baseColorFactor\": [1, 1, 1]"), "baseColorFactor = [1,1,1] must be an array of 4 numbers"},
-      {gltf("five.gltf", "\"baseColorFactor\": [1, 1, 1, 1, 1], \"roughnessFactor\": 0.3"), "must be an array of 4 numbers"},
-      {gltf("ior.gltf", "", "\"KHR_materials_ior\": {\"ior\": \"1.5\"}"), "KHR_materials_ior.ior = \"1.5\" is not a number"},
-      {file("string.json", "\"model\": \"gltf\", \"metallic\": \"1\""), "material 'm': metallic = \"1\" is not a number"},
-      {file("alpha.json", "\"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"none\", \"alpha\": 1e30"), "alpha = 1e+30 gives D ggx alpha"},
-      {file("phong.json", "\"d\": \"phong\", \"g\": \"smith_phong\", \"f\": \"none\", \"alpha\": 1e-9"), "alpha = 1e-09 gives D phong alpha_p"},
+      {gltf("five.gltf", "\"baseColorFactor\": [1, 1, 1, 1, 1], \"roughnessFactor\": 0.3"),
+       "must be an array of 4 numbers"},
+      {gltf("ior.gltf", "", "\"KHR_materials_ior\": {\"ior\": \"1.5\"}"),
+       "KHR_materials_ior.ior = \"1.5\" is not a number"},
+      {file("string.json", "\"model\": \"gltf\", \"metallic\": \"1\""),
+       "material 'm': metallic = \"1\" is not a number"},
+      {file("alpha.json", "\"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"none\", \"alpha\": 1e30"),
+       "alpha = 1e+30 gives D ggx alpha"},
+      {file("phong.json", "\"d\": \"phong\", \"g\": \"smith_phong\", \"f\": \"none\", \"alpha\": 1e-9"),
+       "alpha = 1e-09 gives D phong alpha_p"},
   };
   for (auto& b : bad) {
     INFO(b.path);
@@ -294,7 +304,8 @@ TEST_CASE("a multi-material scene without .bin or images: per-material account, 
     INFO(m["name"]);
     if (m["name"] == "lenses") CHECK(m["checks"].empty());
     // textured: both metallic ends at every roughness point, with its own reciprocity set each
-    else CHECK(verdicts_of(m, "reciprocity").size() >= 8);
+    else
+      CHECK(verdicts_of(m, "reciprocity").size() >= 8);
   }
 }
 
@@ -310,8 +321,8 @@ TEST_CASE("textured roughness down to 0 catches a defect only narrow lobes show,
   j["materials"][0]["pbrMetallicRoughness"].erase("metallicRoughnessTexture");  // the factors alone: roughness 1
   const std::string factor = t.write("factor.gltf", j.dump());
   auto run = [&](const std::string& scene) {
-    return run_mfv("--kernel-dir " + planted.path() + " run --scene " + scene + " --check energy --seed 5 --scale 0.5 --out " +
-                   (t.dir / "out").string());
+    return run_mfv("--kernel-dir " + planted.path() + " run --scene " + scene +
+                   " --check energy --seed 5 --scale 0.5 --out " + (t.dir / "out").string());
   };
   auto bad = run(textured);
   INFO(bad.out);
@@ -429,7 +440,8 @@ TEST_CASE("coated materials are checked with their coat lobe, and a planted coat
   // light (2.8e-2 > 5e-3), as for the glTF model's own lobe (reported, not this test's subject)
   j["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"] = 0.1;
   const std::string scene = t.write("coat.gltf", j.dump());
-  auto ok = run_mfv("run --scene " + scene + " --check energy --check d_norm --seed 5 --out " + (t.dir / "out").string());
+  auto ok =
+      run_mfv("run --scene " + scene + " --check energy --check d_norm --seed 5 --out " + (t.dir / "out").string());
   INFO(ok.out);
   CHECK(ok.code == 0);
   CHECK(ok.out.find("gltf_clearcoat alpha=") != std::string::npos);
@@ -468,7 +480,8 @@ TEST_CASE("sheen materials are checked with their lobe at the ends of their rang
   // the red channel (sheen 1, others 0) and the green and blue (sheen 0, others 1), at sheenRoughness 0.3
   auto pts = red.sheen_points();
   auto has = [&](double sheen, double others) {
-    return std::any_of(pts.begin(), pts.end(), [&](auto& p) { return p[5] == sheen && p[6] == others && p[4] == Approx(0.3); });
+    return std::any_of(pts.begin(), pts.end(),
+                       [&](auto& p) { return p[5] == sheen && p[6] == others && p[4] == Approx(0.3); });
   };
   CHECK(has(1.0, 0.0));
   CHECK(has(0.0, 1.0));

@@ -51,8 +51,7 @@ Verdict planted_verdict(const std::string& file, const std::string& from, const 
 
 }  // namespace
 
-TEST_CASE("The Charlie D integrates to one and its visibility is the height-correlated form",
-          "[reference][d][sheen]") {
+TEST_CASE("The Charlie D integrates to one and its visibility is the height-correlated form", "[reference][d][sheen]") {
   for (double alpha : {1e-3, 0.01, 0.1, 0.5, 1.0}) {
     CAPTURE(alpha);
     auto g = [&](const glm::dvec3& m) { return ref::D_charlie(m.z, alpha) * m.z; };
@@ -110,7 +109,8 @@ TEST_CASE("A Charlie D without its normalisation fails d_norm", "[device][suite]
                         "return (R(0.5) * MFV_INV_PI)", "d_norm", "charlie") == Verdict::Fail);
 }
 
-TEST_CASE("gltf_sheen's albedo scaling by min instead of max, or none, fails energy", "[device][suite][sheen][planted]") {
+TEST_CASE("gltf_sheen's albedo scaling by min instead of max, or none, fails energy",
+          "[device][suite][sheen][planted]") {
   if (!test::device_runtime()) return;
   const std::string kRed = "gltf_sheen[red sheen chrome,R,sr=0.3]", kLine = "real max3 = max(sheen, p[6]);";
   // min3 of a red sheen is 0; and no albedo scaling at all

@@ -118,9 +118,9 @@ TEST_CASE("Every sweep region runs and stable terms and BRDFs stay finite in flo
       }
     }
     CHECK(brdfs == 5 * 9 * 4);
-    for (auto* name : {"grazing", "mid", "normal", "tan_zero", "above_one", "below_horizon", "sharp", "rough",
-                       "zero_width", "f0_ends", "eta_near_1", "tir", "nk_extreme", "mirror", "near_mirror", "opposite",
-                       "non_unit", "scan"}) {
+    for (auto* name :
+         {"grazing", "mid", "normal", "tan_zero", "above_one", "below_horizon", "sharp", "rough", "zero_width",
+          "f0_ends", "eta_near_1", "tir", "nk_extreme", "mirror", "near_mirror", "opposite", "non_unit", "scan"}) {
       CAPTURE(name);
       CHECK(seen.count(name) == 1);
     }
@@ -215,8 +215,7 @@ TEST_CASE("mfv stability rejects bad options with a one-line error and exit code
   };
   auto c = GENERATE(Case{"stability --only nothing-matches", "matches no stability case"},
                     Case{"stability --out /dev/null/x", "cannot create that folder"},
-                    Case{"stability --samples 10", "--samples"},
-                    Case{"stability --fp64=maybe", "--fp64"});
+                    Case{"stability --samples 10", "--samples"}, Case{"stability --fp64=maybe", "--fp64"});
   CAPTURE(c.args);
   Run r = run_mfv(c.args);
   if (no_platform(r)) return;

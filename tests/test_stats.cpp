@@ -30,7 +30,8 @@ const double kBeyond3 = stats::normal_two_sided_tail(3.0);
 TEST_CASE("Normal and binomial quantiles match tabulated values", "[stats]") {
   CHECK_THAT(stats::normal_two_sided_quantile(0.05), WithinRel(1.959963985, 1e-9));
   CHECK_THAT(stats::normal_upper_quantile(0.05), WithinRel(1.644853627, 1e-9));
-  CHECK_THAT(stats::normal_two_sided_quantile(1e-6 / 1e5), WithinRel(6.8065, 1e-4));  // the 6.8 at 1e-6 over 10^5 tests
+  CHECK_THAT(stats::normal_two_sided_quantile(1e-6 / 1e5),
+             WithinRel(6.8065, 1e-4));  // the 6.8 at 1e-6 over 10^5 tests
   CHECK_THAT(stats::normal_two_sided_tail(3.0), WithinRel(0.002699796063, 1e-9));
   CHECK_THAT(stats::normal_two_sided_quantile(1e-3), WithinRel(3.290526731, 1e-9));
   // Binomial(100, 0.5): P(X > 65) = 0.00089 <= 1e-3 < P(X > 64) = 0.00176

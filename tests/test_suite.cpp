@@ -42,7 +42,6 @@ SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> mode
   return o;
 }
 
-
 }  // namespace
 
 TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[device][suite][planted]") {
@@ -54,7 +53,8 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
   CHECK(good.gate_ok());
 
   test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
+  REQUIRE(
+      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
   Runtime planted("", dir.path());
   SuiteReport bad = run_suite(planted, opt);
   CHECK(verdict_of(bad, "d_norm", "ggx") == Verdict::Fail);
@@ -65,7 +65,8 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
 
   // the stratified d_norm integrals resolve far smaller errors: 1e-4 fails too
   test::PlantedKernelDir dir2;
-  REQUIRE(dir2.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.0001) / (MFV_PI * a2 * k * k);"));
+  REQUIRE(dir2.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                       "return R(1.0001) / (MFV_PI * a2 * k * k);"));
   Runtime planted2("", dir2.path());
   auto opt2 = opt;
   opt2.reference_samples = 0;
@@ -90,7 +91,8 @@ TEST_CASE("masking fails on a G1 that does not belong to its D and passes on the
   CHECK_FALSE(bad.gate_ok());
 }
 
-TEST_CASE("furnace and energy fail on a BRDF that adds energy and pass on the correct one", "[device][suite][planted]") {
+TEST_CASE("furnace and energy fail on a BRDF that adds energy and pass on the correct one",
+          "[device][suite][planted]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   auto opt = only({"furnace", "energy"}, {"ggx/smith_ggx_correlated"});
@@ -129,7 +131,8 @@ TEST_CASE("reciprocity fails on a BRDF that evaluates F at n.l and passes on the
 TEST_CASE("The catalog's known failures show as xfail with their reason", "[device][suite]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  SuiteReport rep = run_suite(*rt, only({"d_norm", "masking"}, {"beckmann_ct82", "ggx/smith_beckmann", "cook_torrance"}));
+  SuiteReport rep =
+      run_suite(*rt, only({"d_norm", "masking"}, {"beckmann_ct82", "ggx/smith_beckmann", "cook_torrance"}));
   const GroupResult* ct82 = group(rep, "d_norm", "beckmann_ct82");
   REQUIRE(ct82);
   CHECK(ct82->verdict == Verdict::XFail);
@@ -195,7 +198,8 @@ TEST_CASE("mfv run exits 1 on a planted failure, 0 on the correct model, and wri
   CHECK(slurp(out / "report.md").find("Gate: **ok**") != std::string::npos);
 
   test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
+  REQUIRE(
+      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
   Run bad = run_mfv("--kernel-dir " + dir.path() + " run --check d_norm --model ggx --out " + out.string());
   CAPTURE(bad.out);
   CHECK(bad.code == 1);
@@ -209,12 +213,12 @@ TEST_CASE("mfv run rejects bad options with one clear line and exit code 2", "[s
     const char* args;
     const char* says;
   };
-  auto c = GENERATE(Case{"run --samples -5", "--samples must be a positive count"},
-                    Case{"run --samples 0", "--samples must be a positive count"},
-                    Case{"run --scale -1", "--scale must be a positive number"},
-                    Case{"run --scale nan", "--scale: 'nan' is not a finite number"},
-                    Case{"run --check bogus", "unknown check 'bogus'"},
-                    Case{"run --model nosuchmodel", "no model matches"});
+  auto c =
+      GENERATE(Case{"run --samples -5", "--samples must be a positive count"},
+               Case{"run --samples 0", "--samples must be a positive count"},
+               Case{"run --scale -1", "--scale must be a positive number"},
+               Case{"run --scale nan", "--scale: 'nan' is not a finite number"},
+               Case{"run --check bogus", "unknown check 'bogus'"}, Case{"run --model nosuchmodel", "no model matches"});
   CAPTURE(c.args);
   Run r = run_mfv(c.args);
   CHECK(r.code == 2);
@@ -239,7 +243,8 @@ TEST_CASE("The integrals stay finite and accurate at the extremes: alpha = 1e-4 
           "[device][suite][edge]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  SuiteReport rep = run_suite(*rt, only({"d_norm", "masking", "furnace"}, {"ggx/smith_ggx_correlated", "beckmann/smith_beckmann"}));
+  SuiteReport rep =
+      run_suite(*rt, only({"d_norm", "masking", "furnace"}, {"ggx/smith_ggx_correlated", "beckmann/smith_beckmann"}));
   size_t at_extreme = 0;
   for (auto& p : rep.points) {
     CAPTURE(p.check, p.d->id, p.estimate, p.stderr_);

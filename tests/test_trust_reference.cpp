@@ -83,9 +83,9 @@ TEST_CASE("The double twin agrees with the reference within its derived bound on
   CHECK(with_rounding > compared / 2);  // float rounding shows on most integrals and is bounded
 }
 
-TEST_CASE("Planted: a height-correlated G built as the separable one fails the default gate", "[device][suite][planted]") {
-  expect_reference_failure("terms_g.cl",
-                           "return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
+TEST_CASE("Planted: a height-correlated G built as the separable one fails the default gate",
+          "[device][suite][planted]") {
+  expect_reference_failure("terms_g.cl", "return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
                            "return R(1.0) / ((R(1.0) + Lambda_ggx(NoL, alpha)) * (R(1.0) + Lambda_ggx(NoV, alpha)));",
                            "ggx/smith_ggx_correlated/schlick", "energy", "ggx/smith_ggx_correlated/schlick");
 }
@@ -109,10 +109,11 @@ TEST_CASE("Planted: the glTF metal's Fresnel on the dielectric f0 fails the defa
 }
 
 TEST_CASE("Planted: Ward with alpha_t and alpha_b swapped fails the default gate", "[device][suite][planted]") {
-  expect_reference_failure("models.cl",
-                           "return p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
-                           "return p[0] * ward_exp(h, p[2], p[1]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
-                           "ward_004[", "energy", "ward_004[at=0.3,ab=0.1]");
+  expect_reference_failure(
+      "models.cl",
+      "return p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
+      "return p[0] * ward_exp(h, p[2], p[1]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
+      "ward_004[", "energy", "ward_004[at=0.3,ab=0.1]");
 }
 
 namespace {

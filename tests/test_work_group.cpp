@@ -7,8 +7,8 @@
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
 #include "runtime/dispatch.hpp"
-#include "util/error.hpp"
 #include "runtime/work_group.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -86,10 +86,9 @@ std::vector<Term> build_catalog() {
     c.push_back(t);
     return &c.back();
   };
-  G("implicit", "G_implicit", "seed 000 \"V(L,V) = 1\"", "(n.l)(n.v)", std::nullopt, Roughness::None,
-    ref_::G_implicit);
-  G("kelemen", "G_kelemen", "seed 000 \"G/((L.N)(V.N)) ~ 1/(L.H)^2\"; Kelemen 2001", "(n.l)(n.v)/(l.h)^2",
-    std::nullopt, Roughness::None, ref_::G_kelemen);
+  G("implicit", "G_implicit", "seed 000 \"V(L,V) = 1\"", "(n.l)(n.v)", std::nullopt, Roughness::None, ref_::G_implicit);
+  G("kelemen", "G_kelemen", "seed 000 \"G/((L.N)(V.N)) ~ 1/(L.H)^2\"; Kelemen 2001", "(n.l)(n.v)/(l.h)^2", std::nullopt,
+    Roughness::None, ref_::G_kelemen);
   G("cook_torrance", "G_cook_torrance", "seeds 001, 003, 004 (V-cavity)",
     "min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(v.h))", std::nullopt, Roughness::None, ref_::G_cook_torrance)
       ->masking_exact =
@@ -103,7 +102,8 @@ std::vector<Term> build_catalog() {
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_beckmann_approx;
     // seed 000: "very accurate"; Walter et al. 2007 eq. 27 report under 0.35 %
-    t->smith_for = {{"beckmann", 0.004, 1e300, "Walter et al. 2007 eq. 27"}, beckmann_as_phong(0.03, "phong"),
+    t->smith_for = {{"beckmann", 0.004, 1e300, "Walter et al. 2007 eq. 27"},
+                    beckmann_as_phong(0.03, "phong"),
                     beckmann_as_phong(0.03, "blinn_rho")};
     t->under_masks = {"ggx"};
   }
@@ -114,19 +114,23 @@ std::vector<Term> build_catalog() {
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_beckmann;
     t->smith_for = {{"beckmann", 0.0, 1e300, "Walter et al. 2007 eq. 25 (exact)"},
-                    beckmann_as_phong(0.03, "phong"), beckmann_as_phong(0.03, "blinn_rho")};
+                    beckmann_as_phong(0.03, "phong"),
+                    beckmann_as_phong(0.03, "blinn_rho")};
     t->under_masks = {"ggx"};
   }
   {
-    auto* t = G("smith_phong", "G_smith_phong", "seed 000 \"Phong\" G1", "Beckman rational G1 with a = sqrt(ap/2+1)/tan",
-                p_alpha_p(), Roughness::PhongExponent, ref_::G_smith_phong);
+    auto* t =
+        G("smith_phong", "G_smith_phong", "seed 000 \"Phong\" G1", "Beckman rational G1 with a = sqrt(ap/2+1)/tan",
+          p_alpha_p(), Roughness::PhongExponent, ref_::G_smith_phong);
     t->g1_kernel_fn = "G1_smith_phong";
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = ref_::G1_smith_phong;
     // a = sqrt(alpha_p/2 + 1)/tan with alpha_p = 2/alpha^2 - 2 is a = 1/(alpha tan):
     // exactly seed 000's rational Beckmann G1, so it fits Beckmann to 0.4 %.
-    t->smith_for = {{"beckmann", 0.004, 1e300, "alpha_p = 2/alpha^2 - 2 makes a = 1/(alpha tan): Walter et al. 2007 eq. 27"},
-                    beckmann_as_phong(0.03, "phong"), beckmann_as_phong(0.03, "blinn_rho")};
+    t->smith_for = {
+        {"beckmann", 0.004, 1e300, "alpha_p = 2/alpha^2 - 2 makes a = 1/(alpha tan): Walter et al. 2007 eq. 27"},
+        beckmann_as_phong(0.03, "phong"),
+        beckmann_as_phong(0.03, "blinn_rho")};
     t->under_masks = {"ggx"};
   }
   {
@@ -170,9 +174,11 @@ std::vector<Term> build_catalog() {
   // exact for the D of the same family.
   auto aniso_smith = [&](std::string id, std::string fn, std::string g1_fn, std::string formula, RefG slice,
                          RefG1 g1_slice, RefG1Aniso g1, RefGAniso g, std::string exact_for, std::string note) {
-    auto* t = aniso(G(id, fn, "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)",
-                      formula, p_alpha(), Roughness::Alpha, slice),
-                    nullptr, g1, g);
+    auto* t = aniso(
+        G(id, fn,
+          "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)",
+          formula, p_alpha(), Roughness::Alpha, slice),
+        nullptr, g1, g);
     t->g1_kernel_fn = g1_fn;
     t->ref_g1 = g1_slice;
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
@@ -205,8 +211,7 @@ std::vector<Term> build_catalog() {
       ->check_points = {{0.0, 0, "f0=0"}, {0.04, 0, "f0=0.04"}, {0.5, 0, "f0=0.5"}, {1.0, 0, "f0=1"}};
   F("dielectric", "F_dielectric", "seed 000 exact (seed 001's form has sign typos)",
     "1/2 (g-c)^2/(g+c)^2 (1 + ((c(g+c)-1)/(c(g-c)+1))^2), g^2 = eta^2-1+c^2",
-    {{"eta", 0.1, 10.0, 1.5, "relative index eta_t/eta_i; < 1 gives total internal reflection"}},
-    ref_::F_dielectric);
+    {{"eta", 0.1, 10.0, 1.5, "relative index eta_t/eta_i; < 1 gives total internal reflection"}}, ref_::F_dielectric);
   c.back().ulp_budget = 24;  // ~20 roundings, squared twice; measured worst 19 ulps at grazing, eta ~ 3
   c.back().check_points = {{1 / 1.5, 0, "eta=0.667"}, {1.33, 0, "eta=1.33"}, {1.5, 0, "eta=1.5"}, {3.0, 0, "eta=3"}};
   F("conductor", "F_conductor", "Born and Wolf 14.2 (complex index n + ik)", "(|r_s|^2 + |r_p|^2)/2",
@@ -239,8 +244,8 @@ std::vector<Term> build_catalog() {
   {
     auto* t = G("charlie_sheen", "G_charlie_sheen",
                 "KHR_materials_sheen \"Sheen visibility\" (Charlie); Estevez and Kulla 2017 §3 (fitted Lambda)",
-                "1/(1 + Lambda(l) + Lambda(v)), ln Lambda = a/(1 + b x^c) + d x + e, mixed in (1 - alpha)^2",
-                p_sheen, Roughness::Alpha, ref_::G_charlie_sheen);
+                "1/(1 + Lambda(l) + Lambda(v)), ln Lambda = a/(1 + b x^c) + d x + e, mixed in (1 - alpha)^2", p_sheen,
+                Roughness::Alpha, ref_::G_charlie_sheen);
     t->g1_kernel_fn = "G1_charlie";
     t->ref_g1 = ref_::G1_charlie;
     t->own_lobe = true;

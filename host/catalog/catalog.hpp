@@ -39,28 +39,28 @@ struct Param {
 // white furnace), exactly or within `tol` up to the width `alpha_max`.
 struct SmithFit {
   std::string d;
-  double tol = 0;              // documented relative approximation tolerance
-  double alpha_max = 1e300;    // beyond this width the fit is known not to hold
-  std::string why;             // the source of the fit, or of its limit
+  double tol = 0;            // documented relative approximation tolerance
+  double alpha_max = 1e300;  // beyond this width the fit is known not to hold
+  std::string why;           // the source of the fit, or of its limit
 };
 
 // The reference twins' signatures (reference/twins.hpp), by their catalog names.
 using ref::RefD;
+using ref::RefDAniso;
 using ref::RefDcs;
+using ref::RefF;
 using ref::RefG;
 using ref::RefG1;
-using ref::RefF;
-using ref::RefDAniso;
 using ref::RefG1Aniso;
 using ref::RefGAniso;
 
 // One term: its declaration, and (from ref::TermTwins) its reference twins.
 struct Term : ref::TermTwins {
-  std::string id;         // catalog name: ggx, smith_ggx_correlated, schlick...
+  std::string id;  // catalog name: ggx, smith_ggx_correlated, schlick...
   Kind kind;
-  std::string kernel_fn;  // function in kernels/terms_*.cl
-  std::string source;     // seed file and formula, or paper and equation
-  std::string formula;    // one line, for the listing
+  std::string kernel_fn;      // function in kernels/terms_*.cl
+  std::string source;         // seed file and formula, or paper and equation
+  std::string formula;        // one line, for the listing
   std::vector<Param> params;  // D and G: one (roughness), two for anisotropic terms; F: up to two
   Roughness roughness = Roughness::None;
   // F terms: the points of F's parameters mfv run checks each D x G at
@@ -89,7 +89,7 @@ struct Term : ref::TermTwins {
   double abs_floor = 1e-30;
 
   // Expected properties, used by the conformance checks.
-  std::string known_bad;    // non-empty: why this term is kept as a known-bad model
+  std::string known_bad;  // non-empty: why this term is kept as a known-bad model
   // G terms, for the masking, furnace and energy checks:
   std::vector<SmithFit> smith_for;       // Smith G: the Ds its G1 belongs to
   std::vector<std::string> under_masks;  // Smith G: Ds whose heavier tails its G1 under-masks (albedo > 1)
@@ -103,11 +103,11 @@ struct Term : ref::TermTwins {
 };
 
 const std::vector<Term>& catalog();
-const Term& find_term(const std::string& id);           // throws mfv::Error naming the known ids
+const Term& find_term(const std::string& id);  // throws mfv::Error naming the known ids
 const Term* try_find_term(const std::string& id, Kind k);
-std::vector<const Term*> terms_of(Kind k);        // the isotropic terms (one width) of kind k
-std::vector<const Term*> aniso_terms_of(Kind k);  // the anisotropic ones (alpha_x, alpha_y)
-std::vector<const Term*> all_terms_of(Kind k);    // both
+std::vector<const Term*> terms_of(Kind k);           // the isotropic terms (one width) of kind k
+std::vector<const Term*> aniso_terms_of(Kind k);     // the anisotropic ones (alpha_x, alpha_y)
+std::vector<const Term*> all_terms_of(Kind k);       // both
 std::vector<const Term*> own_lobe_terms_of(Kind k);  // Term::own_lobe (the sheen)
 // The proposal width the estimators take for D at width alpha (Term::proposal).
 double proposal_width(const Term& d, double alpha);

@@ -52,20 +52,20 @@ struct ModelCase {
 
 // One whole model: its declaration, and (from ref::ModelTwins) its reference twins.
 struct Model : ref::ModelTwins {
-  std::string id;         // catalog name, distinct from every term id
-  std::string kernel_fn;  // function in kernels/models.cl (gltf: kernels/model_gltf.cl)
-  std::string source;     // seed file and formula, or paper and equation
-  std::string formula;    // the BRDF, one line
+  std::string id;             // catalog name, distinct from every term id
+  std::string kernel_fn;      // function in kernels/models.cl (gltf: kernels/model_gltf.cl)
+  std::string source;         // seed file and formula, or paper and equation
+  std::string formula;        // the BRDF, one line
   std::vector<Param> params;  // at most kModelParams
   // Non-empty where the seed gives reflected radiance per unit irradiance,
   // f (n·l), rather than f: how the catalog's BRDF was formed from it.
   std::string radiance;
   Width width = Width::Diffuse;
   int width_param = -1, width_param2 = -1;
-  std::string albedo_doc;          // where ref_albedo's closed form holds and why
-  double ulp_budget = 64;          // kernel float vs double reference, identical inputs
+  std::string albedo_doc;  // where ref_albedo's closed form holds and why
+  double ulp_budget = 64;  // kernel float vs double reference, identical inputs
   double abs_floor = 1e-30;
-  std::vector<ModelCase> cases;    // the points mfv run checks, with expected verdicts
+  std::vector<ModelCase> cases;  // the points mfv run checks, with expected verdicts
   // Non-empty: where mfv stability's census finds the float32 kernel NaN or
   // Inf though the reference is finite (measured); such a model is reported,
   // not gated. Empty: finite wherever its reference is (gated).
@@ -77,8 +77,8 @@ struct Model : ref::ModelTwins {
 
 const std::vector<Model>& models();
 const Model* try_find_model(const std::string& id);
-const Model* model_by_number(uint32_t number);  // nullptr for 0 and numbers no model of this list has
-const char* expect_name(Expect e);              // "hold", "fail", "may fail"
+const Model* model_by_number(uint32_t number);                    // nullptr for 0 and numbers no model of this list has
+const char* expect_name(Expect e);                                // "hold", "fail", "may fail"
 std::string model_case_name(const Model& m, const ModelCase& c);  // "phong_004[n=1]"
 // Why a glTF dielectric may reflect more than it receives (the "gltf" model's cases, mfv run --scene).
 extern const char* const kGltfFresnelMixGain;

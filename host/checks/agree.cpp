@@ -5,8 +5,8 @@
 #include "checks/pointwise.hpp"
 #include "checks/pointwise_inputs.hpp"
 #include "reference/brdf.hpp"
-#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
+#include "runtime/integrator.hpp"
 #include "util/error.hpp"
 #include "util/progress.hpp"
 
@@ -151,8 +151,10 @@ struct Evaluator {
     // A whole model's direction components are bumped by an absolute amount:
     // rounding a unit vector moves each component by ~eps of its length, not
     // of the component (a small z is as uncertain as a large x).
-    if (c.mode == kModel && bump_index >= 0 && bump_index < 6) in[bump_index] += bump;
-    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 13 : 11)) in[bump_index] *= 1.0 + bump;
+    if (c.mode == kModel && bump_index >= 0 && bump_index < 6)
+      in[bump_index] += bump;
+    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 13 : 11))
+      in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
       case kDAniso: {
         // The kernels take the recorded h as if unit; both anisotropic D forms
@@ -195,7 +197,8 @@ struct Evaluator {
       case kBrdf: {
         ref::BrdfSpec s{c.d, c.g, c.f, in[PW_PD], in[PW_PG], in[PW_F0], in[PW_F1], in[PW_KD]};
         glm::dvec3 wi, wo;
-        ref::Shading sh = record_shading(in, fp64, wi, wo);  // sin2H < 0: D from NoH alone, so that bumping NoH moves it
+        ref::Shading sh =
+            record_shading(in, fp64, wi, wo);  // sin2H < 0: D from NoH alone, so that bumping NoH moves it
         if (wi.z <= 0.0 || wo.z <= 0.0) return 0.0;
         double* cs[4] = {&sh.NoL, &sh.NoV, &sh.NoH, &sh.VoH};
         if (bump_index >= 11 && bump_index < 15) *cs[bump_index - 11] *= 1.0 + bump;
@@ -259,8 +262,8 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
       // a normalisation each: several roundings of the inputs' scale, which
       // a lobe (v·r)^n multiplies by n; their bump is 4 units, not 2.
       const double units = c.mode == kModel ? 4 : 2;
-      const double dev =
-          input_sensitivity(ev.inputs(), units, fp64, [&](int j, double b) { return ev.eval(j, b); }, ref);
+      const double dev = input_sensitivity(
+          ev.inputs(), units, fp64, [&](int j, double b) { return ev.eval(j, b); }, ref);
       fail = diff > std::max(allowed, 2.0 * dev);
     }
     double score = fail ? 1e300 + ulps : ulps;
@@ -353,8 +356,9 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       std::vector<Stats> part(threads);
       std::vector<std::thread> pool;
       for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] { check_range(c, rec.data(), n * t / threads, n * (t + 1) / threads, opt.fp64, ftz_floor,
-                                               part[t]); });
+        pool.emplace_back([&, t] {
+          check_range(c, rec.data(), n * t / threads, n * (t + 1) / threads, opt.fp64, ftz_floor, part[t]);
+        });
       for (auto& th : pool) th.join();
       auto t2 = std::chrono::steady_clock::now();
       rep.kernel_seconds += std::chrono::duration<double>(t1 - t0).count();
@@ -372,7 +376,8 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build(catalog_sources({"pointwise.cl", "agree.cl"}), defines, generate_dispatch(TermSelection::all()), kDispatchBefore);
+  return rt.build(catalog_sources({"pointwise.cl", "agree.cl"}), defines, generate_dispatch(TermSelection::all()),
+                  kDispatchBefore);
 }
 }  // namespace
 

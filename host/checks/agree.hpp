@@ -13,9 +13,9 @@ namespace mfv {
 
 struct AgreeOptions {
   uint64_t seed = 1;
-  uint64_t samples = 1000000;  // per case
-  bool fp64 = false;           // run the kernel in double (needs cl_khr_fp64)
-  bool combinations = true;    // all D x G x F BRDFs, besides the single terms
+  uint64_t samples = 1000000;     // per case
+  bool fp64 = false;              // run the kernel in double (needs cl_khr_fp64)
+  bool combinations = true;       // all D x G x F BRDFs, besides the single terms
   std::vector<std::string> only;  // restrict to cases whose name contains one of these
 };
 

@@ -5,9 +5,9 @@
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
-#include "util/files.hpp"
-#include "util/error.hpp"
 #include "runtime/provenance.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -22,7 +22,9 @@
 
 namespace mfv {
 
-double bench_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double bench_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // CPU time of every thread of this process: on a CPU device PoCL's workers
 // are threads of it, so samples per CPU-second compare engines fairly on a
@@ -44,7 +46,6 @@ namespace {
 const std::vector<std::string> kIntegrands = {"d_norm", "albedo", "reciprocity"};
 constexpr double kAlpha = 0.3;  // one representative width; the cost of these terms does not depend on it
 
-
 // Wall and CPU seconds of each call of f.
 struct Timings {
   std::vector<double> wall, cpu;
@@ -56,7 +57,6 @@ struct Timings {
     cpu.push_back(bench_cpu_now() - c0);
   }
 };
-
 
 // The representative integrands: D alone (GGX d_norm, stratified like the
 // suite's), the full GGX + smith_ggx_correlated + Schlick (F0 = 0.04) albedo
@@ -175,8 +175,8 @@ void bench_reference(const BenchOptions& opt, unsigned threads, const std::vecto
       });
     double checksum = 0;
     for (double v : results) checksum += v / results.size();
-    rep.rows.push_back(make_row(name, fmt::format("reference x{}", threads), specs.size(), opt.ref_samples,
-                                tm, checksum));
+    rep.rows.push_back(
+        make_row(name, fmt::format("reference x{}", threads), specs.size(), opt.ref_samples, tm, checksum));
   }
 }
 
@@ -187,7 +187,6 @@ std::string cpu_model() {
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown";
 }
-
 
 }  // namespace
 
@@ -230,7 +229,8 @@ FlopCount flops_per_sample(const std::string& integrand) {
 }
 
 void validate_bench_options(const BenchOptions& opt) {
-  if (opt.integrals < 1 || opt.integrals > 65536) throw Error(fmt::format("--integrals {}: must be 1..65536", opt.integrals));
+  if (opt.integrals < 1 || opt.integrals > 65536)
+    throw Error(fmt::format("--integrals {}: must be 1..65536", opt.integrals));
   if (opt.samples < 64 || opt.samples > (uint64_t(1) << 26))
     throw Error(fmt::format("--samples {}: must be 64..2^26", opt.samples));
   if (opt.ref_samples < 1 || opt.ref_samples > (uint64_t(1) << 26))
@@ -264,9 +264,10 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
 }
 
 std::string bench_table(const BenchReport& r) {
-  std::string s = fmt::format("| integrand | engine | integrals x samples | median s | samples/s | integrals/s | "
-                              "est. GFLOP/s | vs reference x1 | samples/CPU-s | per CPU-s vs reference x1 |\n"
-                              "|---|---|---|---|---|---|---|---|---|---|\n");
+  std::string s = fmt::format(
+      "| integrand | engine | integrals x samples | median s | samples/s | integrals/s | "
+      "est. GFLOP/s | vs reference x1 | samples/CPU-s | per CPU-s vs reference x1 |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& row : r.rows) {
     const BenchRow* ref1 = find_row(r, row.integrand, "reference x1");
     const FlopCount fc = flops_per_sample(row.integrand);
@@ -294,8 +295,12 @@ std::string bench_json(const BenchReport& r) {
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["date"] = r.date;
   j["host"] = {{"cpu", r.cpu}, {"hardware_threads", r.hardware_threads}, {"load_average", r.load_average}};
-  j["options"] = {{"integrals", r.opt.integrals}, {"samples", r.opt.samples}, {"ref_samples", r.opt.ref_samples},
-                  {"repeats", r.opt.repeats}, {"seed", r.opt.seed}, {"alpha", kAlpha},
+  j["options"] = {{"integrals", r.opt.integrals},
+                  {"samples", r.opt.samples},
+                  {"ref_samples", r.opt.ref_samples},
+                  {"repeats", r.opt.repeats},
+                  {"seed", r.opt.seed},
+                  {"alpha", kAlpha},
                   {"brdf", "ggx / smith_ggx_correlated / schlick f0=0.04"}};
   j["rows"] = json::array();
   for (const auto& row : r.rows) {

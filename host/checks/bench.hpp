@@ -10,11 +10,11 @@
 namespace mfv {
 
 struct BenchOptions {
-  uint32_t integrals = 64;           // integrals per device launch (and per reference pass)
-  uint64_t samples = 1u << 16;       // samples per integral on a device
-  uint64_t ref_samples = 1u << 12;   // samples per integral in the reference (it is ~10-100x slower)
-  int repeats = 5;                   // timed repetitions; medians are reported
-  unsigned threads = 0;              // reference threads for the "all threads" row (0: hardware)
+  uint32_t integrals = 64;          // integrals per device launch (and per reference pass)
+  uint64_t samples = 1u << 16;      // samples per integral on a device
+  uint64_t ref_samples = 1u << 12;  // samples per integral in the reference (it is ~10-100x slower)
+  int repeats = 5;                  // timed repetitions; medians are reported
+  unsigned threads = 0;             // reference threads for the "all threads" row (0: hardware)
   uint64_t seed = 1;
   std::vector<std::string> integrands;  // empty: all (d_norm, albedo, reciprocity)
 };
@@ -32,11 +32,11 @@ struct BenchRow {
   std::string platform, driver;   // devices only
   double build_seconds = 0;       // devices: program build, kept out of the timings
   uint64_t integrals = 0, samples_per_integral = 0;
-  std::vector<double> seconds;    // each repeat, wall clock
+  std::vector<double> seconds;      // each repeat, wall clock
   std::vector<double> cpu_seconds;  // each repeat, CPU time of the whole process (PoCL's worker threads included)
   double median_seconds = 0, samples_per_second = 0, integrals_per_second = 0;
   double samples_per_cpu_second = 0;  // robust where other processes share the cores
-  double checksum = 0;            // mean of the integrals (keeps the work observable)
+  double checksum = 0;                // mean of the integrals (keeps the work observable)
 };
 
 struct BenchReport {
@@ -54,8 +54,8 @@ std::string bench_table(const BenchReport& r);  // console and Markdown
 std::string bench_json(const BenchReport& r);
 void validate_bench_options(const BenchOptions& opt);
 std::string bench_load_average();  // /proc/loadavg's first three fields
-double bench_now();                  // steady clock, seconds
-double bench_cpu_now();              // CPU seconds of every thread of this process
+double bench_now();                // steady clock, seconds
+double bench_cpu_now();            // CPU seconds of every thread of this process
 double bench_median(std::vector<double> v);
 
 }  // namespace mfv

@@ -14,7 +14,6 @@
 #include <cmath>
 #include <sstream>
 
-
 namespace mfv {
 namespace {
 
@@ -32,7 +31,8 @@ double number(const std::string& s, const char* what) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != s.size() || s.empty() || !std::isfinite(v)) throw Error(fmt::format("--case: {} '{}' is not a number", what, s));
+  if (used != s.size() || s.empty() || !std::isfinite(v))
+    throw Error(fmt::format("--case: {} '{}' is not a number", what, s));
   return v;
 }
 

@@ -22,14 +22,14 @@ struct BenchCaseResult {
   BenchCase c;
   std::string device;
   double target_se = 1e-4;
-  uint64_t samples = 0;         // per timed call: the fewest (on the search grid) whose SE reached target_se
-  uint32_t replicates = 0;      // RQMC replicates of the estimator
+  uint64_t samples = 0;              // per timed call: the fewest (on the search grid) whose SE reached target_se
+  uint32_t replicates = 0;           // RQMC replicates of the estimator
   double estimate = 0, stderr_ = 0;  // of the first timed call
-  double rms_stderr = 0;        // root mean square of the timed calls' standard errors
+  double rms_stderr = 0;             // root mean square of the timed calls' standard errors
   double median_seconds = 0, median_cpu_seconds = 0;  // wall and process CPU time of one call
   double samples_per_s = 0;
   double variance_per_sample = 0;  // samples x rms_stderr²: for RQMC the effective variance (it falls with N)
-  double seconds_to_se = 0;        // median_seconds, scaled by (rms_stderr / target)² only if the cap stopped the search
+  double seconds_to_se = 0;  // median_seconds, scaled by (rms_stderr / target)² only if the cap stopped the search
   int repeats = 0;
 };
 
@@ -37,8 +37,8 @@ struct BenchCaseResult {
 // three seeds is at most 1e-4 (a RQMC error falls faster than N^-1/2, so the
 // time to an error cannot be extrapolated down from a larger run), bisects
 // the last doubling, then times `repeats` calls at that count.
-BenchCaseResult run_bench_case(const std::string& device_selector, const std::string& kernel_dir,
-                               const BenchCase& c, int repeats, uint64_t seed);
+BenchCaseResult run_bench_case(const std::string& device_selector, const std::string& kernel_dir, const BenchCase& c,
+                               int repeats, uint64_t seed);
 std::string bench_case_text(const BenchCaseResult& r);
 std::string bench_case_json(const BenchCaseResult& r, const std::string& load_average, const std::string& date);
 

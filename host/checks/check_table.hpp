@@ -27,13 +27,13 @@ enum class FSet {
 struct CheckRow {
   const char* check;
   IntegralKind kind;
-  uint64_t base_samples;      // per integral at --scale 1
-  int n_alpha = 0;            // widths: n_alpha of suite_alphas(), evenly thinned (0: the D's own d_norm grid)
-  int n_view = 0;             // view cosines: view_cosines(n_view) (0: the normal only)
+  uint64_t base_samples;  // per integral at --scale 1
+  int n_alpha = 0;        // widths: n_alpha of suite_alphas(), evenly thinned (0: the D's own d_norm grid)
+  int n_view = 0;         // view cosines: view_cosines(n_view) (0: the normal only)
   FSet fs = FSet::None;
   std::vector<double> kds = {0.0};  // Lambertian albedos added (energy_diffuse)
-  bool upper_only = false;    // one-sided (albedo <= 1) rather than two-sided (== expected)
-  const char* verdict;        // how the expected verdict follows from the catalog (expect())
+  bool upper_only = false;          // one-sided (albedo <= 1) rather than two-sided (== expected)
+  const char* verdict;              // how the expected verdict follows from the catalog (expect())
 };
 
 // The D x G x F rows in plan order: d_norm, masking, furnace, energy, energy_diffuse.

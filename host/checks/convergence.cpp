@@ -8,8 +8,8 @@
 #include "numeric/quadrature.hpp"
 #include "reference/brdf.hpp"
 #include "reference/estimators.hpp"
-#include "util/files.hpp"
 #include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -80,8 +80,9 @@ ConvergenceTruth truth_of(const std::string& check, const ConvergenceCase& c) {
   const double hi = integrate_reflected(f, o, fine).value, lo = integrate_reflected(f, o, coarse).value;
   t.value = hi;
   t.error = std::fabs(hi - lo);
-  t.method = "product Gauss-Legendre over half vectors (order 16, 4 panels/decade, 8 phi panels; error vs "
-             "order 12, 3/decade, 6 phi panels)";
+  t.method =
+      "product Gauss-Legendre over half vectors (order 16, 4 panels/decade, 8 phi panels; error vs "
+      "order 12, 3/decade, 6 phi panels)";
   return t;
 }
 
@@ -205,7 +206,8 @@ uint32_t estimator_id(const std::string& e, const ConvergenceCase& c) {
 
 void validate_convergence_options(const ConvergenceOptions& opt) {
   for (auto& c : opt.checks)
-    if (!contains(kChecks, c)) throw Error(fmt::format("unknown check '{}' (convergence checks: {})", c, join(kChecks)));
+    if (!contains(kChecks, c))
+      throw Error(fmt::format("unknown check '{}' (convergence checks: {})", c, join(kChecks)));
   for (auto& e : opt.estimators)
     if (!contains(kEstimators, e))
       throw Error(fmt::format("unknown estimator '{}' (estimators: {})", e, join(kEstimators)));
@@ -254,9 +256,10 @@ void require_an_estimator(const std::vector<std::string>& checks, const std::vec
     bool any = false;
     for (auto& e : ests) any = any || estimator_applies(e, ch);
     if (!any)
-      throw Error(fmt::format("no estimator of '{}' applies to {}: dsample and vndf sample by the D under test, which "
-                              "makes D normalization a tautology",
-                              join(ests), ch));
+      throw Error(
+          fmt::format("no estimator of '{}' applies to {}: dsample and vndf sample by the D under test, which "
+                      "makes D normalization a tautology",
+                      join(ests), ch));
   }
 }
 
@@ -271,7 +274,8 @@ TermSelection convergence_terms() {
 }
 
 // One series per case of a check and estimator on one engine, no levels yet.
-std::vector<ConvergenceSeries> empty_series(const std::string& ch, const std::string& est, const char* engine, size_t C) {
+std::vector<ConvergenceSeries> empty_series(const std::string& ch, const std::string& est, const char* engine,
+                                            size_t C) {
   std::vector<ConvergenceSeries> out(C);
   for (size_t k = 0; k < C; ++k) {
     out[k].check = ch;
@@ -378,11 +382,12 @@ void measure_target(ConvergenceReport& rep) {
       const ref::IntegralRef r = reference_of(spec_of("albedo", c));
       const glm::dvec3 o(std::sqrt((1.0 - r.cos_o) * (1.0 + r.cos_o)), 0.0, r.cos_o);
       const double m2 = integrate_reflected(
-          [&](const glm::dvec3& i) {
-            const double v = ref::brdf(r.brdf, i, o) * i.z;
-            return 2.0 * M_PI * v * v;
-          },
-          o, ProductRule{16, 4, 8}).value;
+                            [&](const glm::dvec3& i) {
+                              const double v = ref::brdf(r.brdf, i, o) * i.z;
+                              return 2.0 * M_PI * v * v;
+                            },
+                            o, ProductRule{16, 4, 8})
+                            .value;
       const double e = rep.truth[albedo][s.case_index].value;
       rep.target.uniform_variance = m2 - e * e;
       rep.target.uniform_n_variance = rep.target.uniform_variance / 1e-8;
@@ -432,7 +437,8 @@ ConvergenceReport run_convergence(Runtime& rt, const ConvergenceOptions& opt_in)
       const std::string& est = ests[ei];
       if (!estimator_applies(est, ch)) continue;
       const bool rqmc = est == "rqmc";
-      std::vector<ConvergenceSeries> dev = empty_series(ch, est, "device", C), ref = empty_series(ch, est, "reference", C);
+      std::vector<ConvergenceSeries> dev = empty_series(ch, est, "device", C),
+                                     ref = empty_series(ch, est, "reference", C);
       if (est == "quadrature") {
         quadrature_levels(rep, ci, ref);
         for (auto& s : ref) rep.series.push_back(s);

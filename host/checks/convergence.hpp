@@ -27,9 +27,9 @@ struct ConvergenceOptions {
   std::vector<ConvergenceCase> cases;   // empty: GGX, Beckmann x alpha 1e-3, 1e-2, 0.1, 0.5 x cos 1, 0.05
   int min_log2 = 7;                     // sample counts 2^min_log2 .. 2^max_log2 per run on the device
   int max_log2 = 17;
-  int ref_max_log2 = 13;                // the reference stops here (it is slower)
-  int replicates = 8;                   // independent runs per sample count (RQMC: randomizations)
-  int quad_max_order = 12;              // quadrature estimator: Gauss-Legendre orders 2..this
+  int ref_max_log2 = 13;    // the reference stops here (it is slower)
+  int replicates = 8;       // independent runs per sample count (RQMC: randomizations)
+  int quad_max_order = 12;  // quadrature estimator: Gauss-Legendre orders 2..this
   uint64_t seed = 1;
   bool reference = true;
 };
@@ -40,12 +40,12 @@ void validate_convergence_options(const ConvergenceOptions& opt);
 std::vector<ConvergenceCase> default_convergence_cases();
 
 struct ConvergenceLevel {
-  uint64_t n = 0;       // samples (quadrature: integrand evaluations) of one run
-  double mean = 0;      // mean of the replicates' estimates
-  double rmse = 0;      // sqrt(mean over replicates of (estimate - truth)^2): the error of one run
-  double est_se = 0;    // estimated standard error of one run (MC: from its samples; RQMC: replicate
-                        // spread; quadrature: difference to the previous order)
-  double seconds = 0;   // wall time of one run
+  uint64_t n = 0;      // samples (quadrature: integrand evaluations) of one run
+  double mean = 0;     // mean of the replicates' estimates
+  double rmse = 0;     // sqrt(mean over replicates of (estimate - truth)^2): the error of one run
+  double est_se = 0;   // estimated standard error of one run (MC: from its samples; RQMC: replicate
+                       // spread; quadrature: difference to the previous order)
+  double seconds = 0;  // wall time of one run
 };
 
 struct ToleranceReach {
@@ -58,10 +58,10 @@ struct ConvergenceSeries {
   std::string check, estimator, engine;  // engine: "device" or "reference"
   size_t case_index = 0;
   std::vector<ConvergenceLevel> levels;
-  double slope = 0;       // least squares of log rmse on log n over the fit range; NaN if too few points
-  size_t fit_from = 0;    // first level of the fit range
-  double z = 0, p = 1;    // top level: (mean of replicates - truth) / its standard error, and its p-value
-  bool consistent = true; // p above the family-wise (Sidak) level
+  double slope = 0;                   // least squares of log rmse on log n over the fit range; NaN if too few points
+  size_t fit_from = 0;                // first level of the fit range
+  double z = 0, p = 1;                // top level: (mean of replicates - truth) / its standard error, and its p-value
+  bool consistent = true;             // p above the family-wise (Sidak) level
   std::vector<ToleranceReach> reach;  // 1e-3, 1e-4, 1e-5
 };
 
@@ -73,7 +73,7 @@ struct ConvergenceTruth {
 
 struct ConvergenceTarget {
   bool measured = false;
-  std::string best;                 // estimator reaching 1e-4 in the fewest samples
+  std::string best;  // estimator reaching 1e-4 in the fewest samples
   double best_n = 0;
   double uniform_variance = 0, uniform_n_variance = 0;  // exact, by quadrature: n = variance / tol²
   double uniform_n = 0, uniform_n_clt = 0;  // from the measured errors: extrapolated at n^-1/2, and by its est. se

@@ -4,9 +4,9 @@
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
-#include "util/error.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
+#include "util/error.hpp"
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
@@ -156,9 +156,12 @@ void judge_model_gains(EnergyReport& rep) {
       if (c.mean > me.E[me.max_at].mean || !std::isfinite(c.mean)) me.max_at = m;
       double p;
       const double one = 1.0 + float_rounding_of_mean(*me.point.model, c.mean);
-      if (!std::isfinite(c.mean)) p = c.mean > 0 || std::isnan(c.mean) ? 0 : 1;
-      else if (c.se > 0) p = c.mean > one ? 0.5 * stats::student_t_two_sided_p((c.mean - one) / c.se, df) : 1;
-      else p = c.mean > one ? 0 : 1;
+      if (!std::isfinite(c.mean))
+        p = c.mean > 0 || std::isnan(c.mean) ? 0 : 1;
+      else if (c.se > 0)
+        p = c.mean > one ? 0.5 * stats::student_t_two_sided_p((c.mean - one) / c.se, df) : 1;
+      else
+        p = c.mean > one ? 0 : 1;
       me.excess_p = std::min(me.excess_p, p);
       if (c.se > rep.opt.target && c.mean + 3.0 * c.se > one) me.unresolved = true;
     }
@@ -195,9 +198,8 @@ struct Unit {
   bool eavg;
   IntegralSpec base;
   uint32_t first_stream;
-  bool model = false;   // `table` indexes rep.models
+  bool model = false;  // `table` indexes rep.models
 };
-
 
 // Records a unit's cells from its per-replicate sums over `done` points;
 // returns the largest standard error among them.
@@ -404,11 +406,11 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
 
   TermSelection sel;
   for (auto [d, g] : table_pairs()) {
-      if (!opt.tables || !wanted(opt.models, d->id + "/" + g->id)) continue;
-      rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
-      if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
-      if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
-    }
+    if (!opt.tables || !wanted(opt.models, d->id + "/" + g->id)) continue;
+    rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
+    if (std::find(sel.d.begin(), sel.d.end(), d) == sel.d.end()) sel.d.push_back(d);
+    if (std::find(sel.g.begin(), sel.g.end(), g) == sel.g.end()) sel.g.push_back(g);
+  }
   for (auto& mp : model_points_of(opt)) {
     ModelEnergy me;
     me.point = mp;

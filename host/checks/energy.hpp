@@ -21,8 +21,8 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
-#include "checks/baseline.hpp"
 #include "catalog/models.hpp"
+#include "checks/baseline.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -41,13 +41,13 @@ struct ModelPoint {
 };
 
 struct EnergyOptions {
-  std::vector<std::string> models;  // substrings of "d/g" or "model[case]"; empty = every D x G and model case
-  bool tables = true;               // the D x G tables
-  bool catalog_models = true;       // whole models at their catalog cases
+  std::vector<std::string> models;       // substrings of "d/g" or "model[case]"; empty = every D x G and model case
+  bool tables = true;                    // the D x G tables
+  bool catalog_models = true;            // whole models at their catalog cases
   std::vector<ModelPoint> model_points;  // more whole-model points (mfv energy --scene)
-  double gain_alpha = 1e-3;         // family-wise false-alarm rate of "gains energy" over every model cell
+  double gain_alpha = 1e-3;              // family-wise false-alarm rate of "gains energy" over every model cell
   int n_mu = 32, n_alpha = 32;
-  double target = 1e-4;             // standard error per cell
+  double target = 1e-4;  // standard error per cell
   uint64_t seed = 1;
   int replicates = 8;               // randomizations per quantity (stderr has R-1 degrees of freedom)
   uint64_t min_points = 1024;       // points per replicate on the first pass
@@ -63,24 +63,24 @@ struct Cell {
 struct EnergyTable {
   const Term* d = nullptr;
   const Term* g = nullptr;
-  std::vector<double> pd, pg;   // native parameters per alpha
-  std::vector<Cell> E, A, B;    // index a * n_mu + m
+  std::vector<double> pd, pg;    // native parameters per alpha
+  std::vector<Cell> E, A, B;     // index a * n_mu + m
   std::vector<uint64_t> points;  // points per replicate used, per cell
-  std::vector<Cell> eavg;       // per alpha, its own integral (mu drawn with density 2mu)
-  std::vector<Cell> eavg_quad;  // per alpha, midpoint rule over the mu grid (cross-check); se: noise + rule error
+  std::vector<Cell> eavg;        // per alpha, its own integral (mu drawn with density 2mu)
+  std::vector<Cell> eavg_quad;   // per alpha, midpoint rule over the mu grid (cross-check); se: noise + rule error
   std::string name() const { return d->id + "/" + g->id; }
 };
 
 // One whole model at one parameter point: E per mu of the light.
 struct ModelEnergy {
   ModelPoint point;
-  std::vector<Cell> E;            // per mu
-  std::vector<uint64_t> points;   // points per replicate used, per mu
-  Cell eavg, eavg_quad;           // E_avg: its own integral; midpoint rule over the mu grid
-  size_t max_at = 0;              // mu index of the largest E
-  double excess_p = 1;            // one-sided p-value of E(mu[max_at]) <= 1 (Student t, R - 1 df)
-  bool gains = false;             // E > 1 beyond noise and float rounding somewhere (Bonferroni over every model cell)
-  bool unresolved = false;        // not gains, but a cell's standard error is above target and its upper bound above 1
+  std::vector<Cell> E;           // per mu
+  std::vector<uint64_t> points;  // points per replicate used, per mu
+  Cell eavg, eavg_quad;          // E_avg: its own integral; midpoint rule over the mu grid
+  size_t max_at = 0;             // mu index of the largest E
+  double excess_p = 1;           // one-sided p-value of E(mu[max_at]) <= 1 (Student t, R - 1 df)
+  bool gains = false;            // E > 1 beyond noise and float rounding somewhere (Bonferroni over every model cell)
+  bool unresolved = false;       // not gains, but a cell's standard error is above target and its upper bound above 1
   double loss() const { return 1 - eavg.mean; }
 };
 
@@ -92,9 +92,9 @@ struct EnergyReport {
   double seconds = 0, build_seconds = 0;
   uint64_t samples = 0;
   double samples_per_second = 0;
-  double max_se = 0;              // over E, A, B and E_avg of every table
+  double max_se = 0;  // over E, A, B and E_avg of every table
   std::string max_se_at;
-  size_t above_target = 0;        // quantities whose standard error stayed above the target
+  size_t above_target = 0;  // quantities whose standard error stayed above the target
   size_t reference_compared = 0;
   double reference_worst = 0, reference_bound = 5e-3;
   std::string reference_worst_at;

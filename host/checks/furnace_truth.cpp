@@ -54,7 +54,8 @@ void attach_furnace_truth(Plan& plan) {
   // Every isotropic point that must hold.
   std::vector<size_t> todo;
   for (size_t i = 0; i < plan.points.size(); ++i)
-    if (plan.points[i].expect == Expect::Hold && !(plan.specs[i].pd2 > 0) && plan.specs[i].phi_o == 0) todo.push_back(i);
+    if (plan.points[i].expect == Expect::Hold && !(plan.specs[i].pd2 > 0) && plan.specs[i].phi_o == 0)
+      todo.push_back(i);
   // the points split over the cores (each quadrature is independent)
   const size_t workers = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
   std::vector<std::thread> pool;

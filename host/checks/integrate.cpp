@@ -59,8 +59,10 @@ const Term* reference_term(int32_t index) {
 }  // namespace
 
 void plant_reference_term(const Term* original, const Term* planted) {
-  if (planted) planted_terms()[original] = planted;
-  else planted_terms().erase(original);
+  if (planted)
+    planted_terms()[original] = planted;
+  else
+    planted_terms().erase(original);
 }
 
 ref::IntegralRef reference_of(const IntegralSpec& s) {

@@ -41,9 +41,9 @@ DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model*
   put_range(ranges, 2, param(f, 0));
   put_range(ranges, 3, param(f, 1));
   for (int k = 4; k < pw::PW_PARAMS; ++k) put_range(ranges, k, nullptr);  // [0, 1]
-  ranges[3 * 6 + 1] = 0.0f;                // p[6]: whole models only
-  ranges[3 * 5 + 1] = 0.0f;                // p5: whole models only
-  if (!diffuse) ranges[3 * 4 + 1] = 0.0f;  // no diffuse outside the BRDF
+  ranges[3 * 6 + 1] = 0.0f;                                               // p[6]: whole models only
+  ranges[3 * 5 + 1] = 0.0f;                                               // p5: whole models only
+  if (!diffuse) ranges[3 * 4 + 1] = 0.0f;                                 // no diffuse outside the BRDF
   return ranges;
 }
 
@@ -57,12 +57,16 @@ double one_minus_ulp(bool fp64) { return fp64 ? std::nextafter(1.0, 0.0) : std::
 
 std::vector<CosClass> cos_classes(bool fp64) {
   return {
-      {"grazing", "cos in {0, 2^-149, 1e-30, 1e-20, 1e-7, 1e-4, 1e-3, 1e-2}",
+      {"grazing",
+       "cos in {0, 2^-149, 1e-30, 1e-20, 1e-7, 1e-4, 1e-3, 1e-2}",
        {0.0, kTiny[0], kTiny[1], kTiny[2], 1e-7, 1e-4, 1e-3, 1e-2}},
       {"mid", "cos in {0.1, 0.3, 0.5, 0.7, 0.9}", {0.1, 0.3, 0.5, 0.7, 0.9}},
-      {"normal", "cos in {1-1e-2, 1-1e-4, 1-1e-7, 1-1ulp, 1}", {1 - 1e-2, 1 - 1e-4, 1 - 1e-7, one_minus_ulp(fp64), 1.0}},
+      {"normal",
+       "cos in {1-1e-2, 1-1e-4, 1-1e-7, 1-1ulp, 1}",
+       {1 - 1e-2, 1 - 1e-4, 1 - 1e-7, one_minus_ulp(fp64), 1.0}},
       {"tan_zero", "cos = 1 exactly: tan = 0, sin² = 0", {1.0}},
-      {"above_one", "cos in {1+1ulp, 1+2ulp, 1+4ulp}: dot products that rounded above 1",
+      {"above_one",
+       "cos in {1+1ulp, 1+2ulp, 1+4ulp}: dot products that rounded above 1",
        {one_plus_ulps(1, fp64), one_plus_ulps(2, fp64), one_plus_ulps(4, fp64)}},
       {"below_horizon", "cos in {-2^-149, -1e-7, -0.5, -1}", {-kTiny[0], -1e-7, -0.5, -1.0}},
   };

@@ -93,8 +93,8 @@ std::vector<TwinAgreement> ReferenceTwin::compare(Integrator& in, const std::vec
     // The bias of the float estimate is E[kf - kd]; its mean over n samples
     // has standard error sd/sqrt(n), and 3 of them make an upper bound.
     const double e_mean = e_sum / n, e_var = std::max(0.0, e_sq / n - e_mean * e_mean) * n / std::max(1u, n - 1);
-    a.rounding_bound = float_finite ? std::fabs(e_mean) + 3 * std::sqrt(e_var / n)
-                                    : std::numeric_limits<double>::infinity();
+    a.rounding_bound =
+        float_finite ? std::fabs(e_mean) + 3 * std::sqrt(e_var / n) : std::numeric_limits<double>::infinity();
     a.formula_bound = derived_formula_bound(e_l1, std::max(scale, n * 1e-6), specs[j].cos_o);
     a.formula_gap /= n;
     a.formula_bound /= n;

@@ -4,12 +4,12 @@
 #include "checks/chi_square.hpp"
 #include "numeric/quadrature.hpp"
 #include "reference/estimators.hpp"
-#include "util/files.hpp"
 #include "rng/philox.hpp"
-#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
-#include "util/error.hpp"
+#include "runtime/integrator.hpp"
 #include "runtime/provenance.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
@@ -59,9 +59,8 @@ std::string sampler_name(Sampler s) {
 std::vector<SamplerCase> default_sampler_cases() {
   // widths where a (cos θ, φ) histogram of 64 x 128 cells resolves the lobe;
   // the visible normals at normal, oblique and grazing view (cos_o = 0.15)
-  return {{Sampler::Mixture, 0.2, 1},  {Sampler::Mixture, 0.8, 1}, {Sampler::Slopes, 0.3, 1},
-          {Sampler::Cosine, 1, 1},     {Sampler::Vis, 0.3, 0.9},   {Sampler::Vis, 0.3, 0.15},
-          {Sampler::Vis, 1.0, 0.5}};
+  return {{Sampler::Mixture, 0.2, 1}, {Sampler::Mixture, 0.8, 1}, {Sampler::Slopes, 0.3, 1}, {Sampler::Cosine, 1, 1},
+          {Sampler::Vis, 0.3, 0.9},   {Sampler::Vis, 0.3, 0.15},  {Sampler::Vis, 1.0, 0.5}};
 }
 
 double sampler_pdf(const SamplerCase& c, const glm::dvec3& d) {
@@ -206,9 +205,10 @@ std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt)
   sel.f = {&find_term("none")};
   std::vector<std::string> files = integration_files();  // the proposals' routines
   files.push_back("samplers.cl");
-  cl::Program prog = rt.build(catalog_sources(files),
-                              rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
-                              generate_dispatch(sel), kDispatchBefore);
+  cl::Program prog =
+      rt.build(catalog_sources(files),
+               rt.device().fp64 ? std::vector<std::string>{"MFV_ACC_DOUBLE"} : std::vector<std::string>{},
+               generate_dispatch(sel), kDispatchBefore);
   cl::Kernel k(prog, "draw_samples");
   cl::Buffer buf(rt.context(), CL_MEM_WRITE_ONLY, opt.samples * 3 * sizeof(float));
   std::vector<float> host(opt.samples * 3);
@@ -241,8 +241,8 @@ std::vector<SamplerResult> run_samplers(Runtime& rt, const SamplersOptions& opt)
 }
 
 void print_samplers(const std::vector<SamplerResult>& rs) {
-  fmt::print("{:<16} {:>5} {:>6} {:<9} {:>12} {:>10} {:>6} {:>10} {:>10} {:>6}  {}\n", "sampler", "w", "cos_o",
-             "draws", "∫pdf-1", "chi2", "dof", "p", "level", "lost", "verdict");
+  fmt::print("{:<16} {:>5} {:>6} {:<9} {:>12} {:>10} {:>6} {:>10} {:>10} {:>6}  {}\n", "sampler", "w", "cos_o", "draws",
+             "∫pdf-1", "chi2", "dof", "p", "level", "lost", "verdict");
   for (auto& r : rs)
     fmt::print("{:<16} {:>5g} {:>6g} {:<9} {:>12.2e} {:>10.1f} {:>6} {:>10.3g} {:>10.3g} {:>6}  {}{}\n",
                sampler_name(r.c.sampler), r.c.width, r.c.cos_o, r.impl, r.pdf_total - 1.0, r.chi2, r.dof, r.p_value,
@@ -257,14 +257,25 @@ std::string samplers_json(const std::vector<SamplerResult>& rs, const Runtime& r
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver}};
   j["date"] = utc_timestamp();
-  j["options"] = {{"samples", opt.samples}, {"seed", opt.seed}, {"significance", opt.significance},
-                  {"cells", {opt.cos_bins, opt.phi_bins}}, {"correction", "Sidak over every test of the run"}};
+  j["options"] = {{"samples", opt.samples},
+                  {"seed", opt.seed},
+                  {"significance", opt.significance},
+                  {"cells", {opt.cos_bins, opt.phi_bins}},
+                  {"correction", "Sidak over every test of the run"}};
   j["tests"] = json::array();
   for (auto& r : rs)
-    j["tests"].push_back({{"sampler", sampler_name(r.c.sampler)}, {"width", r.c.width}, {"cos_o", r.c.cos_o},
-                          {"draws", r.impl}, {"pdf_integral", r.pdf_total}, {"chi2", r.chi2}, {"dof", r.dof},
-                          {"p_value", r.p_value}, {"level", r.level}, {"lost", r.lost},
-                          {"impossible", r.impossible}, {"pass", r.pass()}});
+    j["tests"].push_back({{"sampler", sampler_name(r.c.sampler)},
+                          {"width", r.c.width},
+                          {"cos_o", r.c.cos_o},
+                          {"draws", r.impl},
+                          {"pdf_integral", r.pdf_total},
+                          {"chi2", r.chi2},
+                          {"dof", r.dof},
+                          {"p_value", r.p_value},
+                          {"level", r.level},
+                          {"lost", r.lost},
+                          {"impossible", r.impossible},
+                          {"pass", r.pass()}});
   for (size_t i = 0; i < rs.size(); ++i)
     if (!rs[i].plot.empty()) j["tests"][i]["plot"] = "plots/" + rs[i].plot;
   return j.dump(2) + "\n";

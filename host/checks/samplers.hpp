@@ -41,9 +41,9 @@ std::vector<glm::dvec3> reference_draws(const SamplerCase& c, uint64_t n, uint64
 struct SamplersOptions {
   uint64_t samples = 1u << 20;  // draws per case and implementation
   uint64_t seed = 7;
-  double significance = 0.01;   // family-wise, Šidák-corrected over every test of the run
+  double significance = 0.01;  // family-wise, Šidák-corrected over every test of the run
   int cos_bins = 64, phi_bins = 128;
-  bool reference = true;        // also test the reference twin's draws
+  bool reference = true;  // also test the reference twin's draws
 };
 
 struct SamplerResult {

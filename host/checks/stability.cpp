@@ -4,11 +4,11 @@
 #include "catalog/models.hpp"
 #include "checks/pointwise_inputs.hpp"
 #include "checks/stability_cases.hpp"
-#include "runtime/integrator.hpp"
 #include "runtime/dispatch.hpp"
+#include "runtime/integrator.hpp"
+#include "runtime/work_group.hpp"
 #include "util/error.hpp"
 #include "util/math_constants.hpp"
-#include "runtime/work_group.hpp"
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
@@ -102,7 +102,8 @@ void account(RegionResult& R, const CaseDef& c, const In& in, double k, double r
   R.points++;
   // A reference beyond the format's largest number is infinite in that format.
   const double big = fp64 ? std::numeric_limits<double>::max() : std::numeric_limits<float>::max();
-  double ref = std::fabs(ref_exact) > big ? std::copysign(std::numeric_limits<double>::infinity(), ref_exact) : ref_exact;
+  double ref =
+      std::fabs(ref_exact) > big ? std::copysign(std::numeric_limits<double>::infinity(), ref_exact) : ref_exact;
   bool nan = std::isnan(k);
   bool inf = std::isinf(k) && std::isfinite(ref);
   bool neg = k < 0 && ref >= 0;
@@ -110,8 +111,10 @@ void account(RegionResult& R, const CaseDef& c, const In& in, double k, double r
   R.inf += inf;
   R.negative += neg;
   bool inaccurate = false;
-  if (std::isfinite(k) && std::isfinite(ref)) inaccurate = account_finite(R, c, in, k, ref, fp64);
-  else if (std::isinf(ref) && !nan && k != ref) inaccurate = true;  // the limit is infinite and the kernel is not
+  if (std::isfinite(k) && std::isfinite(ref))
+    inaccurate = account_finite(R, c, in, k, ref, fp64);
+  else if (std::isinf(ref) && !nan && k != ref)
+    inaccurate = true;  // the limit is infinite and the kernel is not
   account_domain(R, c, in, k, ref);
   if (nan || inf || neg || inaccurate) {
     R.breaks++;
@@ -170,7 +173,8 @@ std::vector<CaseDef> make_cases(const StabilityOptions& opt) {
           kept.push_back(std::move(c));
           break;
         }
-    if (kept.empty()) throw Error("--only matches no stability case (see 'mfv list'; variants are named 'variant ...')");
+    if (kept.empty())
+      throw Error("--only matches no stability case (see 'mfv list'; variants are named 'variant ...')");
     cases = std::move(kept);
   }
   return cases;
@@ -217,12 +221,14 @@ void gate(const StabilityCase& sc, StabilityReport& rep) {
   if (!sc.stable) return;
   for (auto& r : sc.regions) {
     if (r.in_domain && (r.nan || r.inf))
-      rep.gate_failures.push_back(fmt::format("{} is marked stable but gives {} NaN and {} Inf in region '{}'; first: {}",
-                                              sc.name, r.nan, r.inf, r.region, r.first_break));
+      rep.gate_failures.push_back(
+          fmt::format("{} is marked stable but gives {} NaN and {} Inf in region '{}'; first: {}", sc.name, r.nan,
+                      r.inf, r.region, r.first_break));
     if (r.in_domain && r.out_of_domain)
-      rep.gate_failures.push_back(fmt::format("{} is marked stable but gives {} of {} values outside the domain in "
-                                              "region '{}' where the reference stays inside; first: {}",
-                                              sc.name, r.out_of_domain, r.points, r.region, r.first_out_of_domain));
+      rep.gate_failures.push_back(
+          fmt::format("{} is marked stable but gives {} of {} values outside the domain in "
+                      "region '{}' where the reference stays inside; first: {}",
+                      sc.name, r.out_of_domain, r.points, r.region, r.first_out_of_domain));
   }
 }
 
@@ -230,7 +236,8 @@ void gate(const StabilityCase& sc, StabilityReport& rep) {
 void run_case(Runtime& rt, cl::Kernel& kern, const CaseDef& c, bool fp64, StabilityReport& rep) {
   std::vector<In> rounded = rounded_points(c, fp64);
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<double> values = fp64 ? run_kernel<cl_double>(rt, kern, c, rounded) : run_kernel<cl_float>(rt, kern, c, rounded);
+  std::vector<double> values =
+      fp64 ? run_kernel<cl_double>(rt, kern, c, rounded) : run_kernel<cl_float>(rt, kern, c, rounded);
   auto t1 = std::chrono::steady_clock::now();
   StabilityCase sc = c.info;
   for (auto& r : c.regions) {

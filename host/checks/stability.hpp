@@ -29,32 +29,33 @@ struct StabilityOptions {
 // One case in one region of the sweep.
 struct RegionResult {
   std::string region;
-  std::string what;        // one line: which inputs the region holds
-  bool in_domain = true;   // counted by the gate (out of domain: reported only)
-  std::string expect;      // "0" or "1" where the seeds prescribe the value, else ""
+  std::string what;       // one line: which inputs the region holds
+  bool in_domain = true;  // counted by the gate (out of domain: reported only)
+  std::string expect;     // "0" or "1" where the seeds prescribe the value, else ""
   uint64_t points = 0;
-  uint64_t nan = 0;        // kernel NaN
-  uint64_t inf = 0;        // kernel ±Inf where the reference is finite
-  uint64_t negative = 0;   // kernel < 0 where the reference is >= 0
-  uint64_t breaks = 0;     // any of the above, or beyond kBreakUlps (and above the underflow floor)
+  uint64_t nan = 0;       // kernel NaN
+  uint64_t inf = 0;       // kernel ±Inf where the reference is finite
+  uint64_t negative = 0;  // kernel < 0 where the reference is >= 0
+  uint64_t breaks = 0;    // any of the above, or beyond kBreakUlps (and above the underflow floor)
   uint64_t violations = 0, ref_violations = 0;  // kernel / reference != expect
   // Outside the value's domain where the reference, on the same inputs, is
   // inside: != the prescribed value (0 below the horizon, 1 where tan = 0),
   // negative, or a G or G1 above 1 + kGOvershoot. A stable case fails the gate on any.
   uint64_t out_of_domain = 0;
   std::string first_out_of_domain;
-  double max_rel = 0, max_ulps = 0;             // over points where both are finite
-  std::string first_break;  // the first breaking input in sweep order, hex-float; "" if none
-  std::string worst;        // the input of max_ulps, hex-float
+  double max_rel = 0, max_ulps = 0;  // over points where both are finite
+  std::string first_break;           // the first breaking input in sweep order, hex-float; "" if none
+  std::string worst;                 // the input of max_ulps, hex-float
 };
 
 struct StabilityCase {
-  std::string name;   // "D ggx", "G1 smith_ggx", "BRDF ggx/smith_ggx/schlick", "MODEL ward_004", "variant D_ggx via tan2"
-  std::string group;  // "term", "brdf", "model", "variant"
-  std::string family; // variants: the quantity ("D_ggx", "Lambda_ggx", ...); terms: kind
+  std::string
+      name;  // "D ggx", "G1 smith_ggx", "BRDF ggx/smith_ggx/schlick", "MODEL ward_004", "variant D_ggx via tan2"
+  std::string group;   // "term", "brdf", "model", "variant"
+  std::string family;  // variants: the quantity ("D_ggx", "Lambda_ggx", ...); terms: kind
   std::string formula;
-  bool stable = false;     // terms, BRDFs: the catalog's flag; variants: false
-  bool is_default = false; // variants: the form the kernels use
+  bool stable = false;      // terms, BRDFs: the catalog's flag; variants: false
+  bool is_default = false;  // variants: the form the kernels use
   std::vector<RegionResult> regions;
   uint64_t count(uint64_t RegionResult::*field, bool in_domain_only) const;
   double max_ulps() const;

@@ -68,11 +68,17 @@ std::vector<ParamClass> param_classes(const Term& t) {
   std::sort(cand.begin(), cand.end());
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
   ParamClass typical{"typical", phong ? "alpha_p in {10, 100, 1e3}" : "alpha in {1e-2, 0.1, 0.3, 0.5}", true, {}};
-  ParamClass sharp{"sharp", phong ? "alpha_p in {1e4, 1e6, 1e7}" : "alpha in {0 where defined, 1e-7 .. 1e-3}", true, {}};
+  ParamClass sharp{
+      "sharp", phong ? "alpha_p in {1e4, 1e6, 1e7}" : "alpha in {0 where defined, 1e-7 .. 1e-3}", true, {}};
   ParamClass rough{"rough", phong ? "alpha_p in {0, 1}" : "alpha in {1, 2, 10} within the range", true, {}};
   for (double v : cand) {
     if (v < p.lo || v > p.hi) continue;
-    ParamClass& c = phong ? (v >= 1e4 ? sharp : v <= 1 ? rough : typical) : (v <= 1e-3 ? sharp : v >= 1 ? rough : typical);
+    ParamClass& c = phong ? (v >= 1e4 ? sharp
+                             : v <= 1 ? rough
+                                      : typical)
+                          : (v <= 1e-3 ? sharp
+                             : v >= 1  ? rough
+                                       : typical);
     c.values.push_back({v, 0});
   }
   for (auto* c : {&typical, &sharp, &rough})
@@ -130,10 +136,11 @@ void add_term_regions(CaseDef& c, const Term& t, bool fp64, bool g1, Fill fill) 
       for (double a : cc.values) fill(r, a, cc.values, p);
   }
   auto every = all_cos(fp64);
-  if (t.kind == Kind::F) every.erase(std::remove_if(every.begin(), every.end(), [](double x) { return x < 0; }), every.end());
+  if (t.kind == Kind::F)
+    every.erase(std::remove_if(every.begin(), every.end(), [](double x) { return x < 0; }), every.end());
   for (size_t k = 1; k < pcs.size(); ++k) {
-    int r = c.add_region({pcs[k].name, pcs[k].what + (t.kind == Kind::F ? " x every cos >= 0" : " x every cos"),
-                          pcs[k].in_domain, ""});
+    int r = c.add_region(
+        {pcs[k].name, pcs[k].what + (t.kind == Kind::F ? " x every cos >= 0" : " x every cos"), pcs[k].in_domain, ""});
     for (auto& p : pcs[k].values)
       for (double a : every) fill(r, a, every, p);
   }
@@ -224,7 +231,9 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
     c.g = &t;
     auto ref = t.ref_g1;
     c.ref = [ref](const In& r) { return ref(r[PW_NOV], r[PW_PG]); };
-    c.describe = [&t](const In& r) { return fmt::format("NoV={}", hx(r[PW_NOV])) + describe_params(r, nullptr, &t, nullptr); };
+    c.describe = [&t](const In& r) {
+      return fmt::format("NoV={}", hx(r[PW_NOV])) + describe_params(r, nullptr, &t, nullptr);
+    };
     add_term_regions(c, t, fp64, true, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
       Point pt;
       pt.region = reg;
@@ -254,7 +263,9 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
     c.f = &t;
     auto ref = t.ref_f;
     c.ref = [ref](const In& r) { return ref(r[PW_VOH], r[PW_F0], r[PW_F1]); };
-    c.describe = [&t](const In& r) { return fmt::format("VoH={}", hx(r[PW_VOH])) + describe_params(r, nullptr, nullptr, &t); };
+    c.describe = [&t](const In& r) {
+      return fmt::format("VoH={}", hx(r[PW_VOH])) + describe_params(r, nullptr, nullptr, &t);
+    };
     add_term_regions(c, t, fp64, false, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
       Point pt;
       pt.region = reg;
@@ -267,7 +278,6 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
   add_scan(c, t);
   return c;
 }
-
 
 namespace {
 
@@ -298,7 +308,8 @@ CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64) {
     return ref::brdf(s, wi_of(r), wo_of(r));
   };
   c.describe = [pd, pg, pf](const In& r) {
-    return fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]), hx(r[PW_WO_X]), hx(r[PW_WO_Y]), hx(r[PW_WO_Z])) +
+    return fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]),
+                       hx(r[PW_WO_X]), hx(r[PW_WO_Y]), hx(r[PW_WO_Z])) +
            describe_params(r, pd, pg, pf);
   };
   // Shared width α, converted to each term's parameter; values outside a
@@ -335,8 +346,10 @@ namespace {
 std::vector<ModelParams> model_points(const Model& m, const StabilityOptions& opt) {
   std::vector<ModelParams> out;
   auto given = std::find_if(opt.model_points.begin(), opt.model_points.end(), [&](auto& e) { return e.first == m.id; });
-  if (given != opt.model_points.end()) out = given->second;
-  else for (auto& c : m.cases) out.push_back(c.p);
+  if (given != opt.model_points.end())
+    out = given->second;
+  else
+    for (auto& c : m.cases) out.push_back(c.p);
   for (size_t i = 0; i < m.params.size(); ++i)
     for (double v : {m.params[i].lo, m.params[i].hi}) {
       ModelParams p = model_defaults(m);
@@ -362,8 +375,8 @@ CaseDef model_case(const Model& m, const StabilityOptions& opt) {
   const Model* pm = &m;
   c.ref = [pm](const In& r) { return pm->ref(wi_of(r), wo_of(r), &r[PW_P0]); };
   c.describe = [pm](const In& r) {
-    std::string s = fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]), hx(r[PW_WO_X]), hx(r[PW_WO_Y]),
-                                hx(r[PW_WO_Z]));
+    std::string s = fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]),
+                                hx(r[PW_WO_X]), hx(r[PW_WO_Y]), hx(r[PW_WO_Z]));
     for (size_t i = 0; i < pm->params.size(); ++i) s += fmt::format(" {}={}", pm->params[i].name, hx(r[PW_P0 + i]));
     return s;
   };
@@ -376,8 +389,9 @@ CaseDef model_case(const Model& m, const StabilityOptions& opt) {
       c.points.push_back(pt);
     }
   };
-  const std::string params = opt.model_points.empty() ? "; the model's catalog cases and each parameter at its range ends"
-                                                       : "; the scene's parameter points and each parameter at its range ends";
+  const std::string params = opt.model_points.empty()
+                                 ? "; the model's catalog cases and each parameter at its range ends"
+                                 : "; the scene's parameter points and each parameter at its range ends";
   for (auto& ps : pair_sets(fp64)) {
     int r = c.add_region({ps.name, ps.what + params, true, ps.expect});
     for (auto& pr : ps.pairs) add(r, pr.wi, pr.wo);

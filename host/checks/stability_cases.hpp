@@ -10,8 +10,8 @@
 #include <glm/vec3.hpp>
 
 #include <array>
-#include <initializer_list>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -65,7 +65,7 @@ struct CaseDef {
   int variant = -1;
   std::vector<Region> regions;
   std::vector<Point> points;
-  std::function<double(const In&)> ref;       // the double reference on the rounded inputs
+  std::function<double(const In&)> ref;  // the double reference on the rounded inputs
   std::function<std::string(const In&)> describe;
   int add_region(Region r) {
     regions.push_back(std::move(r));

@@ -18,8 +18,18 @@ namespace {
 // ---- Cases: alternative formulations -----------------------------------------
 
 enum Variant {  // = VAR_* in stability_variants.cl
-  kDggxTan2, kDggxCos, kDggxSin2, kLambdaTan2, kLambdaCos, kLambdaDefault,
-  kG1Lambda, kG1Closed, kVohDot, kVohHalfLength, kSin2hFromCos, kSin2hCross
+  kDggxTan2,
+  kDggxCos,
+  kDggxSin2,
+  kLambdaTan2,
+  kLambdaCos,
+  kLambdaDefault,
+  kG1Lambda,
+  kG1Closed,
+  kVohDot,
+  kVohHalfLength,
+  kSin2hFromCos,
+  kSin2hCross
 };
 
 struct VariantDef {
@@ -57,7 +67,9 @@ void d_ggx_points(CaseDef& c, const std::vector<double>& alphas) {
     double x2 = r[PW_H_X] * r[PW_H_X], z2 = r[PW_H_Z] * r[PW_H_Z], n2 = x2 + z2;
     return r[PW_H_Z] <= 0 ? 0.0 : ref::D_ggx_cs(z2 / n2, x2 / n2, r[PW_PD]);
   };
-  c.describe = [](const In& r) { return fmt::format("h=({}, 0, {}) alpha={}", hx(r[PW_H_X]), hx(r[PW_H_Z]), hx(r[PW_PD])); };
+  c.describe = [](const In& r) {
+    return fmt::format("h=({}, 0, {}) alpha={}", hx(r[PW_H_X]), hx(r[PW_H_Z]), hx(r[PW_PD]));
+  };
   auto add = [&](int reg, double hxv, double hzv, double a, double theta) {
     Point pt;
     pt.region = reg;
@@ -136,7 +148,8 @@ CaseDef variant_case(const VariantDef& v, bool fp64) {
       return h.x * h.x + h.y * h.y;
     };
     c.describe = [](const In& r) {
-      return fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]), hx(r[PW_WO_X]), hx(r[PW_WO_Y]), hx(r[PW_WO_Z]));
+      return fmt::format("wi=({}, {}, {}) wo=({}, {}, {})", hx(r[PW_WI_X]), hx(r[PW_WI_Y]), hx(r[PW_WI_Z]),
+                         hx(r[PW_WO_X]), hx(r[PW_WO_Y]), hx(r[PW_WO_Z]));
     };
     for (auto& ps : pair_sets(fp64)) {
       if (ps.name == "below_horizon") continue;  // no half vector is formed there

@@ -7,9 +7,9 @@
 #include "checks/reference_compare.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
-#include "util/error.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
+#include "util/error.hpp"
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
@@ -43,15 +43,12 @@ bool SuiteReport::gate_ok() const {
 }
 
 const std::vector<std::string>& suite_checks() {
-  static const std::vector<std::string> c = {"d_norm", "masking", "furnace", "energy", "energy_diffuse",
-                                             "reciprocity", "closed_form"};
+  static const std::vector<std::string> c = {"d_norm",         "masking",     "furnace",    "energy",
+                                             "energy_diffuse", "reciprocity", "closed_form"};
   return c;
 }
 
-
-
 namespace {
-
 
 std::string params_text(const PointResult& p) {
   std::string ps;
@@ -117,7 +114,8 @@ void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions&
         "rounding x 2^-19 + 2^-43 of the scale / mu); worst sample {}: twin {:.12g}, reference {:.12g}",
         opt.reference_samples, a.formula_gap, a.formula_bound, a.worst_index, a.worst_twin, a.worst_reference);
     const double ratio = a.formula_bound > 0 ? a.formula_gap / a.formula_bound
-                         : a.formula_gap > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+                         : a.formula_gap > 0 ? std::numeric_limits<double>::infinity()
+                                             : 0.0;
     if (!rep.reference_worst_at.empty() && !(ratio > rep.reference_worst)) continue;
     rep.reference_worst = ratio;
     rep.reference_worst_at = fmt::format("{} {}{} (twin mean {:.12g}, reference {:.12g}, float kernel {:.9g})", p.check,
@@ -136,9 +134,8 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
   record_reciprocity(in, plan.specs, plan.points, kReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
-void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs,
-                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
-                        std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
+void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::vector<PointResult> pts, double bound,
+                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
   if (specs.empty()) return;
   if (!(64 * scale <= double(UINT32_MAX / 64)))
     throw Error(fmt::format("--samples/--scale ask for {:.3g} reciprocity pairs per integral: too many", 4096 * scale));
@@ -188,7 +185,9 @@ void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
     if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
-      throw Error(fmt::format("unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)", c));
+      throw Error(fmt::format(
+          "unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)",
+          c));
   validate_scale(opt.scale);
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();

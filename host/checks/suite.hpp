@@ -4,10 +4,10 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "catalog/models.hpp"
 #include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
-#include "catalog/models.hpp"
 #include "runtime/opencl.hpp"
 #include "stats/verdict.hpp"
 
@@ -37,21 +37,21 @@ struct PointResult {
   double rounding_bound = 0;  // bias bound from float rounding where measured (0: judge derives one)
   double bias = 0;            // judge: the bias bound tested with (rounding + tolerance x |expected|)
   double z = 0;               // judge: deviation / total uncertainty (stderr_ + bias), stats/verdict.hpp
-  uint32_t dof = 0;     // stderr_ from replicates: Student t with dof degrees of freedom (0: normal)
-  double expected = 0;  // the value a correct model gives (d_norm, masking)
+  uint32_t dof = 0;           // stderr_ from replicates: Student t with dof degrees of freedom (0: normal)
+  double expected = 0;        // the value a correct model gives (d_norm, masking)
   // The integral's value where the catalog knows it though the test is an
   // upper limit (furnace: quadrature of the double reference,
   // checks/furnace_truth.hpp): the group's pooled test is then two-sided.
   bool known = false;
   double known_value = 0, known_error = 0;
-  double bound = 0;     // the threshold the estimate was tested against
+  double bound = 0;         // the threshold the estimate was tested against
   bool upper_only = false;  // test is estimate <= expected (albedo) rather than ==
   uint64_t samples = 0;
-  bool failed = false;      // deviation beyond noise and tolerance
-  double deviation = 0;     // estimate - expected
+  bool failed = false;   // deviation beyond noise and tolerance
+  double deviation = 0;  // estimate - expected
   Expect expect = Expect::Hold;
-  double tolerance = 0;     // documented approximation tolerance (relative)
-  std::string reason;       // why the point is expected to (or may) fail
+  double tolerance = 0;  // documented approximation tolerance (relative)
+  std::string reason;    // why the point is expected to (or may) fail
   // A measured maximum tested against the fixed `bound` (reciprocity, the
   // finiteness census, pointwise agreement) rather than a z-test; `measure`
   // names it and `detail` gives the input where it was worst.
@@ -68,10 +68,10 @@ struct PointResult {
 // All points of one model under one check, with its expectation.
 struct GroupResult {
   std::string check;
-  std::string model;  // "ggx", "ggx/smith_ggx", "ggx/smith_ggx/schlick"
-  bool expect_fail = false;  // some points must fail
-  std::string reason;  // why failures are expected (catalog), empty if none
-  double tolerance = 0;  // largest documented approximation tolerance applied
+  std::string model;           // "ggx", "ggx/smith_ggx", "ggx/smith_ggx/schlick"
+  bool expect_fail = false;    // some points must fail
+  std::string reason;          // why failures are expected (catalog), empty if none
+  double tolerance = 0;        // largest documented approximation tolerance applied
   std::vector<size_t> points;  // indices into SuiteReport::points
   size_t worst = 0;            // the point with the largest |deviation| / (noise + tolerance)
   size_t failures = 0;
@@ -96,8 +96,8 @@ void validate_scale(double scale);
 
 struct SuiteOptions {
   uint64_t seed = 1;
-  double scale = 1.0;            // multiplies every check's sample count
-  double family_alpha = 1e-6;    // family-wise false-alarm rate for the run
+  double scale = 1.0;                // multiplies every check's sample count
+  double family_alpha = 1e-6;        // family-wise false-alarm rate for the run
   std::vector<std::string> checks;   // empty: all
   std::vector<std::string> models;   // substrings of model names; empty: all
   uint32_t reference_samples = 256;  // same-sample comparison, first N samples
@@ -111,9 +111,9 @@ struct SuiteReport {
   std::vector<PointResult> points;
   std::vector<GroupResult> groups;
   std::vector<CheckStats> stats;
-  double z_threshold = 0;  // noise multiple a deviation must exceed
-  size_t tests = 0;        // statistical tests in the run (Bonferroni count)
-  size_t pooled_tests = 0;         // pooled tests, one per group with points that must hold
+  double z_threshold = 0;           // noise multiple a deviation must exceed
+  size_t tests = 0;                 // statistical tests in the run (Bonferroni count)
+  size_t pooled_tests = 0;          // pooled tests, one per group with points that must hold
   bool double_accumulation = true;  // every plan summed its samples in double (the rounding bound)
   double build_seconds = 0;
   double reference_worst = 0;  // worst relative kernel/reference disagreement
@@ -128,8 +128,8 @@ struct SuiteReport {
   // formula gap to its derived bound, and reference_bound 1.
   double reference_bound = 5e-3;
   bool reference_twin = false;
-  int reference_builds = 0;  // double-twin programs built for the comparison (not counted as the check's builds)
-  std::string reference_note;  // replaces the reference line where no double twin runs (mfv check)
+  int reference_builds = 0;       // double-twin programs built for the comparison (not counted as the check's builds)
+  std::string reference_note;     // replaces the reference line where no double twin runs (mfv check)
   std::string title = "mfv run";  // report heading and JUnit suite name
   bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
   bool reference_ok() const;
@@ -186,9 +186,8 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
 // Integrator::reciprocity over `specs`, 64 x per_item pairs each (per_item from the scale): one bounded point per spec
 // (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
 // and the check's timing since t0 go into `rep`.
-void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs,
-                        std::vector<PointResult> pts, double bound, double scale, uint64_t seed,
-                        std::chrono::steady_clock::time_point t0, SuiteReport& rep);
+void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::vector<PointResult> pts, double bound,
+                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep);
 constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
 
 // The option filters: is `check` selected; does `name` match the --model filter.

@@ -20,7 +20,8 @@ struct Widths {
 };
 // Strongly anisotropic both ways, near-zero roughness, rough, and the
 // isotropic limit (ax = ay, where the terms equal ggx / beckmann).
-const std::vector<Widths> kPairs = {{0.05, 0.5}, {0.5, 0.05}, {1e-3, 0.3}, {1e-4, 1e-3}, {0.2, 0.8}, {1.0, 0.1}, {0.3, 0.3}};
+const std::vector<Widths> kPairs = {{0.05, 0.5}, {0.5, 0.05}, {1e-3, 0.3}, {1e-4, 1e-3},
+                                    {0.2, 0.8},  {1.0, 0.1},  {0.3, 0.3}};
 // Views: cosines from grazing to near-normal, azimuths along t (0), along b
 // (π/2), the diagonal (π/4) and a generic one.
 const std::vector<double> kViewCos = {1e-3, 0.02, 0.1, 0.3, 0.6, 0.95};
@@ -128,8 +129,8 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
           const double dev = std::fabs(masking_closed_form(*d, *g, o, w) - 1.0);
           if (dev > 0.25) {  // ~10 standard errors of a default-size integral
             pt.expect = Expect::Fail;
-            pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})",
-                                    g->id, d->id, dev);
+            pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})", g->id,
+                                    d->id, dev);
           } else if (dev > 1e-4) {
             pt.expect = Expect::May;
             pt.reason = fmt::format("{}'s G1 is off by {:.2g} at this view (closed form), near the noise", g->id, dev);

@@ -21,8 +21,8 @@ std::string comparison(const PointResult& p) {
     return fmt::format("{} {:.3g} above bound {:.3g} at {}{}{}", p.measure.empty() ? "measure" : p.measure, p.estimate,
                        p.bound, inputs(p), p.detail.empty() ? "" : ": ", p.detail);
   if (p.upper_only)
-    return fmt::format("estimate {:.6g} ± {:.2g} (SE) above {:g} + noise and tolerance: bound {:.6g}, at {}", p.estimate,
-                       p.stderr_, p.expected, p.bound, inputs(p));
+    return fmt::format("estimate {:.6g} ± {:.2g} (SE) above {:g} + noise and tolerance: bound {:.6g}, at {}",
+                       p.estimate, p.stderr_, p.expected, p.bound, inputs(p));
   return fmt::format("estimate {:.6g} ± {:.2g} (SE) off {:g} by {:.3g}, beyond the allowed {:.3g}, at {}", p.estimate,
                      p.stderr_, p.expected, p.deviation, p.bound, inputs(p));
 }
@@ -51,18 +51,22 @@ std::vector<std::string> SuiteReport::gate_failures() const {
       }
       if (p.failed && p.expect == Expect::Hold) {
         ++failed;
-        if (!worst || std::fabs(p.deviation) / (p.bound + 1e-300) > std::fabs(worst->deviation) / (worst->bound + 1e-300))
+        if (!worst ||
+            std::fabs(p.deviation) / (p.bound + 1e-300) > std::fabs(worst->deviation) / (worst->bound + 1e-300))
           worst = &p;
       }
     }
-    if (ref_failed > 3) out.push_back(fmt::format("{}: and {} more points disagree with the reference", who, ref_failed - 3));
+    if (ref_failed > 3)
+      out.push_back(fmt::format("{}: and {} more points disagree with the reference", who, ref_failed - 3));
     if (worst)
-      out.push_back(fmt::format("{}: {} of {} points fail; worst: {}", who, failed, g.points.size(), comparison(*worst)));
+      out.push_back(
+          fmt::format("{}: {} of {} points fail; worst: {}", who, failed, g.points.size(), comparison(*worst)));
     if (g.pooled.failed)
-      out.push_back(fmt::format("{}: pooled over {} integrals, mean deviation {:+.3g} ± {:.2g} (bias bound {:.2g}) beyond "
-                                "{} {:.2f}",
-                                who, g.pooled.n, g.pooled.mean, g.pooled.se, g.pooled.bias,
-                                g.pooled.upper_only ? "one-sided z" : "|z|", g.pooled.threshold));
+      out.push_back(
+          fmt::format("{}: pooled over {} integrals, mean deviation {:+.3g} ± {:.2g} (bias bound {:.2g}) beyond "
+                      "{} {:.2f}",
+                      who, g.pooled.n, g.pooled.mean, g.pooled.se, g.pooled.bias,
+                      g.pooled.upper_only ? "one-sided z" : "|z|", g.pooled.threshold));
   }
   if (!reference_ok()) {
     if (reference_twin)

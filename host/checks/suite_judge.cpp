@@ -86,10 +86,14 @@ void group_verdicts(SuiteReport& rep) {
         }
     g.expect_fail = must_fail;
     if (g.pooled.failed) unexpected = true;
-    if (unexpected) g.verdict = Verdict::Fail;
-    else if (must_fail && !must_failed) g.verdict = Verdict::XPass;
-    else if (allowed_failed) g.verdict = Verdict::XFail;
-    else g.verdict = Verdict::Pass;
+    if (unexpected)
+      g.verdict = Verdict::Fail;
+    else if (must_fail && !must_failed)
+      g.verdict = Verdict::XPass;
+    else if (allowed_failed)
+      g.verdict = Verdict::XFail;
+    else
+      g.verdict = Verdict::Pass;
   }
 }
 
@@ -121,7 +125,10 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     if (dof == 0) return rep.z_threshold;
     auto it = t_threshold.find(dof);
     if (it == t_threshold.end())
-      it = t_threshold.emplace(dof, stats::student_t_two_sided_quantile(split.per_integral / double(std::max<size_t>(rep.tests, 1)), dof)).first;
+      it = t_threshold
+               .emplace(dof, stats::student_t_two_sided_quantile(
+                                 split.per_integral / double(std::max<size_t>(rep.tests, 1)), dof))
+               .first;
     return it->second;
   };
   auto noise = [&](const PointResult& q) { return threshold(q.dof) * q.stderr_ + q.bias; };
@@ -152,7 +159,8 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
     g.tolerance = std::max(g.tolerance, p.tolerance);
     auto score = [&](const PointResult& q) {
       if (!std::isfinite(q.estimate)) return std::numeric_limits<double>::infinity();
-      if (q.bounded) return q.bound > 0 ? q.estimate / q.bound : q.estimate > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+      if (q.bounded)
+        return q.bound > 0 ? q.estimate / q.bound : q.estimate > 0 ? std::numeric_limits<double>::infinity() : 0.0;
       return (q.upper_only ? q.deviation : std::fabs(q.deviation)) / (noise(q) + 1e-300);
     };
     if (g.points.size() == 1 || score(p) > score(rep.points[g.worst])) g.worst = i;

@@ -26,7 +26,8 @@ namespace {
 // Widths from extreme to rough, for d_norm; each D keeps those in its range.
 // Down to 1e-7 (near-mirror, issue 16): d_norm's stratified radius keeps
 // sin²θ to full precision, so the narrowest lobes still integrate to 1.
-const std::vector<double> kNormAlphas = {1e-7, 1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0};
+const std::vector<double> kNormAlphas = {1e-7, 1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03,
+                                         0.1,  0.2,  0.3,  0.5,  0.7,  1.0,  1.5,  2.0};
 const std::vector<double> kNormPhong = {0, 1, 2, 5, 10, 30, 100, 300, 1e3, 1e4, 1e5, 1e6};
 // Shared widths and view cosines for the combination checks.
 const std::vector<double> kAlphas = {0.01, 0.03, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0};
@@ -53,7 +54,6 @@ std::vector<double> view_cosines(int n) {
   return c;
 }
 
-
 // ---- expectations --------------------------------------------------------
 // Which models must fail which check, and why, from catalog properties.
 
@@ -73,12 +73,12 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
   const SmithFit* fit = g->fit_for(d->id);
   const bool is_smith = !g->smith_for.empty();
   const bool beyond_fit = fit && alpha > fit->alpha_max;
-  const bool under_masks =
-      std::find(g->under_masks.begin(), g->under_masks.end(), d->id) != g->under_masks.end();
+  const bool under_masks = std::find(g->under_masks.begin(), g->under_masks.end(), d->id) != g->under_masks.end();
   if (check == "masking") {
     if (!is_smith) {
       if (!g->masking_exact.empty()) return {Expect::Hold, "", 0};
-      return {Expect::Fail, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved", 0};
+      return {Expect::Fail, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved",
+              0};
     }
     if (!fit) return {Expect::Fail, g->id + "'s G1 belongs to " + g->smith_for.front().d + ", not to " + d->id, 0};
     if (beyond_fit) return {Expect::Fail, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
@@ -89,8 +89,10 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
   if (!is_smith) return {};
   const Expect broken = check == "furnace" ? Expect::Fail : Expect::May;
   if (under_masks)
-    return {broken, g->id + "'s G1 (of " + g->smith_for.front().d + ") under-masks " + d->id +
-                        "'s heavier tails, so the albedo exceeds 1 at grazing view", 0};
+    return {broken,
+            g->id + "'s G1 (of " + g->smith_for.front().d + ") under-masks " + d->id +
+                "'s heavier tails, so the albedo exceeds 1 at grazing view",
+            0};
   if (beyond_fit) return {broken, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
   return {Expect::Hold, "", fit ? fit->tol : 0.0};
 }
@@ -98,7 +100,6 @@ Expectation expect(const std::string& check, const Term* d, const Term* g, doubl
 namespace {
 
 // ---- running ---------------------------------------------------------------
-
 
 void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, const Term* f, double alpha, double pd,
                double pg, double f0, double f1, double kd, double cos_o, double expected, bool upper,
@@ -265,8 +266,10 @@ uint64_t scaled_samples(uint64_t n, double scale) {
 void validate_scale(double scale) {
   if (!(scale > 0) || !std::isfinite(scale)) throw Error("--scale must be a positive number");
   if (scale > 0x1p26)
-    throw Error(fmt::format("--scale {:g} (or --samples {:.0f}) is too large: at most 2^26 = 67108864 (--samples "
-                            "2^38)", scale, scale * double(kSuiteBaseSamples)));
+    throw Error(
+        fmt::format("--scale {:g} (or --samples {:.0f}) is too large: at most 2^26 = 67108864 (--samples "
+                    "2^38)",
+                    scale, scale * double(kSuiteBaseSamples)));
 }
 
 Plan reciprocity_plan(const SuiteOptions& opt) {

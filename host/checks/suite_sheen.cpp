@@ -152,8 +152,8 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
           const KnownValue q = albedo_by_quadrature(p.specs.back());
           if (q.value - q.error > 1.1) {  // ~5 standard errors of a default-size integral
             pt.expect = Expect::Fail;
-            pt.reason = fmt::format("the fitted Lambda of {} under-masks {} here: E = {:.3g} by quadrature", g.id,
-                                    d.id, q.value);
+            pt.reason = fmt::format("the fitted Lambda of {} under-masks {} here: E = {:.3g} by quadrature", g.id, d.id,
+                                    q.value);
           } else if (q.value + q.error > 1.0) {
             pt.expect = Expect::May;
             pt.reason = fmt::format("E = {:.3g} by quadrature, within noise of 1", q.value);

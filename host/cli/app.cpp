@@ -9,8 +9,9 @@ namespace mfv::cli {
 
 void build_app(CLI::App& app, Globals& g, int& rc) {
   app.require_subcommand(1);
-  app.add_option("--device", g.device, "OpenCL device: index, exact name, or a name substring that matches one "
-                                       "device (default: first GPU, else CPU); bench: all");
+  app.add_option("--device", g.device,
+                 "OpenCL device: index, exact name, or a name substring that matches one "
+                 "device (default: first GPU, else CPU); bench: all");
   app.add_option("--kernel-dir", g.kernel_dir, "read kernels from this folder instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   add_devices(app, g, rc);

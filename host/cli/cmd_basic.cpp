@@ -35,7 +35,8 @@ struct ListCommandOptions {
 }  // namespace
 
 void add_list(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
+  auto* cmd = app.add_subcommand(
+      "list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
   auto values = std::make_shared<ListCommandOptions>();  // the command's values
   g.command_values.push_back(values);
   cmd->add_flag("--json", values->json, "machine-readable output");
@@ -43,11 +44,12 @@ void add_list(CLI::App& app, Globals& g, int& rc) {
     if (values->json) {
       nlohmann::json out = nlohmann::json::array();
       for (auto& t : catalog()) {
-        nlohmann::json j{{"id", t.id},       {"kind", kind_name(t.kind)}, {"source", t.source},
-                         {"formula", t.formula}, {"kernel", t.kernel_fn},   {"ulp_budget", t.ulp_budget}};
+        nlohmann::json j{{"id", t.id},           {"kind", kind_name(t.kind)}, {"source", t.source},
+                         {"formula", t.formula}, {"kernel", t.kernel_fn},     {"ulp_budget", t.ulp_budget}};
         j["params"] = nlohmann::json::array();
         for (auto& p : t.params)
-          j["params"].push_back({{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
+          j["params"].push_back(
+              {{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
         if (!t.known_bad.empty()) j["known_bad"] = t.known_bad;
         for (auto& f : t.smith_for) {
           nlohmann::json fj{{"d", f.d}, {"tol", f.tol}, {"why", f.why}};
@@ -60,11 +62,12 @@ void add_list(CLI::App& app, Globals& g, int& rc) {
         out.push_back(j);
       }
       for (auto& m : models()) {
-        nlohmann::json j{{"id", m.id},         {"kind", "model"},   {"source", m.source},
+        nlohmann::json j{{"id", m.id},           {"kind", "model"},       {"source", m.source},
                          {"formula", m.formula}, {"kernel", m.kernel_fn}, {"ulp_budget", m.ulp_budget}};
         j["params"] = nlohmann::json::array();
         for (auto& p : m.params)
-          j["params"].push_back({{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
+          j["params"].push_back(
+              {{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
         if (!m.radiance.empty()) j["radiance"] = m.radiance;
         if (m.ref_albedo) j["closed_form_albedo"] = m.albedo_doc;
         j["cases"] = nlohmann::json::array();
@@ -82,7 +85,8 @@ void add_list(CLI::App& app, Globals& g, int& rc) {
         std::string ps;
         for (auto& p : t.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
         fmt::print("{} {:<22} {:<40} {}\n", kind_name(t.kind), t.id, t.formula, ps.empty() ? "-" : ps);
-        fmt::print("  {:<22} source: {}{}\n", "", t.source, t.known_bad.empty() ? "" : "  [known bad: " + t.known_bad + "]");
+        fmt::print("  {:<22} source: {}{}\n", "", t.source,
+                   t.known_bad.empty() ? "" : "  [known bad: " + t.known_bad + "]");
       }
       for (auto& m : models()) {
         std::string ps;

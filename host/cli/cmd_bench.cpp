@@ -22,16 +22,18 @@ struct BenchCommandOptions {
 }  // namespace
 
 void add_bench(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("bench", "throughput of d_norm, albedo (GGX + smith_ggx_correlated + Schlick) and "
-                                          "reciprocity on every OpenCL device (or --device) and the double reference "
-                                          "with 1 and all threads; medians, ratios, flops/sample");
+  auto* cmd = app.add_subcommand("bench",
+                                 "throughput of d_norm, albedo (GGX + smith_ggx_correlated + Schlick) and "
+                                 "reciprocity on every OpenCL device (or --device) and the double reference "
+                                 "with 1 and all threads; medians, ratios, flops/sample");
   auto values = std::make_shared<BenchCommandOptions>();  // the command's values
   g.command_values.push_back(values);
   cmd->add_option("--integrals", values->opt.integrals, "integrals per launch and per reference pass (default 64)");
   cmd->add_option("--samples", values->opt.samples, "samples per integral on a device (default 65536)");
   cmd->add_option("--ref-samples", values->opt.ref_samples, "samples per integral in the reference (default 4096)");
   cmd->add_option("--repeats", values->opt.repeats, "timed repetitions, medians reported (default 5)");
-  cmd->add_option("--threads", values->opt.threads, "reference threads of the all-threads row (default: hardware threads)");
+  cmd->add_option("--threads", values->opt.threads,
+                  "reference threads of the all-threads row (default: hardware threads)");
   cmd->add_option("--integrand", values->opt.integrands, "only these: d_norm, albedo, reciprocity");
   cmd->add_option("--seed", values->opt.seed, "Philox key");
   cmd->add_option("--out", values->out_dir, "write bench.json and bench.md here");
@@ -47,7 +49,8 @@ void add_bench(CLI::App& app, Globals& g, int& rc) {
       fmt::print("{}", bench_case_text(r));
       if (!values->out_dir.empty()) {
         const std::string json = bench_case_json(r, bench_load_average(), utc_timestamp());
-        write_files_atomically({{values->out_dir + "/bench.json", json}, {values->out_dir + "/bench.md", "# mfv bench --case\n\n" + bench_case_text(r)}});
+        write_files_atomically({{values->out_dir + "/bench.json", json},
+                                {values->out_dir + "/bench.md", "# mfv bench --case\n\n" + bench_case_text(r)}});
         fmt::print("wrote {}/bench.json, bench.md\n", values->out_dir);
       }
       rc = 0;

@@ -2,9 +2,9 @@
 #include "checks/energy.hpp"
 #include "cli/commands.hpp"
 #include "report/energy_report.hpp"
-#include "util/files.hpp"
-#include "util/error.hpp"
 #include "scene/scene_filters.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -23,8 +23,10 @@ std::string written_list(const std::vector<std::pair<std::string, std::string>>&
   for (auto& [path, text] : files) {
     const std::string rel = path.substr(dir.size() + 1);
     const size_t slash = rel.find('/');
-    if (slash == std::string::npos) top += (top.empty() ? dir + "/" : ", ") + rel;
-    else ++folders[rel.substr(0, slash + 1)];
+    if (slash == std::string::npos)
+      top += (top.empty() ? dir + "/" : ", ") + rel;
+    else
+      ++folders[rel.substr(0, slash + 1)];
   }
   for (auto& [f, n] : folders) top += fmt::format(", {} ({} file{})", f, n, n == 1 ? "" : "s");
   return top;
@@ -47,32 +49,40 @@ struct EnergyCommandOptions {
 }  // namespace
 
 void add_energy(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("energy", "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
-                                           "D x G (F = none), and E(mu), E_avg of every whole model at its catalog "
-                                           "cases: CSV, JSON, C header, report with plots");
+  auto* cmd = app.add_subcommand("energy",
+                                 "energy-loss tables E(mu, alpha), split-sum A/B and E_avg(alpha) for "
+                                 "D x G (F = none), and E(mu), E_avg of every whole model at its catalog "
+                                 "cases: CSV, JSON, C header, report with plots");
   auto values = std::make_shared<EnergyCommandOptions>();  // the command's values
   g.command_values.push_back(values);
-  cmd->add_option("--models", values->opt.models, "only D/G combinations (d/g) and whole-model cases (model[case]) whose name "
-                                          "contains one of these, e.g. ggx/ or '[' for the whole models "
-                                          "(default: every D x G and every whole-model case)");
-  cmd->add_option("--grid", values->grid, "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
-  cmd->add_option("--target", values->opt.target, "standard error per cell to reach (default 1e-4); cells above it get "
-                                          "more points, up to the cap");
+  cmd->add_option("--models", values->opt.models,
+                  "only D/G combinations (d/g) and whole-model cases (model[case]) whose name "
+                  "contains one of these, e.g. ggx/ or '[' for the whole models "
+                  "(default: every D x G and every whole-model case)");
+  cmd->add_option("--grid", values->grid,
+                  "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
+  cmd->add_option("--target", values->opt.target,
+                  "standard error per cell to reach (default 1e-4); cells above it get "
+                  "more points, up to the cap");
   cmd->add_option("--seed", values->opt.seed, "Philox key");
   cmd->add_option("--replicates", values->opt.replicates, "independent randomizations per value (default 8)");
   cmd->add_option("--max-points", values->opt.max_points, "cap on points per replicate per value (default 16384)");
   cmd->add_option("--out", values->out_dir, "write energy.json, report.md, kulla_conty.h, csv/ and plots/ here");
-  cmd->add_option("--baseline", values->baseline, "earlier energy.json: exit 1 if a value moved beyond its combined "
-                                          "standard errors (Bonferroni over all values)");
-  cmd->add_option("--alpha-fw", values->alpha_fw, "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
+  cmd->add_option("--baseline", values->baseline,
+                  "earlier energy.json: exit 1 if a value moved beyond its combined "
+                  "standard errors (Bonferroni over all values)");
+  cmd->add_option("--alpha-fw", values->alpha_fw,
+                  "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
       ->check(CLI::Range(1e-300, 0.5));
-  cmd->add_option("--scene", values->scene_path, "only what the materials of this scene use (.gltf, .glb, material .json): "
-                                         "the glTF model at each material's parameters, the D x G tables of the "
-                                         "others; prints each material's energy loss");
+  cmd->add_option("--scene", values->scene_path,
+                  "only what the materials of this scene use (.gltf, .glb, material .json): "
+                  "the glTF model at each material's parameters, the D x G tables of the "
+                  "others; prints each material's energy loss");
   cmd->callback([&g, &rc, values] {
     Scene scene;
     if (!values->scene_path.empty()) {
-      if (!values->opt.models.empty()) throw Error("--models and --scene cannot be combined: the scene chooses the models");
+      if (!values->opt.models.empty())
+        throw Error("--models and --scene cannot be combined: the scene chooses the models");
       scene = load_scene(values->scene_path);
       scene_energy_options(scene, values->opt);
     }

@@ -40,9 +40,10 @@ std::array<float, 3> parse_direction(const std::string& what, const std::string&
   const double len = std::sqrt(len2);
   if (!(std::fabs(len - 1.0) <= kUnitTolerance)) {
     if (!(len > 0)) throw Error(fmt::format("{} {} is the zero vector; give a unit direction", what, text));
-    throw Error(fmt::format("{} {} has length {:.9g}, not 1 within float rounding (2^-23); the unit vector is "
-                            "{:.9g},{:.9g},{:.9g}",
-                            what, text, len, v[0] / len, v[1] / len, v[2] / len));
+    throw Error(
+        fmt::format("{} {} has length {:.9g}, not 1 within float rounding (2^-23); the unit vector is "
+                    "{:.9g},{:.9g},{:.9g}",
+                    what, text, len, v[0] / len, v[1] / len, v[2] / len));
   }
   return v;
 }
@@ -64,8 +65,10 @@ struct Given {
 double term_param(const Term& t, size_t i, Given& given, double alpha, bool alpha_given) {
   const Param& p = t.params[i];
   double v = p.fallback;
-  if (const double* x = given.find(p.name)) v = *x;
-  else if (i == 0 && alpha_given && t.roughness != Roughness::None) v = native_from_alpha(t.roughness, alpha);
+  if (const double* x = given.find(p.name))
+    v = *x;
+  else if (i == 0 && alpha_given && t.roughness != Roughness::None)
+    v = native_from_alpha(t.roughness, alpha);
   validate_param(t, i, v);
   return v;
 }
@@ -80,7 +83,8 @@ struct EvalArgs {
 // half vector (--h), an anisotropic G's G1 the view (--wo), in the tangent
 // frame t = +x, b = +y, n = +z.
 void single_term(PointSpec& ps, const Term& t, bool g1, const EvalArgs& a) {
-  if (g1 && (t.kind != Kind::G || !(t.ref_g1 || t.ref_g1_aniso))) throw Error(fmt::format("'{}' has no Smith G1", t.id));
+  if (g1 && (t.kind != Kind::G || !(t.ref_g1 || t.ref_g1_aniso)))
+    throw Error(fmt::format("'{}' has no Smith G1", t.id));
   if (!t.aniso) {
     if (a.h_given) throw Error(fmt::format("--h is for anisotropic D terms; give '{}' cosines (--NoH ...)", t.id));
     float cos[6] = {float(a.NoL), float(a.NoV), float(a.NoH), float(a.VoH), 0, 0};
@@ -92,10 +96,12 @@ void single_term(PointSpec& ps, const Term& t, bool g1, const EvalArgs& a) {
     throw Error(fmt::format("'{}' is anisotropic: cosines alone lose alpha_y; give {}", t.id,
                             t.kind == Kind::D ? "the half vector --h x,y,z" : "--g1 and the view --wo x,y,z"));
   if (t.kind == Kind::G && !g1)
-    throw Error(fmt::format("'{}' is anisotropic: evaluate its G1 (--g1 --wo x,y,z) or a BRDF D/G/F with --wi, --wo",
-                            t.id));
-  if (t.kind == Kind::D && !a.h_given) throw Error(fmt::format("'{}' is anisotropic: give the half vector --h x,y,z", t.id));
-  if (t.kind == Kind::G && !a.wo_given) throw Error(fmt::format("'{}' G1 is anisotropic: give the view --wo x,y,z", t.id));
+    throw Error(
+        fmt::format("'{}' is anisotropic: evaluate its G1 (--g1 --wo x,y,z) or a BRDF D/G/F with --wi, --wo", t.id));
+  if (t.kind == Kind::D && !a.h_given)
+    throw Error(fmt::format("'{}' is anisotropic: give the half vector --h x,y,z", t.id));
+  if (t.kind == Kind::G && !a.wo_given)
+    throw Error(fmt::format("'{}' G1 is anisotropic: give the view --wo x,y,z", t.id));
   auto w = t.kind == Kind::D ? parse_direction("--h", a.h) : parse_direction("--wo", a.wo);
   ps.inputs[t.kind == Kind::D ? 2 : 1] = w[2];
   ps.inputs[4] = w[0];
@@ -127,25 +133,30 @@ struct EvalCommandOptions {
 }  // namespace
 
 void add_eval(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("eval", "evaluate one term or one D/G/F BRDF at one point on the device and in "
-                                         "the reference");
+  auto* cmd = app.add_subcommand("eval",
+                                 "evaluate one term or one D/G/F BRDF at one point on the device and in "
+                                 "the reference");
   auto values = std::make_shared<EvalCommandOptions>();  // the command's values
   g.command_values.push_back(values);
-  cmd->add_option("spec", values->spec, "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
-                                "a whole model (lambert, eon, phong_004...)")
+  cmd->add_option("spec", values->spec,
+                  "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
+                  "a whole model (lambert, eon, phong_004...)")
       ->required();
   auto* alpha_opt = cmd->add_option("--alpha", values->alpha, "shared width alpha, converted to each term's parameter");
-  cmd->add_option("--param", values->params, "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k, alpha_x, alpha_y...)");
+  cmd->add_option("--param", values->params,
+                  "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k, alpha_x, alpha_y...)");
   cmd->add_option("--kd", values->kd, "Lambert albedo added to a BRDF");
   auto* wi_opt = cmd->add_option("--wi", values->wi_s, "light direction x,y,z, unit (n = +z, tangent t = +x)");
-  auto* wo_opt = cmd->add_option("--wo", values->wo_s, "view direction x,y,z, unit (also the view of an anisotropic G1)");
+  auto* wo_opt =
+      cmd->add_option("--wo", values->wo_s, "view direction x,y,z, unit (also the view of an anisotropic G1)");
   auto* h_opt = cmd->add_option("--h", values->h_s, "half vector x,y,z, unit, of an anisotropic D (aniso_ggx...)");
   std::vector<CLI::Option*> cos_opts = {
       cmd->add_option("--NoL", values->NoL, "cos between normal and light (single isotropic terms), in [-1, 1]"),
       cmd->add_option("--NoV", values->NoV, "cos between normal and view (single isotropic terms), in [-1, 1]"),
       cmd->add_option("--NoH", values->NoH, "cos between normal and half vector (single isotropic terms), in [-1, 1]"),
       cmd->add_option("--VoH", values->VoH, "cos between view and half vector (single isotropic terms), in [-1, 1]")};
-  cmd->add_flag("--g1", values->g1, "evaluate a Smith G term's G1 (at NoV, or at --wo for an anisotropic one) instead of its G2");
+  cmd->add_flag("--g1", values->g1,
+                "evaluate a Smith G term's G1 (at NoV, or at --wo for an anisotropic one) instead of its G2");
   cmd->add_flag("--fp64", values->fp64, "evaluate the kernel in double");
   cmd->callback([&g, &rc, alpha_opt, wi_opt, wo_opt, h_opt, cos_opts, values] {
     Given given;
@@ -157,7 +168,8 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
     bool alpha_given = alpha_opt->count() > 0;
     if (alpha_given && !(values->alpha > 0.0 && std::isfinite(values->alpha)))
       throw Error(fmt::format("--alpha = {} must be a positive finite number", values->alpha));
-    if (!(values->kd >= 0.0 && values->kd <= 1.0)) throw Error(fmt::format("--kd = {} is out of range [0, 1]", values->kd));
+    if (!(values->kd >= 0.0 && values->kd <= 1.0))
+      throw Error(fmt::format("--kd = {} is out of range [0, 1]", values->kd));
     const char* cos_names[4] = {"--NoL", "--NoV", "--NoH", "--VoH"};
     const double cos_values[4] = {values->NoL, values->NoV, values->NoH, values->VoH};
     bool cosines_given = false;
@@ -166,10 +178,12 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
         throw Error(fmt::format("{} = {} is not a cosine (outside [-1, 1])", cos_names[i], cos_values[i]));
       cosines_given = cosines_given || cos_opts[size_t(i)]->count() > 0;
     }
-    EvalArgs args{values->wi_s, values->wo_s, values->h_s, wi_opt->count() > 0, wo_opt->count() > 0, h_opt->count() > 0, cosines_given,
-                  values->NoL, values->NoV, values->NoH, values->VoH};
+    EvalArgs args{values->wi_s,        values->wo_s,       values->h_s,   wi_opt->count() > 0,
+                  wo_opt->count() > 0, h_opt->count() > 0, cosines_given, values->NoL,
+                  values->NoV,         values->NoH,        values->VoH};
     auto directions = [&](PointSpec& ps) {
-      if (cosines_given || args.h_given) throw Error(fmt::format("'{}' takes directions --wi and --wo, not cosines or --h", values->spec));
+      if (cosines_given || args.h_given)
+        throw Error(fmt::format("'{}' takes directions --wi and --wo, not cosines or --h", values->spec));
       auto wi = parse_direction("--wi", values->wi_s), wo = parse_direction("--wo", values->wo_s);
       for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
     };
@@ -184,10 +198,12 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
       if (ps.d->kind != Kind::D || ps.g->kind != Kind::G || ps.f->kind != Kind::F)
         throw Error(fmt::format("'{}' must name a D, a G and an F term, in that order", values->spec));
       if (ps.d->aniso != ps.g->aniso)
-        throw Error(fmt::format("'{}': an anisotropic D goes with an anisotropic Smith G (e.g. aniso_ggx/smith_aniso_ggx)", values->spec));
+        throw Error(fmt::format(
+            "'{}': an anisotropic D goes with an anisotropic Smith G (e.g. aniso_ggx/smith_aniso_ggx)", values->spec));
       directions(ps);
       ps.params[0] = static_cast<float>(term_param(*ps.d, 0, given, values->alpha, alpha_given));
-      if (!ps.g->params.empty()) ps.params[1] = static_cast<float>(term_param(*ps.g, 0, given, values->alpha, alpha_given));
+      if (!ps.g->params.empty())
+        ps.params[1] = static_cast<float>(term_param(*ps.g, 0, given, values->alpha, alpha_given));
       for (size_t i = 0; i < ps.f->params.size(); ++i)
         ps.params[2 + i] = static_cast<float>(term_param(*ps.f, i, given, values->alpha, alpha_given));
       ps.params[4] = static_cast<float>(values->kd);
@@ -199,7 +215,8 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
       }
     } else if (const Model* m = parts.size() == 1 ? try_find_model(values->spec) : nullptr) {
       // a whole model: f(wi, wo) with its parameters by name, defaults otherwise
-      if (alpha_given) throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", values->spec));
+      if (alpha_given)
+        throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", values->spec));
       ps.mode = EvalMode::Model;
       ps.model = m;
       directions(ps);
@@ -228,11 +245,13 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
     }
     if (values->g1 && parts.size() != 1) throw Error("--g1 applies to a single Smith G term");
     for (auto& [name, v] : given.values)
-      if (!given.used.count(name)) throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, values->spec));
+      if (!given.used.count(name))
+        throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, values->spec));
 
     Runtime rt(g.device, g.kernel_dir);
     PointValue r = eval_point(rt, ps, values->fp64);
-    fmt::print("kernel    {:.9g}  ({:a})  on {}, {}\n", r.kernel, r.kernel, rt.device().name, values->fp64 ? "float64" : "float32");
+    fmt::print("kernel    {:.9g}  ({:a})  on {}, {}\n", r.kernel, r.kernel, rt.device().name,
+               values->fp64 ? "float64" : "float32");
     fmt::print("reference {:.17g}  ({:a})  double\n", r.reference, r.reference);
     fmt::print("relative error {:.3g}, {:.3g} ulps\n", r.rel, r.ulps);
     rc = 0;

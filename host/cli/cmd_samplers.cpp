@@ -1,9 +1,9 @@
 // mfv samplers: quadrature and chi-square tests of every sampling routine.
 #include "checks/samplers.hpp"
 #include "cli/commands.hpp"
-#include "util/files.hpp"
 #include "report/sampler_plots.hpp"
 #include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -25,8 +25,9 @@ struct SamplersCommandOptions {
 }  // namespace
 
 void add_samplers(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("samplers", "verify the sampling routines: pdf integrates to 1, chi-square "
-                                             "histogram test (Sidak-corrected), device and reference draws");
+  auto* cmd = app.add_subcommand("samplers",
+                                 "verify the sampling routines: pdf integrates to 1, chi-square "
+                                 "histogram test (Sidak-corrected), device and reference draws");
   auto values = std::make_shared<SamplersCommandOptions>();  // the command's values
   g.command_values.push_back(values);
   cmd->add_option("--samples", values->opt.samples, "draws per test (default 2^20)");
@@ -34,13 +35,16 @@ void add_samplers(CLI::App& app, Globals& g, int& rc) {
   cmd->add_option("--significance", values->opt.significance, "family-wise false-alarm rate (default 0.01)");
   cmd->add_option("--bins", values->bins, "COSxPHI histogram cells (default 64x128)");
   cmd->add_flag("--device-only", values->device_only, "skip the reference twin's draws");
-  cmd->add_option("--out", values->out_dir, "write samplers.json here, and an observed/expected/difference image of every "
-                                    "failed chi-square test into plots/");
+  cmd->add_option("--out", values->out_dir,
+                  "write samplers.json here, and an observed/expected/difference image of every "
+                  "failed chi-square test into plots/");
   cmd->add_flag("--plots", values->plots, "with --out: images of every chi-square test, not only the failed ones");
   cmd->callback([&g, &rc, values] {
     if (!values->bins.empty()) {
       char x = 0, extra = 0;
-      if (std::sscanf(values->bins.c_str(), "%d%c%d%c", &values->opt.cos_bins, &x, &values->opt.phi_bins, &extra) != 3 || (x != 'x' && x != 'X'))
+      if (std::sscanf(values->bins.c_str(), "%d%c%d%c", &values->opt.cos_bins, &x, &values->opt.phi_bins, &extra) !=
+              3 ||
+          (x != 'x' && x != 'X'))
         throw Error(fmt::format("--bins '{}': expected COSxPHI, e.g. 64x128", values->bins));
     }
     if (values->plots && values->out_dir.empty()) throw Error("--plots needs --out DIR (the images go to DIR/plots)");
@@ -56,7 +60,8 @@ void add_samplers(CLI::App& app, Globals& g, int& rc) {
                values->opt.significance);
     if (!values->out_dir.empty()) {
       std::vector<std::pair<std::string, std::string>> files;
-      for (auto& [name, bytes] : sampler_plots(rs, values->plots)) files.push_back({values->out_dir + "/plots/" + name, bytes});
+      for (auto& [name, bytes] : sampler_plots(rs, values->plots))
+        files.push_back({values->out_dir + "/plots/" + name, bytes});
       files.push_back({values->out_dir + "/samplers.json", samplers_json(rs, rt, values->opt)});
       write_files_atomically(files);
       fmt::print("wrote {}/samplers.json{}\n", values->out_dir,

@@ -2,11 +2,11 @@
 // breaks on stiff and extreme inputs (issue 6); exit 1 when a term the
 // catalog marks stable gives NaN or Inf on in-domain inputs.
 #include "checks/stability.hpp"
-#include "report/stability_report.hpp"
 #include "cli/commands.hpp"
-#include "util/files.hpp"
-#include "util/error.hpp"
+#include "report/stability_report.hpp"
 #include "scene/scene_filters.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -28,8 +28,9 @@ struct StabilityCommandOptions {
 }  // namespace
 
 void add_stability(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("stability", "sweep every term, Smith G1, D x G x F BRDF, whole model and alternative "
-                                              "form over extreme inputs; report NaN/Inf/negative and error per region");
+  auto* cmd = app.add_subcommand("stability",
+                                 "sweep every term, Smith G1, D x G x F BRDF, whole model and alternative "
+                                 "form over extreme inputs; report NaN/Inf/negative and error per region");
   auto values = std::make_shared<StabilityCommandOptions>();  // the command's values
   g.command_values.push_back(values);
   cmd->add_option("--out", values->out, "write stability.json, stability.md and plots (gnuplot) into this folder");
@@ -37,8 +38,9 @@ void add_stability(CLI::App& app, Globals& g, int& rc) {
   cmd->add_flag("--terms-only", values->terms_only, "skip the D x G x F combinations and the whole models");
   cmd->add_option("--only", values->opt.only,
                   "only cases whose name contains one of these (e.g. 'D ggx', 'BRDF ggx/', 'MODEL', 'variant')");
-  cmd->add_option("--scene", values->scene_path, "only the terms, BRDFs and models the materials of this scene use (.gltf, "
-                                         ".glb, material .json)");
+  cmd->add_option("--scene", values->scene_path,
+                  "only the terms, BRDFs and models the materials of this scene use (.gltf, "
+                  ".glb, material .json)");
   cmd->callback([&g, &rc, values] {
     Scene scene;
     if (!values->scene_path.empty()) {

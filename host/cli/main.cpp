@@ -14,8 +14,9 @@ int main(int argc, char** argv) {
   CLI::App app{"mfv: verify microfacet BRDFs on OpenCL against a double-precision reference"};
   app.set_version_flag("--version", "mfv " + mfv::version_text());
   bool quiet = false;
-  app.add_flag("--quiet,-q", quiet, "no progress on stderr (by default: a bar on a terminal, a line every few "
-                                    "seconds otherwise)");
+  app.add_flag("--quiet,-q", quiet,
+               "no progress on stderr (by default: a bar on a terminal, a line every few "
+               "seconds otherwise)");
   // Global options are also accepted after the command (mfv run --quiet).
   app.fallthrough();
   mfv::cli::Globals g;

@@ -16,9 +16,12 @@ CLI::Validator strict(const std::string& type) {
       [type](std::string& text) -> std::string {
         if (text.empty()) return "the value is empty";
         try {
-          if (type == "UINT") text = std::to_string(parse_unsigned("value", text));
-          else if (type == "INT") text = std::to_string(parse_signed("value", text));
-          else parse_finite("value", text);
+          if (type == "UINT")
+            text = std::to_string(parse_unsigned("value", text));
+          else if (type == "INT")
+            text = std::to_string(parse_signed("value", text));
+          else
+            parse_finite("value", text);
         } catch (const Error& e) {
           std::string m = e.what();
           return m.substr(m.find(": ") + 2);  // CLI11 prefixes the option's name
@@ -27,7 +30,6 @@ CLI::Validator strict(const std::string& type) {
       },
       "", "strict " + type);
 }
-
 
 // CLI11 reads an empty value as 0 or as "not given" ("--out ''" wrote
 // nothing); an option that takes a value wants a non-empty one.

@@ -48,7 +48,8 @@ QuadratureResult product(const G& g, const Tc& t_c, const ProductRule& rule) {
 }  // namespace
 
 QuadratureResult integrate_normals(const std::function<double(const glm::dvec3&)>& g, const ProductRule& rule) {
-  return product(g, [](double) { return 1.0; }, rule);
+  return product(
+      g, [](double) { return 1.0; }, rule);
 }
 
 QuadratureResult integrate_reflected(const std::function<double(const glm::dvec3&)>& f, const glm::dvec3& o,

@@ -34,9 +34,7 @@ double pdf_cauchy(double c, double s2, double w) {
   return p / kMixWidths;
 }
 
-double pdf_m(double c, double s2, double w) {
-  return kMixCos * c / M_PI + (1.0 - kMixCos) * pdf_cauchy(c, s2, w);
-}
+double pdf_m(double c, double s2, double w) { return kMixCos * c / M_PI + (1.0 - kMixCos) * pdf_cauchy(c, s2, w); }
 
 // The microfacet normal for uniforms (pick, phi, r): a Malley cosine lobe,
 // or a slope of length w tan from the inverse CDF 1 - (1 + t²/w²)^(-1/2).
@@ -341,7 +339,8 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
   } else {
     double c, s2;
-    const glm::dvec3 m = b.aniso() ? sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2) : sample_m(u_pick, u_phi, u_r, w, c, s2);
+    const glm::dvec3 m =
+        b.aniso() ? sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2) : sample_m(u_pick, u_phi, u_r, w, c, s2);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
   return albedo_weight(b, i, o, w);

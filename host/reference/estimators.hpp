@@ -27,12 +27,12 @@ enum class Integral {
 
 struct IntegralRef {
   Integral kind = Integral::DNorm;
-  BrdfSpec brdf;         // D, G, F and their native parameters, kd
-  double width = 0.1;    // proposal width (equivalent alpha)
-  double cos_o = 1.0;    // view for masking and albedo, at azimuth phi_o about n
-  double phi_o = 0.0;    // (0: in the xz-plane); twin of IntegralSpec::phi_o
-  uint32_t stream = 0;   // Philox stream = integral id
-  uint32_t strata = 0;   // d_norm: stratified over this many samples (0 = iid); AlbedoMis: points per replicate
+  BrdfSpec brdf;           // D, G, F and their native parameters, kd
+  double width = 0.1;      // proposal width (equivalent alpha)
+  double cos_o = 1.0;      // view for masking and albedo, at azimuth phi_o about n
+  double phi_o = 0.0;      // (0: in the xz-plane); twin of IntegralSpec::phi_o
+  uint32_t stream = 0;     // Philox stream = integral id
+  uint32_t strata = 0;     // d_norm: stratified over this many samples (0 = iid); AlbedoMis: points per replicate
   uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
 };
 

@@ -19,8 +19,8 @@ inline double saturate(double x) { return std::clamp(x, 0.0, 1.0); }
 // exact (Sterbenz), so this keeps full relative precision where 1 − c² would
 // cancel.  c is clamped into [0, 1] first, so the result lies in [0, 1].
 inline double sin2_from_cos(double c) {
-    c = saturate(c);
-    return (1.0 - c) * (1.0 + c);
+  c = saturate(c);
+  return (1.0 - c) * (1.0 + c);
 }
 
 // tan²θ = sin²θ / cos²θ, robust near c = 1 (see sin2_from_cos).  A cosine that
@@ -28,8 +28,8 @@ inline double sin2_from_cos(double c) {
 // c > 0: for c → 0⁺ the result grows to +inf (c² underflows below ~1e-162);
 // callers that can reach that range say how they handle it.
 inline double tan2_from_cos(double c) {
-    c = saturate(c);
-    return sin2_from_cos(c) / (c * c);
+  c = saturate(c);
+  return sin2_from_cos(c) / (c * c);
 }
 
 }  // namespace mfv::ref::detail

@@ -1,7 +1,7 @@
 #include "reference/model_gltf.hpp"
 
-#include "reference/reference.hpp"
 #include "abi/sheen_table.h"
+#include "reference/reference.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -121,7 +121,8 @@ double model_gltf_sheen(const glm::dvec3& l, const glm::dvec3& v, const double* 
   const double D = D_charlie_cs(NoH * NoH, sin2H, p[4]);
   const double V = G_charlie_sheen(NoL, NoV, NoH, VoH, p[4]) / (4.0 * NoL * NoV);
   const double max3 = std::max(p[5], p[6]);
-  const double scaling = std::min(1.0 - max3 * sheen_albedo_table(NoV, p[4]), 1.0 - max3 * sheen_albedo_table(NoL, p[4]));
+  const double scaling =
+      std::min(1.0 - max3 * sheen_albedo_table(NoV, p[4]), 1.0 - max3 * sheen_albedo_table(NoL, p[4]));
   return (p[5] > 0.0 ? p[5] * D * V : 0.0) + material * scaling;  // no sheen: no lobe (as the kernel)
 }
 

@@ -15,11 +15,11 @@
 namespace mfv::ref {
 
 // ---- D: microfacet distributions, argument NoH = cos(theta_h) -------------
-double D_phong(double NoH, double alpha_p);        // seed 000 "Phong", seed 003 Blinn
-double D_beckmann(double NoH, double alpha);        // seed 000 "Beckman"
-double D_ggx(double NoH, double alpha);             // seed 000 "GGX"
-double D_blinn_rho(double NoH, double rho);         // seed 004 Cook-Torrance "blinn version"
-double D_beckmann_ct82(double NoH, double m);       // seed 001, as written (known bad)
+double D_phong(double NoH, double alpha_p);    // seed 000 "Phong", seed 003 Blinn
+double D_beckmann(double NoH, double alpha);   // seed 000 "Beckman"
+double D_ggx(double NoH, double alpha);        // seed 000 "GGX"
+double D_blinn_rho(double NoH, double rho);    // seed 004 Cook-Torrance "blinn version"
+double D_beckmann_ct82(double NoH, double m);  // seed 001, as written (known bad)
 // GGX from cos²θ and sin²θ given apart (e.g. from a half vector's components),
 // for θ below ~1e-8 where a double cosine no longer resolves 1 − cosθ.
 double D_ggx_cs(double cos2, double sin2, double alpha);
@@ -43,15 +43,15 @@ double D_ggx_aniso_slice(double NoH, double alpha);
 double D_beckmann_aniso_slice(double NoH, double alpha);
 
 // ---- Smith Lambda and G1 (one direction), argument NoV = cos(theta_v) -----
-double Lambda_beckmann(double NoV, double alpha);   // exact, with erf
+double Lambda_beckmann(double NoV, double alpha);  // exact, with erf
 double Lambda_ggx(double NoV, double alpha);
-double G1_smith_beckmann(double NoV, double alpha);        // 1 / (1 + Lambda)
-double G1_smith_beckmann_approx(double NoV, double alpha); // seed 000 rational
-double G1_smith_phong(double NoV, double alpha_p);         // seed 000, a = sqrt(ap/2+1)/tan
-double G1_smith_ggx(double NoV, double alpha);             // seed 000 "GGX"
+double G1_smith_beckmann(double NoV, double alpha);         // 1 / (1 + Lambda)
+double G1_smith_beckmann_approx(double NoV, double alpha);  // seed 000 rational
+double G1_smith_phong(double NoV, double alpha_p);          // seed 000, a = sqrt(ap/2+1)/tan
+double G1_smith_ggx(double NoV, double alpha);              // seed 000 "GGX"
 // Estevez and Kulla 2017's fitted Λ of the Charlie sheen D (KHR_materials_sheen "Sheen visibility")
 double Lambda_charlie(double NoV, double alpha);
-double G1_charlie(double NoV, double alpha);              // 1 / (1 + Lambda_charlie)
+double G1_charlie(double NoV, double alpha);  // 1 / (1 + Lambda_charlie)
 
 // Anisotropic Smith: the isotropic Λ at the projected width
 // α_o = sqrt(cos²φ ax² + sin²φ ay²) of the direction v's azimuth φ (Heitz 2014).
@@ -85,7 +85,7 @@ double G_smith_beckmann_aniso_slice(double NoL, double NoV, double NoH, double V
 // ---- F: Fresnel reflectance of one colour channel, argument VoH ----------
 double F_none(double VoH, double unused0, double unused1);
 double F_schlick(double VoH, double f0, double unused);
-double F_dielectric(double VoH, double eta, double unused);   // eta = eta_t / eta_i
-double F_conductor(double VoH, double n, double k);           // complex index n + i k
+double F_dielectric(double VoH, double eta, double unused);  // eta = eta_t / eta_i
+double F_conductor(double VoH, double n, double k);          // complex index n + i k
 
 }  // namespace mfv::ref

@@ -24,9 +24,10 @@ std::string agree_console(const AgreeReport& rep, const std::string& device) {
     if (!r.pass()) out += fmt::format("    worst: {}\n", r.worst);
   }
   if (conditioned)
-    out += "* max ulps above the budget, yet no failure: an input also passes when its error is within twice what the "
-           "exact function moves when any one input moves by two units of rounding (an ill-conditioned input, e.g. "
-           "near a zero of the function, cannot be computed closer)\n";
+    out +=
+        "* max ulps above the budget, yet no failure: an input also passes when its error is within twice what the "
+        "exact function moves when any one input moves by two units of rounding (an ill-conditioned input, e.g. "
+        "near a zero of the function, cannot be computed closer)\n";
   out += fmt::format("{} cases, {} inputs; build {:.2f} s, kernel {:.2f} s, reference {:.2f} s; {} failed\n",
                      rep.results.size(), rep.samples, rep.build_seconds, rep.kernel_seconds, rep.reference_seconds,
                      agree_failures(rep));

@@ -3,9 +3,9 @@
 // 1e-4, 1e-5) and gnuplot log-log plots of error against samples and time.
 #include "checks/convergence.hpp"
 #include "mfv_git_commit.h"
-#include "util/files.hpp"
 #include "report/gnuplot.hpp"
 #include "runtime/provenance.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,10 +36,11 @@ std::string stem(const ConvergenceReport& r, const std::string& check, size_t k)
 std::string tables(const ConvergenceReport& r, bool full) {
   std::string s;
   for (auto& ch : r.checks) {
-    s += fmt::format("\n### {}\n\n| case | truth | estimator | engine | slope | error at max n | n | N to 1e-3 | N to "
-                     "1e-4 | N to 1e-5 |{}\n|---|---|---|---|---|---|---|---|---|---|{}\n",
-                     ch, full ? " time to 1e-3 | time to 1e-4 | time to 1e-5 | z (top level) |" : "",
-                     full ? "---|---|---|---|" : "");
+    s += fmt::format(
+        "\n### {}\n\n| case | truth | estimator | engine | slope | error at max n | n | N to 1e-3 | N to "
+        "1e-4 | N to 1e-5 |{}\n|---|---|---|---|---|---|---|---|---|---|{}\n",
+        ch, full ? " time to 1e-3 | time to 1e-4 | time to 1e-5 | z (top level) |" : "",
+        full ? "---|---|---|---|" : "");
     const size_t ci = check_index(r, ch);
     for (size_t k = 0; k < r.cases.size(); ++k)
       for (auto& se : r.series) {
@@ -51,8 +52,7 @@ std::string tables(const ConvergenceReport& r, bool full) {
                          reach_cell(se.reach[0], true), reach_cell(se.reach[1], true), reach_cell(se.reach[2], true));
         if (full)
           s += fmt::format(" {} | {} | {} | {}{} |", reach_cell(se.reach[0], false), reach_cell(se.reach[1], false),
-                           reach_cell(se.reach[2], false), num(se.z, "{:.1f}"),
-                           se.consistent ? "" : " INCONSISTENT");
+                           reach_cell(se.reach[2], false), num(se.z, "{:.1f}"), se.consistent ? "" : " INCONSISTENT");
         s += "\n";
       }
   }
@@ -68,8 +68,12 @@ std::string json_of(const ConvergenceReport& r) {
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["date"] = r.date;
   j["device"] = {{"name", r.device}, {"platform", r.platform}};
-  j["options"] = {{"min_log2", r.opt.min_log2}, {"max_log2", r.opt.max_log2}, {"ref_max_log2", r.opt.ref_max_log2},
-                  {"replicates", r.opt.replicates}, {"quad_max_order", r.opt.quad_max_order}, {"seed", r.opt.seed},
+  j["options"] = {{"min_log2", r.opt.min_log2},
+                  {"max_log2", r.opt.max_log2},
+                  {"ref_max_log2", r.opt.ref_max_log2},
+                  {"replicates", r.opt.replicates},
+                  {"quad_max_order", r.opt.quad_max_order},
+                  {"seed", r.opt.seed},
                   {"reference", r.opt.reference}};
   j["seconds"] = r.seconds;
   j["consistency_level"] = r.level;
@@ -79,31 +83,39 @@ std::string json_of(const ConvergenceReport& r) {
   for (size_t ci = 0; ci < r.checks.size(); ++ci) {
     json a = json::array();
     for (auto& t : r.truth[ci])
-      a.push_back({{"value", t.value}, {"error", t.error}, {"method", t.method},
-                   {"quadrature_check", t.quadrature_check}});
+      a.push_back(
+          {{"value", t.value}, {"error", t.error}, {"method", t.method}, {"quadrature_check", t.quadrature_check}});
     j["truth"][r.checks[ci]] = a;
   }
   j["series"] = json::array();
   for (auto& s : r.series) {
-    json x{{"check", s.check}, {"estimator", s.estimator}, {"engine", s.engine}, {"case", s.case_index},
-           {"slope", finite(s.slope)}, {"fit_from_n", s.levels.empty() ? 0 : s.levels[s.fit_from].n},
-           {"z", finite(s.z)}, {"p", finite(s.p)}, {"consistent", s.consistent}};
+    json x{{"check", s.check},          {"estimator", s.estimator},
+           {"engine", s.engine},        {"case", s.case_index},
+           {"slope", finite(s.slope)},  {"fit_from_n", s.levels.empty() ? 0 : s.levels[s.fit_from].n},
+           {"z", finite(s.z)},          {"p", finite(s.p)},
+           {"consistent", s.consistent}};
     x["levels"] = json::array();
     for (auto& l : s.levels)
-      x["levels"].push_back({{"n", l.n}, {"mean", l.mean}, {"rmse", l.rmse}, {"est_se", finite(l.est_se)},
-                             {"seconds", l.seconds}});
+      x["levels"].push_back(
+          {{"n", l.n}, {"mean", l.mean}, {"rmse", l.rmse}, {"est_se", finite(l.est_se)}, {"seconds", l.seconds}});
     x["reach"] = json::array();
     for (auto& t : s.reach)
-      x["reach"].push_back({{"tol", t.tol}, {"n", finite(t.n)}, {"seconds", finite(t.seconds)},
-                            {"extrapolated", t.extrapolated}});
+      x["reach"].push_back(
+          {{"tol", t.tol}, {"n", finite(t.n)}, {"seconds", finite(t.seconds)}, {"extrapolated", t.extrapolated}});
     j["series"].push_back(x);
   }
   const auto& t = r.target;
-  j["target"] = {{"measured", t.measured}, {"best", t.best}, {"best_n", t.best_n},
-                 {"best_extrapolated", t.best_extrapolated}, {"uniform_n", finite(t.uniform_n)}, {"uniform_variance", finite(t.uniform_variance)},
+  j["target"] = {{"measured", t.measured},
+                 {"best", t.best},
+                 {"best_n", t.best_n},
+                 {"best_extrapolated", t.best_extrapolated},
+                 {"uniform_n", finite(t.uniform_n)},
+                 {"uniform_variance", finite(t.uniform_variance)},
                  {"uniform_n_variance", finite(t.uniform_n_variance)},
-                 {"uniform_extrapolated", t.uniform_extrapolated}, {"uniform_n_clt", finite(t.uniform_n_clt)},
-                 {"ratio", finite(t.ratio)}, {"text", t.line()}};
+                 {"uniform_extrapolated", t.uniform_extrapolated},
+                 {"uniform_n_clt", finite(t.uniform_n_clt)},
+                 {"ratio", finite(t.ratio)},
+                 {"text", t.line()}};
   return j.dump(1) + "\n";
 }
 
@@ -112,7 +124,7 @@ std::string json_of(const ConvergenceReport& r) {
 // the device and dashed for the reference.
 std::string series_style(const std::string& estimator, bool device) {
   static const std::vector<std::pair<std::string, std::string>> colours = {
-      {"uniform", "#9400d3"}, {"cosine", "#009e73"}, {"mis", "#56b4e9"}, {"dsample", "#e69f00"},
+      {"uniform", "#9400d3"}, {"cosine", "#009e73"}, {"mis", "#56b4e9"},       {"dsample", "#e69f00"},
       {"vndf", "#0072b2"},    {"rqmc", "#d55e00"},   {"quadrature", "#000000"}};
   size_t i = 0;
   while (i < colours.size() && colours[i].first != estimator) ++i;
@@ -122,8 +134,9 @@ std::string series_style(const std::string& estimator, bool device) {
 
 NamedBytes plots(const ConvergenceReport& r, std::vector<std::string>& names) {
   NamedBytes data;
-  std::string gp = "set encoding utf8\nset datafile missing 'nan'\nset logscale xy\nset format y '10^{%L}'\n"
-                   "set format x '10^{%L}'\nset key outside right noenhanced font ',8'\nset grid\n";
+  std::string gp =
+      "set encoding utf8\nset datafile missing 'nan'\nset logscale xy\nset format y '10^{%L}'\n"
+      "set format x '10^{%L}'\nset key outside right noenhanced font ',8'\nset grid\n";
   for (auto& ch : r.checks)
     for (size_t k = 0; k < r.cases.size(); ++k) {
       const std::string st = stem(r, ch, k);
@@ -183,16 +196,17 @@ std::string markdown(const ConvergenceReport& r, const std::vector<std::string>&
        "marks an extrapolation from the last measured error at n^-1/2 (iid MC: the CLT rate) or at the fitted "
        "slope (RQMC, at most -1/2), time proportional to n; pre-asymptotic runs (error ~ the integral: the lobe not "
        "yet found) make such extrapolations far too optimistic. \"not reached\": quadrature that stopped short.\n";
-  s += fmt::format("- **z (top level):** (mean of the replicates - truth) / its standard error; INCONSISTENT where "
-                   "p < {:.1e} (Sidak, family-wise 1e-3; Student t with R-1 dof for RQMC). A biased estimator "
-                   "shows here, and so does an unbiased one whose samples have not yet found the lobe "
-                   "(pre-asymptotic: uniform or cosine sampling at alpha = 1e-3), where the standard error "
-                   "estimate means nothing yet; and a rare event not yet drawn: at GGX alpha = 1e-3 and normal view "
-                   "the albedo's whole loss (4e-8 of 0.04) comes from half vectors beyond 45 degrees, which D "
-                   "sampling draws with probability alpha^2 = 1e-6, so runs without one estimate 0.04 with a "
-                   "standard error of 0. The device's float rounding (3e-7 relative) is part of the allowed "
-                   "deviation.\n",
-                   r.level);
+  s += fmt::format(
+      "- **z (top level):** (mean of the replicates - truth) / its standard error; INCONSISTENT where "
+      "p < {:.1e} (Sidak, family-wise 1e-3; Student t with R-1 dof for RQMC). A biased estimator "
+      "shows here, and so does an unbiased one whose samples have not yet found the lobe "
+      "(pre-asymptotic: uniform or cosine sampling at alpha = 1e-3), where the standard error "
+      "estimate means nothing yet; and a rare event not yet drawn: at GGX alpha = 1e-3 and normal view "
+      "the albedo's whole loss (4e-8 of 0.04) comes from half vectors beyond 45 degrees, which D "
+      "sampling draws with probability alpha^2 = 1e-6, so runs without one estimate 0.04 with a "
+      "standard error of 0. The device's float rounding (3e-7 relative) is part of the allowed "
+      "deviation.\n",
+      r.level);
   s += "- **Estimators:** uniform hemisphere; cosine-weighted; mis = the conformance suite's proposal (d_norm: "
        "cosine lobe + Cauchy slopes, stratified; albedo: cosine + reflected mixture, balance heuristic); dsample = "
        "half vectors from D of the case's shape (GGX or Beckmann, width alpha), albedo only; vndf = visible normals "
@@ -202,13 +216,15 @@ std::string markdown(const ConvergenceReport& r, const std::vector<std::string>&
        "estimated by sampling D: its weight would be 1 by construction.\n";
   s += "- **Truth:** d_norm = 1 (closed form); albedo by the product rule over half vectors (panels geometric "
        "towards the peak and towards the horizon cut), with its error from a coarser rule.\n\n";
-  s += "## Target\n\n" + r.target.line() + "\n\n## Truth\n\n| check | case | value | error estimate |\n|---|---|---|---|\n";
+  s += "## Target\n\n" + r.target.line() +
+       "\n\n## Truth\n\n| check | case | value | error estimate |\n|---|---|---|---|\n";
   for (size_t ci = 0; ci < r.checks.size(); ++ci)
     for (size_t k = 0; k < r.cases.size(); ++k) {
       const auto& t = r.truth[ci][k];
       s += fmt::format("| {} | {} | {:.9f} | {} |\n", r.checks[ci], r.cases[k].name(), t.value,
-                       r.checks[ci] == "d_norm" ? fmt::format("exact (quadrature gives 1 {:+.1e})", t.quadrature_check - 1)
-                                                : fmt::format("{:.1e}", t.error));
+                       r.checks[ci] == "d_norm"
+                           ? fmt::format("exact (quadrature gives 1 {:+.1e})", t.quadrature_check - 1)
+                           : fmt::format("{:.1e}", t.error));
     }
   s += "\n## Slopes and samples / time to tolerance\n" + tables(r, true);
   if (!pngs.empty()) {
@@ -223,8 +239,8 @@ std::string markdown(const ConvergenceReport& r, const std::vector<std::string>&
 }  // namespace
 
 void print_convergence(const ConvergenceReport& r) {
-  fmt::print("device: {} ({}); {} cases x {} checks; {:.1f} s\n", r.device, r.platform, r.cases.size(),
-             r.checks.size(), r.seconds);
+  fmt::print("device: {} ({}); {} cases x {} checks; {:.1f} s\n", r.device, r.platform, r.cases.size(), r.checks.size(),
+             r.seconds);
   fmt::print("{}\n", tables(r, false));
   int bad = 0;
   for (auto& s : r.series)

@@ -1,12 +1,12 @@
 #include "report/energy_report.hpp"
-#include "report/sheen_table.hpp"
 #include "mfv_git_commit.h"
+#include "report/sheen_table.hpp"
 
 #include "catalog/roughness.hpp"
-#include "util/files.hpp"
 #include "report/energy_plots.hpp"
-#include "util/error.hpp"
 #include "runtime/provenance.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -30,8 +30,9 @@ const char* kParam =
     "alpha = microfacet width (GGX/Beckmann slope scale); perceptual roughness r = sqrt(alpha), i.e. alpha = r^2; "
     "a D or G with another native parameter gets it from alpha (Phong: alpha_p = 2/alpha^2 - 2; blinn_rho: rho = "
     "alpha; beckmann_ct82: m = alpha)";
-const char* kGrid = "mu = cos(theta_view) at cell midpoints (m + 1/2)/N_MU, m = 0..N_MU-1; alpha = 10^(-3 + 3a/(N_ALPHA-1)), "
-                    "a = 0..N_ALPHA-1 (log spacing, 1e-3..1)";
+const char* kGrid =
+    "mu = cos(theta_view) at cell midpoints (m + 1/2)/N_MU, m = 0..N_MU-1; alpha = 10^(-3 + 3a/(N_ALPHA-1)), "
+    "a = 0..N_ALPHA-1 (log spacing, 1e-3..1)";
 const char* kMethod =
     "E = directional albedo with F = 1; A, B: Schlick split sum E_F = F0*A + F90*B (B = albedo with F = (1-o.h)^5, "
     "A = E - B on the same points); E_avg = 2*int E(mu) mu dmu as its own integral (mu^2 stratified). "
@@ -70,30 +71,38 @@ void print_energy_console(const EnergyReport& rep) {
     fmt::print("{}\n", line);
   }
   if (!rep.models.empty()) {
-    fmt::print("whole models: E(mu_l) with mu_l = the light's cosine, F as the model has it; gains = E > 1 beyond "
-               "noise (one-sided t, Bonferroni over {} cells, family-wise {:g})\n",
-               rep.models.size() * nm, o.gain_alpha);
-    fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10} {:>6} {:>9}\n", "model[case]", "E(mu_l=" + fmt::format("{:.3g}", rep.mu.back()) + ")",
-               "max E (at mu_l)", "E_avg", "1 - E_avg", "gains", "catalog");
+    fmt::print(
+        "whole models: E(mu_l) with mu_l = the light's cosine, F as the model has it; gains = E > 1 beyond "
+        "noise (one-sided t, Bonferroni over {} cells, family-wise {:g})\n",
+        rep.models.size() * nm, o.gain_alpha);
+    fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10} {:>6} {:>9}\n", "model[case]",
+               "E(mu_l=" + fmt::format("{:.3g}", rep.mu.back()) + ")", "max E (at mu_l)", "E_avg", "1 - E_avg", "gains",
+               "catalog");
     for (auto& me : rep.models) {
       const Cell& mx = me.E[me.max_at];
       fmt::print("{:<36} {:>16} {:>22} {:>16} {:>10.5f} {:>6} {:>9}\n", me.point.name,
                  fmt::format("{:.5f}±{:.1e}", me.E.back().mean, me.E.back().se),
                  fmt::format("{:.4f}±{:.1e} ({:.3g})", mx.mean, mx.se, rep.mu[me.max_at]),
                  fmt::format("{:.5f}±{:.1e}", me.eavg.mean, me.eavg.se), me.loss(),
-                 me.gains ? "GAINS" : me.unresolved ? "UNRES" : "no", expect_name(me.point.expect));
+                 me.gains        ? "GAINS"
+                 : me.unresolved ? "UNRES"
+                                 : "no",
+                 expect_name(me.point.expect));
     }
   }
-  fmt::print("accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
-             "{:.2e} at {}; {} values above target\n",
-             o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
-  fmt::print("reference (double, identical samples): {} integrals x {} samples, worst relative difference {:.2e} "
-             "(bound {:.0e}){}\n",
-             rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound,
-             rep.reference_worst <= rep.reference_bound ? "" : " FAILED at " + rep.reference_worst_at);
-  fmt::print("{:.3g} QMC points (one BRDF evaluation each, E and B together) in {:.2f} s ({:.2f} s kernel build): "
-             "{:.3g} points/s on {}\n",
-             double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second, rep.device);
+  fmt::print(
+      "accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
+      "{:.2e} at {}; {} values above target\n",
+      o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
+  fmt::print(
+      "reference (double, identical samples): {} integrals x {} samples, worst relative difference {:.2e} "
+      "(bound {:.0e}){}\n",
+      rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound,
+      rep.reference_worst <= rep.reference_bound ? "" : " FAILED at " + rep.reference_worst_at);
+  fmt::print(
+      "{:.3g} QMC points (one BRDF evaluation each, E and B together) in {:.2f} s ({:.2f} s kernel build): "
+      "{:.3g} points/s on {}\n",
+      double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second, rep.device);
 }
 
 void print_baseline_console(const BaselineDiff& d) {
@@ -135,8 +144,7 @@ nlohmann::json table_json(const EnergyTable& t, size_t nm) {
               {"g", t.g->id},
               {"f", "none"},
               {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
-              {"g_param", t.g->params.empty() ? json(nullptr)
-                                              : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
+              {"g_param", t.g->params.empty() ? json(nullptr) : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
               {"E", grid(t.E, false)},
               {"E_se", grid(t.E, true)},
               {"A", grid(t.A, false)},
@@ -173,7 +181,8 @@ nlohmann::json model_json(const ModelEnergy& me, const std::vector<double>& mu) 
               {"max_E_se", me.E[me.max_at].se},
               {"max_E_mu", mu[me.max_at]},
               {"excess_p", me.excess_p},
-              {"gains", me.gains}, {"unresolved", me.unresolved},
+              {"gains", me.gains},
+              {"unresolved", me.unresolved},
               {"catalog_expect", expect_name(me.point.expect)},
               {"catalog_why", me.point.why}};
 }
@@ -186,7 +195,9 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   j["schema"] = "mfv-energy/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
-  j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
+  j["device"] = {{"name", rt.device().name},
+                 {"platform", rt.device().platform},
+                 {"driver", rt.device().driver},
                  {"fp64", rt.device().fp64}};
   j["build_options"] = rt.base_options();
   j["date"] = utc_timestamp();
@@ -194,12 +205,20 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   j["method"] = kMethod;
   std::vector<double> r;
   for (double a : rep.alpha) r.push_back(perceptual_from_alpha(a));
-  j["grid"] = {{"definition", kGrid}, {"mu", rep.mu}, {"alpha", rep.alpha}, {"perceptual_r", r},
+  j["grid"] = {{"definition", kGrid},
+               {"mu", rep.mu},
+               {"alpha", rep.alpha},
+               {"perceptual_r", r},
                {"layout", "arrays are [alpha index][mu index]"}};
   const auto& o = rep.opt;
-  j["options"] = {{"seed", o.seed},           {"target_se", o.target},         {"replicates", o.replicates},
-                  {"min_points", o.min_points}, {"max_points", o.max_points}, {"models", o.models},
-                  {"reference_samples", o.reference_samples}, {"reference_every", o.reference_every}};
+  j["options"] = {{"seed", o.seed},
+                  {"target_se", o.target},
+                  {"replicates", o.replicates},
+                  {"min_points", o.min_points},
+                  {"max_points", o.max_points},
+                  {"models", o.models},
+                  {"reference_samples", o.reference_samples},
+                  {"reference_every", o.reference_every}};
   j["summary"] = {{"max_se", rep.max_se},
                   {"max_se_at", rep.max_se_at},
                   {"values_above_target", rep.above_target},
@@ -207,8 +226,10 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                   {"build_seconds", rep.build_seconds},
                   {"samples", rep.samples},
                   {"samples_per_second", rep.samples_per_second}};
-  j["reference"] = {{"compared", rep.reference_compared}, {"worst_relative", rep.reference_worst},
-                    {"bound", rep.reference_bound},       {"worst_at", rep.reference_worst_at},
+  j["reference"] = {{"compared", rep.reference_compared},
+                    {"worst_relative", rep.reference_worst},
+                    {"bound", rep.reference_bound},
+                    {"worst_at", rep.reference_worst_at},
                     {"ok", rep.reference_worst <= rep.reference_bound}};
   j["combinations"] = json::array();
   for (auto& t : rep.tables) j["combinations"].push_back(table_json(t, rep.mu.size()));
@@ -221,28 +242,30 @@ namespace {
 
 // Whole models: one row per point and light cosine; E_avg per point.
 std::string models_csv(const EnergyReport& rep) {
-  std::string s = fmt::format("# mfv energy {}: whole models (host/catalog/models.cpp), E(mu_l) with mu_l = cos of the "
-                              "light, F as the model has it; seed {}; commit {}\n# grid: mu_l = (m + 1/2)/N_MU\n# "
-                              "method: {}\n",
-                              MFV_VERSION, rep.opt.seed, MFV_GIT_COMMIT, kMethod);
+  std::string s = fmt::format(
+      "# mfv energy {}: whole models (host/catalog/models.cpp), E(mu_l) with mu_l = cos of the "
+      "light, F as the model has it; seed {}; commit {}\n# grid: mu_l = (m + 1/2)/N_MU\n# "
+      "method: {}\n",
+      MFV_VERSION, rep.opt.seed, MFV_GIT_COMMIT, kMethod);
   s += "name,model,params,mu_index,mu_l,theta_l_deg,E,E_se,energy_loss,points\n";
   for (auto& me : rep.models) {
     std::string ps;
     for (size_t i = 0; i < me.point.model->params.size(); ++i)
       ps += fmt::format("{}{}={:.9g}", i ? ";" : "", me.point.model->params[i].name, me.point.p[i]);
     for (size_t m = 0; m < rep.mu.size(); ++m)
-      s += fmt::format("\"{}\",{},{},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{}\n", me.point.name, me.point.model->id, ps, m,
-                       rep.mu[m], std::acos(rep.mu[m]) * 180 / M_PI, me.E[m].mean, me.E[m].se, 1 - me.E[m].mean,
+      s += fmt::format("\"{}\",{},{},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{}\n", me.point.name, me.point.model->id, ps,
+                       m, rep.mu[m], std::acos(rep.mu[m]) * 180 / M_PI, me.E[m].mean, me.E[m].se, 1 - me.E[m].mean,
                        me.points[m]);
   }
   return s;
 }
 
 std::string models_eavg_csv(const EnergyReport& rep) {
-  std::string s = fmt::format("# mfv energy {}: whole models, E_avg = 2 int E(mu_l) mu_l dmu_l (own integral; "
-                              "quadrature: midpoint rule over the mu grid), energy loss 1 - E_avg, largest E and "
-                              "whether it exceeds 1 beyond noise\n",
-                              MFV_VERSION);
+  std::string s = fmt::format(
+      "# mfv energy {}: whole models, E_avg = 2 int E(mu_l) mu_l dmu_l (own integral; "
+      "quadrature: midpoint rule over the mu grid), energy loss 1 - E_avg, largest E and "
+      "whether it exceeds 1 beyond noise\n",
+      MFV_VERSION);
   s += "name,model,E_avg,E_avg_se,E_avg_quadrature,E_avg_quadrature_se,energy_loss,max_E,max_E_se,max_E_mu_l,"
        "excess_p,gains,catalog_expect\n";
   for (auto& me : rep.models)
@@ -275,10 +298,11 @@ std::string csv_of(const EnergyReport& rep, const EnergyTable& t) {
 }
 
 std::string eavg_csv(const EnergyReport& rep) {
-  std::string s = fmt::format("# mfv energy {}: average albedo E_avg(alpha) = 2 int E(mu) mu dmu, F = none\n# "
-                              "parameterization: {}\n# grid: {}\n# E_avg: own integral; E_avg_quadrature: midpoint "
-                              "rule over the mu grid (cross-check)\n",
-                              MFV_VERSION, kParam, kGrid);
+  std::string s = fmt::format(
+      "# mfv energy {}: average albedo E_avg(alpha) = 2 int E(mu) mu dmu, F = none\n# "
+      "parameterization: {}\n# grid: {}\n# E_avg: own integral; E_avg_quadrature: midpoint "
+      "rule over the mu grid (cross-check)\n",
+      MFV_VERSION, kParam, kGrid);
   s += "d,g,alpha_index,alpha,perceptual_r,E_avg,E_avg_se,E_avg_quadrature,E_avg_quadrature_se\n";
   for (auto& t : rep.tables)
     for (size_t a = 0; a < rep.alpha.size(); ++a)
@@ -296,7 +320,8 @@ std::string header_of(const EnergyReport& rep) {
   };
   std::string s = fmt::format(
       "/* Kulla-Conty energy compensation data, generated by mfv energy {} (commit {}, seed {}).\n"
-      " * Parameterization: {}.\n * Grid: {}.\n * MFV_E_<d>_<g>[a][m] = E(mu[m], alpha[a]), directional albedo with F = "
+      " * Parameterization: {}.\n * Grid: {}.\n * MFV_E_<d>_<g>[a][m] = E(mu[m], alpha[a]), directional albedo with F "
+      "= "
       "1;\n * MFV_EAVG_<d>_<g>[a] = E_avg(alpha[a]) = 2 int E(mu) mu dmu.\n * Kulla & Conty 2017: f_ms(i,o) = (1 - "
       "E(mu_i))(1 - E(mu_o)) / (pi (1 - E_avg)).\n * Standard error per value <= {:.2e} (max achieved), see "
       "energy.json. C and C++. */\n#ifndef MFV_KULLA_CONTY_H\n#define MFV_KULLA_CONTY_H\n\n#define MFV_ENERGY_N_MU "
@@ -306,7 +331,8 @@ std::string header_of(const EnergyReport& rep) {
       arr(rep.alpha));
   for (auto& t : rep.tables) {
     const std::string id = ident(t.d->id + "_" + t.g->id);
-    s += fmt::format("\n/* D = {}, G = {} */\nstatic const float MFV_E_{}[{}][{}] = {{\n", t.d->id, t.g->id, id, na, nm);
+    s +=
+        fmt::format("\n/* D = {}, G = {} */\nstatic const float MFV_E_{}[{}][{}] = {{\n", t.d->id, t.g->id, id, na, nm);
     for (size_t a = 0; a < na; ++a) {
       std::vector<double> row;
       for (size_t m = 0; m < nm; ++m) row.push_back(t.E[a * nm + m].mean);
@@ -328,25 +354,29 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
                    rt.device().name, rt.device().platform, utc_timestamp());
   s += fmt::format("- **Parameterization:** {}.\n- **Grid:** {} ({} x {}).\n- **Method:** {}.\n", kParam, kGrid,
                    rep.mu.size(), na, kMethod);
-  s += fmt::format("- **Accuracy:** target standard error {:.1e} per value (R = {} replicates of {}..{} points, "
-                   "doubled or more where above target); achieved max standard error **{:.2e}** ({}); {} values above "
-                   "target.\n",
-                   o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
-  s += fmt::format("- **Reference:** the double-precision twin of the estimator on identical samples, {} integrals x {} "
-                   "samples: worst relative difference {:.2e} (bound {:.0e}).\n",
-                   rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound);
-  s += fmt::format("- **Speed:** {:.3g} QMC points (one BRDF evaluation each, E and B together) in {:.1f} s ({:.1f} s "
-                   "kernel build), {:.3g} points/s.\n\n",
-                   double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second);
+  s += fmt::format(
+      "- **Accuracy:** target standard error {:.1e} per value (R = {} replicates of {}..{} points, "
+      "doubled or more where above target); achieved max standard error **{:.2e}** ({}); {} values above "
+      "target.\n",
+      o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
+  s += fmt::format(
+      "- **Reference:** the double-precision twin of the estimator on identical samples, {} integrals x {} "
+      "samples: worst relative difference {:.2e} (bound {:.0e}).\n",
+      rep.reference_compared, o.reference_samples, rep.reference_worst, rep.reference_bound);
+  s += fmt::format(
+      "- **Speed:** {:.3g} QMC points (one BRDF evaluation each, E and B together) in {:.1f} s ({:.1f} s "
+      "kernel build), {:.3g} points/s.\n\n",
+      double(rep.samples), rep.seconds, rep.build_seconds, rep.samples_per_second);
   // the files this run writes (energy_outputs): the tables' only where there are tables
   s += rep.tables.empty() ? "Files: `energy.json` (everything), `csv/models.csv`, `csv/models_eavg.csv`.\n\n"
                           : "Files: `energy.json` (everything, arrays [alpha][mu]), `csv/<d>__<g>.csv` (one per "
                             "combination, grid in the header), `csv/eavg.csv`, `kulla_conty.h` (E and E_avg arrays "
                             "for a renderer).\n\n";
   if (base) {
-    s += fmt::format("## Baseline comparison\n\n{} values compared (Welch t-test on the two standard errors, "
-                     "Bonferroni threshold p < {:.2e}): **{} moved**.\n\n",
-                     base->compared, base->threshold_p, base->moved.size());
+    s += fmt::format(
+        "## Baseline comparison\n\n{} values compared (Welch t-test on the two standard errors, "
+        "Bonferroni threshold p < {:.2e}): **{} moved**.\n\n",
+        base->compared, base->threshold_p, base->moved.size());
     for (size_t i = 0; i < base->moved.size() && i < 50; ++i)
       s += fmt::format("- {}: {:.6f} -> {:.6f} (se {:.1e}, p = {:.1e})\n", base->moved[i].where, base->moved[i].before,
                        base->moved[i].after, base->moved[i].se, base->moved[i].p);
@@ -369,18 +399,23 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
     s += "\n";
   }
   if (!rep.models.empty()) {
-    s += fmt::format("\n## Whole models\n\nE(mu_l) with mu_l the light's cosine and F as the model has it "
-                     "(`csv/models.csv`, `csv/models_eavg.csv`); *gains*: some E(mu_l) exceeds 1 beyond noise "
-                     "(one-sided t, Bonferroni over {} cells, family-wise {:g}); *catalog*: what `mfv run`'s energy "
-                     "check expects at cos_l from 1e-4 to 1.\n\n",
-                     rep.models.size() * rep.mu.size(), o.gain_alpha);
-    s += fmt::format("| model[case] | E(mu_l={:.3g}) | max E (mu_l) | E_avg | 1 - E_avg | gains | catalog |\n"
-                     "|---|---|---|---|---|---|---|\n",
-                     rep.mu.back());
+    s += fmt::format(
+        "\n## Whole models\n\nE(mu_l) with mu_l the light's cosine and F as the model has it "
+        "(`csv/models.csv`, `csv/models_eavg.csv`); *gains*: some E(mu_l) exceeds 1 beyond noise "
+        "(one-sided t, Bonferroni over {} cells, family-wise {:g}); *catalog*: what `mfv run`'s energy "
+        "check expects at cos_l from 1e-4 to 1.\n\n",
+        rep.models.size() * rep.mu.size(), o.gain_alpha);
+    s += fmt::format(
+        "| model[case] | E(mu_l={:.3g}) | max E (mu_l) | E_avg | 1 - E_avg | gains | catalog |\n"
+        "|---|---|---|---|---|---|---|\n",
+        rep.mu.back());
     for (auto& me : rep.models)
       s += fmt::format("| {} | {:.5f} ± {:.1e} | {:.4f} ± {:.1e} ({:.3g}) | {:.5f} ± {:.1e} | {:.5f} | {} | {} |\n",
                        me.point.name, me.E.back().mean, me.E.back().se, me.E[me.max_at].mean, me.E[me.max_at].se,
-                       rep.mu[me.max_at], me.eavg.mean, me.eavg.se, me.loss(), me.gains ? "**yes**" : me.unresolved ? "unresolved" : "no",
+                       rep.mu[me.max_at], me.eavg.mean, me.eavg.se, me.loss(),
+                       me.gains        ? "**yes**"
+                       : me.unresolved ? "unresolved"
+                                       : "no",
                        expect_name(me.point.expect));
   }
   if (!plots.empty()) {

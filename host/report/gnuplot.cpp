@@ -43,7 +43,8 @@ std::string series_colour(size_t i) {
   return fmt::format("lc rgb '{}'", colours[i % (sizeof colours / sizeof colours[0])]);
 }
 
-NamedBytes render_gnuplot(const NamedBytes& inputs, const std::string& script, const std::vector<std::string>& outputs) {
+NamedBytes render_gnuplot(const NamedBytes& inputs, const std::string& script,
+                          const std::vector<std::string>& outputs) {
   namespace fs = std::filesystem;
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     fmt::print("gnuplot not found: plots skipped (install gnuplot-nox); tables and report still written\n");

@@ -51,11 +51,10 @@ std::pair<double, double> ranges_of(const SamplerResult& r) {
 std::string script_of(const SamplerResult& r, const std::string& stem) {
   const auto [counts, diff] = ranges_of(r);
   std::string gp = fmt::format("set terminal pngcairo size 1500,460 font ',9'\nset output '{}.png'\n", stem);
-  gp += fmt::format(
-      "set multiplot layout 1,3 title '{}: χ^2 = {:.1f}, {} dof, p = {:.3g} (level {:.3g}): {}'\n",
-      gnuplot_literal(fmt::format("{} w = {:g}, cos_o = {:g}, {} draws", sampler_name(r.c.sampler), r.c.width,
-                                  r.c.cos_o, r.impl)),
-      r.chi2, r.dof, r.p_value, r.level, r.pass() ? "pass" : "FAIL");
+  gp += fmt::format("set multiplot layout 1,3 title '{}: χ^2 = {:.1f}, {} dof, p = {:.3g} (level {:.3g}): {}'\n",
+                    gnuplot_literal(fmt::format("{} w = {:g}, cos_o = {:g}, {} draws", sampler_name(r.c.sampler),
+                                                r.c.width, r.c.cos_o, r.impl)),
+                    r.chi2, r.dof, r.p_value, r.level, r.pass() ? "pass" : "FAIL");
   gp += "set xlabel 'φ (deg)'\nset ylabel 'cos θ'\nset xrange [0:360]\n";
   gp += fmt::format("set yrange [{:g}:1]\nset palette rgb 33,13,10\nset cbrange [0:{:g}]\n", r.cos_low, counts);
   gp += fmt::format("set title 'observed'\nplot '{}.dat' using 1:2:3 with image notitle\n", stem);
@@ -63,8 +62,8 @@ std::string script_of(const SamplerResult& r, const std::string& stem) {
   // a diverging palette centred on 0 for the residuals
   gp += fmt::format("set palette defined (-1 '#2166ac', 0 '#f7f7f7', 1 '#b2182b')\nset cbrange [{:g}:{:g}]\n", -diff,
                     diff);
-  gp += fmt::format(
-      "set title '(observed − expected) / √expected'\nplot '{}.dat' using 1:2:5 with image notitle\n", stem);
+  gp += fmt::format("set title '(observed − expected) / √expected'\nplot '{}.dat' using 1:2:5 with image notitle\n",
+                    stem);
   gp += "unset multiplot\nunset cbrange\n";
   return gp;
 }

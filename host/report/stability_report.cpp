@@ -4,10 +4,10 @@
 #include "report/stability_report.hpp"
 #include "mfv_git_commit.h"
 
-#include "util/files.hpp"
 #include "report/gnuplot.hpp"
-#include "util/error.hpp"
 #include "runtime/provenance.hpp"
+#include "util/error.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -86,8 +86,8 @@ std::string stability_console(const StabilityReport& rep) {
       row(c);
   }
   if (brdfs)
-    o += fmt::format("{} BRDF combinations: {} NaN, {} Inf, {} negative, {} breaking points; max {} ulps ({})\n",
-                     brdfs, brdf_nan, brdf_inf, brdf_neg, brdf_breaks, num(brdf_ulps), brdf_worst);
+    o += fmt::format("{} BRDF combinations: {} NaN, {} Inf, {} negative, {} breaking points; max {} ulps ({})\n", brdfs,
+                     brdf_nan, brdf_inf, brdf_neg, brdf_breaks, num(brdf_ulps), brdf_worst);
   for (auto& c : rep.cases)
     if (c.group == "variant")
       if (auto* r = first_broken(c)) o += fmt::format("  {} first breaks at {}\n", c.name, r->first_break);
@@ -120,13 +120,14 @@ std::string stability_json(const StabilityReport& rep) {
   j["gate"] = {{"pass", rep.gate_pass()}, {"failures", rep.gate_failures}};
   j["cases"] = json::array();
   for (auto& c : rep.cases) {
-    json jc{{"name", c.name},   {"group", c.group}, {"family", c.family},
+    json jc{{"name", c.name},       {"group", c.group},   {"family", c.family},
             {"formula", c.formula}, {"stable", c.stable}, {"default", c.is_default}};
     jc["regions"] = json::array();
     for (auto& r : c.regions) {
-      json jr{{"region", r.region},   {"inputs", r.what},     {"in_domain", r.in_domain}, {"points", r.points},
-              {"nan", r.nan},         {"inf", r.inf},         {"negative", r.negative},   {"breaks", r.breaks},
-              {"max_rel", r.max_rel}, {"max_ulps", r.max_ulps}, {"worst", r.worst},       {"first_break", r.first_break}};
+      json jr{{"region", r.region},     {"inputs", r.what},   {"in_domain", r.in_domain},
+              {"points", r.points},     {"nan", r.nan},       {"inf", r.inf},
+              {"negative", r.negative}, {"breaks", r.breaks}, {"max_rel", r.max_rel},
+              {"max_ulps", r.max_ulps}, {"worst", r.worst},   {"first_break", r.first_break}};
       jr["out_of_domain"] = r.out_of_domain;  // outside the value's domain where the reference is inside
       if (!r.first_out_of_domain.empty()) jr["first_out_of_domain"] = r.first_out_of_domain;
       if (!r.expect.empty()) {
@@ -150,12 +151,13 @@ std::string stability_markdown(const StabilityReport& rep) {
   o += fmt::format("{} points; build {:.2f} s, kernel {:.2f} s, reference {:.2f} s, total {:.2f} s.\n\n", rep.points,
                    rep.build_seconds, rep.kernel_seconds, rep.reference_seconds, rep.total_seconds);
   o += "Every point is evaluated by the kernel and by the double reference on identical (rounded) inputs. ";
-  o += fmt::format("*Inf* counts kernel infinities where the reference is finite; *neg* counts negative kernel "
-                   "values where the reference is not; a point *breaks* when it is NaN, Inf, negative or more than "
-                   "{} ulps from the reference (and further from it than the smallest normal number). *expect* is "
-                   "the value the seeds prescribe (seed 000: G1 = 1 at (v.n) >= 1 and at tan = 0; every D, G, G1 and "
-                   "BRDF is 0 below the horizon), with violations by kernel / reference.\n\n",
-                   kBreakUlps);
+  o += fmt::format(
+      "*Inf* counts kernel infinities where the reference is finite; *neg* counts negative kernel "
+      "values where the reference is not; a point *breaks* when it is NaN, Inf, negative or more than "
+      "{} ulps from the reference (and further from it than the smallest normal number). *expect* is "
+      "the value the seeds prescribe (seed 000: G1 = 1 at (v.n) >= 1 and at tan = 0; every D, G, G1 and "
+      "BRDF is 0 below the horizon), with violations by kernel / reference.\n\n",
+      kBreakUlps);
   if (rep.precision == "float64")
     o += "In float64 the double reference is no more precise than the kernel: accuracy breaks there include the "
          "reference's own losses (e.g. D through n.h where 1 - n.h is below ~1e-8, or (n.h)^alpha_p for large "
@@ -173,7 +175,8 @@ std::string stability_markdown(const StabilityReport& rep) {
          "first break |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (auto& c : rep.cases) {
       if (c.group != group) continue;
-      std::string name = c.name + (group == "variant" ? (c.is_default ? " (default)" : "") : (c.stable ? "" : " (not stable)"));
+      std::string name =
+          c.name + (group == "variant" ? (c.is_default ? " (default)" : "") : (c.stable ? "" : " (not stable)"));
       for (auto& r : c.regions) {
         std::string ex = r.expect.empty() ? "" : fmt::format("{} ({}/{})", r.expect, r.violations, r.ref_violations);
         o += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", name, r.region,
@@ -196,8 +199,8 @@ std::string stability_markdown(const StabilityReport& rep) {
       auto* fb = first_broken(c);
       o += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c.name, c.stable ? "yes" : "no",
                        points_of(c), c.count(&RegionResult::nan, false), c.count(&RegionResult::inf, false),
-                       c.count(&RegionResult::negative, false), c.count(&RegionResult::breaks, false), num(c.max_ulps()),
-                       breaks_in(c), fb ? "`" + fb->first_break + "`" : "");
+                       c.count(&RegionResult::negative, false), c.count(&RegionResult::breaks, false),
+                       num(c.max_ulps()), breaks_in(c), fb ? "`" + fb->first_break + "`" : "");
     }
     o += "\nBRDF regions: ";
     for (auto& c : rep.cases)
@@ -207,7 +210,8 @@ std::string stability_markdown(const StabilityReport& rep) {
       }
     o += "\n\n";
   }
-  o += "## Plots\n\n`error_theta_d.svg`, `error_theta_g1.svg` (and `.png`): ulps against the reference over θ (near the normal and "
+  o += "## Plots\n\n`error_theta_d.svg`, `error_theta_g1.svg` (and `.png`): ulps against the reference over θ (near "
+       "the normal and "
        "near grazing) for the GGX forms and the catalog terms; `error_alpha.svg`: the largest error over θ for each "
        "alpha. NaN, Inf and negative results are drawn at 1e12 ulps, exact results at 0.01.\n";
   return o;
@@ -296,8 +300,9 @@ std::vector<Plot> make_plots(const StabilityReport& rep) {
   for (auto& s : rep.scans)
     if (s.name.rfind("D ", 0) == 0) add_theta_series(d, rep, s.name, 1e-2);
   Plot g{"error_theta_g1", "Smith GGX Lambda and G1 forms and catalog G1 terms, " + rep.precision, {}, true, ""};
-  for (auto* n : {"variant Lambda_ggx via tan2", "variant Lambda_ggx via cos", "variant Lambda_ggx via x/(2(1+sqrt(1+x)))",
-                  "variant G1_smith_ggx via Lambda", "variant G1_smith_ggx closed form"})
+  for (auto* n :
+       {"variant Lambda_ggx via tan2", "variant Lambda_ggx via cos", "variant Lambda_ggx via x/(2(1+sqrt(1+x)))",
+        "variant G1_smith_ggx via Lambda", "variant G1_smith_ggx closed form"})
     add_theta_series(g, rep, n, 0.3);
   for (auto& s : rep.scans)
     if (s.name.rfind("G1 ", 0) == 0) add_theta_series(g, rep, s.name, 0.3);
@@ -357,7 +362,8 @@ std::vector<std::string> write_stability_outputs(const StabilityReport& rep, con
   if (plots.empty()) return notes;
   std::string gp = find_gnuplot();
   if (gp.empty()) {
-    notes.push_back("plots skipped: gnuplot not found (apt-get install gnuplot-nox); plot data and scripts are in " + dir);
+    notes.push_back("plots skipped: gnuplot not found (apt-get install gnuplot-nox); plot data and scripts are in " +
+                    dir);
     return notes;
   }
   std::vector<std::string> made;

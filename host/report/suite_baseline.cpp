@@ -18,7 +18,8 @@ using nlohmann::json;
 // results.json rounds them, and the input a measured maximum names.
 std::string key_of(const json& r) {
   const std::string d = r.at("D").get<std::string>(), model = r.at("model").get<std::string>();
-  const std::string terms = d.empty() ? "" : d + "/" + r.at("G").get<std::string>() + "/" + r.at("F").get<std::string>();
+  const std::string terms =
+      d.empty() ? "" : d + "/" + r.at("G").get<std::string>() + "/" + r.at("F").get<std::string>();
   return fmt::format("{} {}{}{} {}", r.at("check").get<std::string>(), terms, terms.empty() || model.empty() ? "" : " ",
                      model, r.at("params").dump());
 }
@@ -40,9 +41,9 @@ json parse_run_baseline(const std::string& text) {
     throw Error(fmt::format("--baseline is not JSON: {}", e.what()));
   }
   // results.json before the "schema" key said "schema_version": 1
-  const bool run_schema = !j.is_object()            ? false
-                          : j.contains("schema")    ? j["schema"] == "mfv-run/1"
-                                                    : j.contains("schema_version") && j["schema_version"] == 1;
+  const bool run_schema = !j.is_object()         ? false
+                          : j.contains("schema") ? j["schema"] == "mfv-run/1"
+                                                 : j.contains("schema_version") && j["schema_version"] == 1;
   if (!run_schema || !j.contains("results") || !j["results"].is_array())
     throw Error("--baseline is not an mfv run results.json (schema mfv-run/1)");
   return j;

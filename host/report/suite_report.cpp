@@ -1,9 +1,9 @@
 #include "report/suite_report.hpp"
 #include "mfv_git_commit.h"
 
-#include "util/files.hpp"
-#include "runtime/provenance.hpp"
 #include "report/junit.hpp"
+#include "runtime/provenance.hpp"
+#include "util/files.hpp"
 #include "util/version.hpp"
 
 #include <fmt/format.h>
@@ -20,7 +20,6 @@ double sig(double x, int n) {
   if (!std::isfinite(x) || x == 0) return x;
   return std::stod(fmt::format("{:.{}g}", x, n));
 }
-
 
 std::string params_text(const PointResult& p) {
   std::string s;
@@ -39,8 +38,8 @@ double total_seconds(const SuiteReport& rep) {
 std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
   const PointResult& p = rep.points[g.worst];
   if (p.bounded)
-    return fmt::format("{} {:.3g} (bound {:.0e}){}{}{}{}", p.measure, p.estimate, p.bound, p.params.empty() ? "" : " at ",
-                       params_text(p), p.detail.empty() ? "" : ": ", p.detail);
+    return fmt::format("{} {:.3g} (bound {:.0e}){}{}{}{}", p.measure, p.estimate, p.bound,
+                       p.params.empty() ? "" : " at ", params_text(p), p.detail.empty() ? "" : ": ", p.detail);
   return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {:.1f}) vs {:g}{} at {}", p.estimate, p.stderr_, p.bias, p.z,
                      p.expected, p.upper_only ? " (max)" : "", params_text(p));
 }
@@ -48,8 +47,8 @@ std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
 // The pooled test of a group, one line (stats/verdict.hpp).
 std::string pooled_text(const GroupResult& g) {
   const stats::Pooled& p = g.pooled;
-  return fmt::format("pooled over {} integrals: mean deviation {:+.2e} ± {:.1e} (bias bound {:.1e}), {} {:.2f} -> {}", p.n,
-                     p.mean, p.se, p.bias, p.upper_only ? "one-sided z >" : "|z| >", p.threshold,
+  return fmt::format("pooled over {} integrals: mean deviation {:+.2e} ± {:.1e} (bias bound {:.1e}), {} {:.2f} -> {}",
+                     p.n, p.mean, p.se, p.bias, p.upper_only ? "one-sided z >" : "|z| >", p.threshold,
                      p.failed ? "FAIL" : "pass");
 }
 
@@ -58,12 +57,13 @@ std::string pooled_text(const GroupResult& g) {
 std::string reference_line(const SuiteReport& rep) {
   const std::string at = rep.reference_worst_at.empty() ? "" : " at " + rep.reference_worst_at;
   if (rep.reference_twin)
-    return fmt::format("reference on the same samples (float kernel, its double twin, double reference): {} integrals "
-                       "compared, worst formula gap {:.2g} x its derived bound ({}){}",
-                       rep.reference_compared, rep.reference_worst, rep.reference_ok() ? "ok" : "FAILED", at);
-  return fmt::format("reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}",
-                     rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED",
-                     at);
+    return fmt::format(
+        "reference on the same samples (float kernel, its double twin, double reference): {} integrals "
+        "compared, worst formula gap {:.2g} x its derived bound ({}){}",
+        rep.reference_compared, rep.reference_worst, rep.reference_ok() ? "ok" : "FAILED", at);
+  return fmt::format(
+      "reference on the same samples: {} integrals compared, worst disagreement {:.2e} (bound {:g}: {}){}",
+      rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED", at);
 }
 
 void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
@@ -72,9 +72,10 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
   for (auto& c : rep.stats)
     fmt::print("{:<16} {:>10} {:>14} {:>8.2f} {:>14.3g}\n", c.check, c.integrals, c.samples, c.seconds,
                c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
-  fmt::print("kernel builds {:.2f} s (apart from run time); {} statistical tests and {} pooled, family-wise false-alarm "
-             "{:g} (half each) -> |z| > {:.2f} per integral\n",
-             rep.build_seconds, rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
+  fmt::print(
+      "kernel builds {:.2f} s (apart from run time); {} statistical tests and {} pooled, family-wise false-alarm "
+      "{:g} (half each) -> |z| > {:.2f} per integral\n",
+      rep.build_seconds, rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
   if (!rep.reference_note.empty())
     fmt::print("{}\n", rep.reference_note);
   else
@@ -127,32 +128,55 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
   using nlohmann::json;
   json j;
   j["schema"] = "mfv-run/1";
-  j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}, {"describe", MFV_GIT_DESCRIBE},
+  j["tool"] = {{"name", "mfv"},
+               {"version", MFV_VERSION},
+               {"commit", MFV_GIT_COMMIT},
+               {"describe", MFV_GIT_DESCRIBE},
                {"command", rep.title}};
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
-  j["run"] = {{"seed", opt.seed},       {"scale", opt.scale},
-              {"family_alpha", opt.family_alpha}, {"z_threshold", rep.z_threshold},
-              {"tests", rep.tests},     {"pooled_tests", rep.pooled_tests}, {"date", utc_timestamp()},
-              {"checks", opt.checks},   {"models", opt.models}};
-  j["device"] = {{"name", rt.device().name}, {"platform", rt.device().platform}, {"driver", rt.device().driver},
-                 {"version", rt.device().version}, {"fp64", rt.device().fp64}};
+  j["run"] = {{"seed", opt.seed},
+              {"scale", opt.scale},
+              {"family_alpha", opt.family_alpha},
+              {"z_threshold", rep.z_threshold},
+              {"tests", rep.tests},
+              {"pooled_tests", rep.pooled_tests},
+              {"date", utc_timestamp()},
+              {"checks", opt.checks},
+              {"models", opt.models}};
+  j["device"] = {{"name", rt.device().name},
+                 {"platform", rt.device().platform},
+                 {"driver", rt.device().driver},
+                 {"version", rt.device().version},
+                 {"fp64", rt.device().fp64}};
   j["build"] = {{"options", rt.base_options()}, {"seconds", rep.build_seconds}, {"builds", rt.build_stats().builds}};
   j["timings"] = json::array();
   for (auto& c : rep.stats)
-    j["timings"].push_back({{"check", c.check}, {"integrals", c.integrals}, {"samples", c.samples}, {"seconds", c.seconds}});
-  j["reference"] = {{"compared", rep.reference_compared}, {"samples_each", opt.reference_samples},
+    j["timings"].push_back(
+        {{"check", c.check}, {"integrals", c.integrals}, {"samples", c.samples}, {"seconds", c.seconds}});
+  j["reference"] = {{"compared", rep.reference_compared},    {"samples_each", opt.reference_samples},
                     {"worst_relative", rep.reference_worst}, {"bound", rep.reference_bound},
-                    {"derived_bounds", rep.reference_twin},
-                    {"ok", rep.reference_ok()}, {"worst_at", rep.reference_worst_at}};
+                    {"derived_bounds", rep.reference_twin},  {"ok", rep.reference_ok()},
+                    {"worst_at", rep.reference_worst_at}};
   j["groups"] = json::array();
   for (auto& g : rep.groups)
-    j["groups"].push_back({{"check", g.check}, {"model", g.model}, {"verdict", verdict_name(g.verdict)},
-                           {"expected_fail", g.expect_fail}, {"reason", g.reason}, {"tolerance", g.tolerance},
-                           {"points", g.points.size()}, {"failures", g.failures}, {"worst", worst_text(rep, g)},
-                           {"pooled", {{"integrals", g.pooled.n}, {"mean_deviation", sig(g.pooled.mean, 4)},
-                                       {"stderr", sig(g.pooled.se, 3)}, {"bias_bound", sig(g.pooled.bias, 3)},
-                                       {"z", sig(g.pooled.z, 3)}, {"threshold", sig(g.pooled.threshold, 4)},
-                                       {"upper_only", g.pooled.upper_only}, {"failed", g.pooled.failed}}}});
+    j["groups"].push_back({{"check", g.check},
+                           {"model", g.model},
+                           {"verdict", verdict_name(g.verdict)},
+                           {"expected_fail", g.expect_fail},
+                           {"reason", g.reason},
+                           {"tolerance", g.tolerance},
+                           {"points", g.points.size()},
+                           {"failures", g.failures},
+                           {"worst", worst_text(rep, g)},
+                           {"pooled",
+                            {{"integrals", g.pooled.n},
+                             {"mean_deviation", sig(g.pooled.mean, 4)},
+                             {"stderr", sig(g.pooled.se, 3)},
+                             {"bias_bound", sig(g.pooled.bias, 3)},
+                             {"z", sig(g.pooled.z, 3)},
+                             {"threshold", sig(g.pooled.threshold, 4)},
+                             {"upper_only", g.pooled.upper_only},
+                             {"failed", g.pooled.failed}}}});
   j["results"] = json::array();
   for (auto& p : rep.points) j["results"].push_back(point_record(p));
   return j.dump();  // compact: one record per integral, over 10^5 of them
@@ -169,10 +193,11 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
                                           : fmt::format("# microfacet-verify: {}\n\n", rep.title);
   md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, mfv {}.\n\n", rt.device().name,
                     rt.device().platform, rt.device().driver, opt.seed, opt.scale, version_text());
-  md += fmt::format("{} statistical tests and {} pooled ones (docs/statistics.md); family-wise false-alarm rate {:g}, "
-                    "half to each family, so a deviation must exceed {:.2f} standard errors plus its bias bound "
-                    "(float rounding and the model's documented tolerance) to fail.\n\n",
-                    rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
+  md += fmt::format(
+      "{} statistical tests and {} pooled ones (docs/statistics.md); family-wise false-alarm rate {:g}, "
+      "half to each family, so a deviation must exceed {:.2f} standard errors plus its bias bound "
+      "(float rounding and the model's documented tolerance) to fail.\n\n",
+      rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
   md += "| check | integrals | samples | seconds | samples/s |\n|---|---:|---:|---:|---:|\n";
   for (auto& c : rep.stats)
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
@@ -187,7 +212,9 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
   for (auto& line : rep.gate_failures()) md += fmt::format("\n- because {}", line);
   if (!rep.gate_ok()) md += "\n";
 
-  return {{dir + "/results.json", suite_json(rep, rt, opt)}, {dir + "/report.md", md}, {dir + "/junit.xml", suite_junit(rep, opt)}};
+  return {{dir + "/results.json", suite_json(rep, rt, opt)},
+          {dir + "/report.md", md},
+          {dir + "/junit.xml", suite_junit(rep, opt)}};
 }
 
 }  // namespace mfv

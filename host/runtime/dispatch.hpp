@@ -14,9 +14,9 @@ namespace mfv {
 
 struct TermSelection {
   std::vector<const Term*> d, g, f;
-  bool g1 = false;  // also emit eval_G1 for the Smith G terms in g
+  bool g1 = false;                   // also emit eval_G1 for the Smith G terms in g
   std::vector<const Model*> models;  // whole models: eval_model(id, ...), id = Model::number()
-  static TermSelection all();  // every term and every model
+  static TermSelection all();        // every term and every model
 };
 
 int term_index(const Term& t);  // the id the kernels receive

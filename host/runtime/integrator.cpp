@@ -1,7 +1,7 @@
 #include "runtime/integrator.hpp"
 
-#include "util/error.hpp"
 #include "runtime/work_group.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 
@@ -14,7 +14,7 @@
 namespace mfv {
 
 std::vector<std::string> catalog_sources(const std::vector<std::string>& then) {
-  std::vector<std::string> files = {"common.cl", "rng.cl",   "terms_d.cl",    "terms_g.cl",
+  std::vector<std::string> files = {"common.cl",  "rng.cl",    "terms_d.cl",    "terms_g.cl",
                                     "terms_f.cl", "models.cl", "model_gltf.cl", kDispatchBefore};
   files.insert(files.end(), then.begin(), then.end());
   return files;
@@ -38,7 +38,8 @@ cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
 }
 
 Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
-  fast_albedo_ = fast_albedo_available_ = true;  // the catalog's program defines albedo_values (a user program does not)
+  fast_albedo_ = fast_albedo_available_ =
+      true;  // the catalog's program defines albedo_values (a user program does not)
 }
 
 // The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
@@ -106,8 +107,7 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
   // Batches of at most ~2^15 work-groups keep buffers small and launches
   // short, and at least 16 of them let progress (util/progress.hpp) advance
   // during a check; the samples and sums do not depend on the batching.
-  const size_t per_batch =
-      std::max<size_t>(1, std::min((size_t(1) << 15) / slices, (specs.size() + 15) / 16));
+  const size_t per_batch = std::max<size_t>(1, std::min((size_t(1) << 15) / slices, (specs.size() + 15) / 16));
   for (size_t first = 0; first < specs.size(); first += per_batch) {
     size_t count = std::min(per_batch, specs.size() - first);
     size_t groups = count * slices;
@@ -136,7 +136,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
   const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
-  const uint64_t kMaxValues = uint64_t(1) << 22;               // 16 MiB of samples a launch
+  const uint64_t kMaxValues = uint64_t(1) << 22;                // 16 MiB of samples a launch
   // A launch takes `count` integrals over slices [s0, s0 + nslices).
   const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
@@ -197,7 +197,7 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
   cl::Kernel k(program_, "albedo_mis_values");
   size_t local = fit_local_size(k, rt_.device().device, 1024);  // the device's and kernel's limits
-  while (n % local != 0) local /= 2;                              // a power of two that divides n
+  while (n % local != 0) local /= 2;                            // a power of two that divides n
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
@@ -253,7 +253,7 @@ void Integrator::add_sums(const cl::Buffer& sums, size_t count, uint32_t slices,
 }
 
 std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in, uint64_t samples, uint64_t seed,
-                                     uint64_t first_index) {
+                                      uint64_t first_index) {
   uint32_t per_item, slices;
   layout(samples, per_item, slices);
   const uint64_t n = uint64_t(slices) * local_size_ * per_item;
@@ -268,7 +268,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   std::map<std::string, std::vector<size_t>> fast_at;  // by values kernel
   for (size_t j = 0; j < specs.size(); ++j) {
     if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
-      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) || !fast_albedo_available_)
+      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) ||
+          !fast_albedo_available_)
         throw Error("internal: AlbedoMis takes isotropic microfacet integrals of the catalog's program only");
       mis.push_back(specs[j]);
       mis_at.push_back(j);
@@ -319,7 +320,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
       double var = std::max(0.0, ss / double(n) - e.mean * e.mean) * double(n) / double(n - (n > 1 ? 1 : 0));
       e.stderr_ = std::sqrt(var / double(n));
     }
-    if (!std::isfinite(s) || !std::isfinite(ss)) e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
+    if (!std::isfinite(s) || !std::isfinite(ss))
+      e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
   }
   return out;
 }
@@ -359,7 +361,7 @@ void Integrator::worst_of(cl::Kernel& k, cl::Kernel* asym_pairs, const std::vect
   const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
   const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
   const size_t items = asym_pairs ? 2 * size_t(pairs) : pairs;  // work-items per integral
-  size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
+  size_t local = fit_local_size(k, rt_.device().device, 256);   // the device's and kernel's limits
   while (pairs % local != 0) local /= 2;                        // a power of two that divides pairs
   for (size_t first = 0; first < at.size(); first += per_launch) {
     const size_t count = std::min(per_launch, at.size() - first);

@@ -51,7 +51,8 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
   uint64_t samples = 0;
   double b_mean = 0;  // AlbedoRqmc: the split sum's B on the same points (no stderr: RQMC errors come from replicates)
-  uint32_t dof = 0;   // stderr_ from replicates: Student t with dof degrees of freedom (0: normal, from a sum of squares)
+  uint32_t dof =
+      0;  // stderr_ from replicates: Student t with dof degrees of freedom (0: normal, from a sum of squares)
 };
 
 // The kernel file lists, in one place. catalog_sources: the files every
@@ -151,10 +152,9 @@ class Integrator {
   cl::Program program_;
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
-  size_t local_size_ = 64;  // of `integrate`: 64, or less where the device or kernel allows less
+  size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less
   progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read
   uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()
 };
-
 
 }  // namespace mfv

@@ -1,9 +1,9 @@
 // Kernel files include the layouts they share with the host
 // (`#include "abi/pointwise.h"`, kernels/abi/). A program is built from one
 // string, so the loader pastes each included file under abi/ in place of its
-// #include line (other includes are left to the OpenCL compiler), once per program (later includes of the same file are dropped), with
-// #line directives so build logs still point at the right file and line. The
-// same names resolve in the embedded sources and under --kernel-dir.
+// #include line (other includes are left to the OpenCL compiler), once per program (later includes of the same file are
+// dropped), with #line directives so build logs still point at the right file and line. The same names resolve in the
+// embedded sources and under --kernel-dir.
 #pragma once
 
 #include <functional>

@@ -2,12 +2,12 @@
 
 #include "runtime/build_options.hpp"
 #include "runtime/embedded_kernels.hpp"
-#include "util/error.hpp"
 #include "runtime/kernel_includes.hpp"
 #include "runtime/program_cache.hpp"
 #include "runtime/provenance.hpp"
-#include "util/parse.hpp"
 #include "runtime/work_group.hpp"
+#include "util/error.hpp"
+#include "util/parse.hpp"
 
 #include <fmt/format.h>
 
@@ -153,7 +153,8 @@ DeviceInfo pick_device(const std::vector<DeviceInfo>& devs, const std::string& s
     if (found.size() == 1) return *found[0];
     if (found.size() > 1) {
       std::string names;
-      for (auto* d : found) names += fmt::format("{}#{} {} / {}", names.empty() ? "" : ", ", d->index, d->platform, d->name);
+      for (auto* d : found)
+        names += fmt::format("{}#{} {} / {}", names.empty() ? "" : ", ", d->index, d->platform, d->name);
       throw Error(fmt::format("--device '{}' matches {} devices ({}); give an index or an exact name", selector,
                               found.size(), names));
     }
@@ -165,7 +166,7 @@ DeviceInfo select_device(const std::string& selector) { return pick_device(list_
 
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
     : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
-  local_size_cap_from_env();  // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
+  local_size_cap_from_env();               // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
   extra_options_ = cl_options_from_env();  // and a bad MFV_CL_OPTIONS
   // a build that may flush float subnormals is checked as on a flush-to-zero device
   if ((extra_options_ + " ").find(" -cl-denorms-are-zero ") != std::string::npos) info_.fp32_denorms = false;
@@ -211,7 +212,8 @@ cl::Program Runtime::build_source(const std::string& source, const std::string& 
   }
   std::string printed = capture.restore();
   if (!printed.empty()) std::fputs(printed.c_str(), stderr);
-  if (printed.find("warning") == std::string::npos) pass_on_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
+  if (printed.find("warning") == std::string::npos)
+    pass_on_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device));
   return program;
 }
 

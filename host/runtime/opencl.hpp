@@ -78,7 +78,7 @@ class Runtime {
   DeviceInfo info_;
   std::string kernel_dir_;
   std::string extra_options_;  // MFV_CL_OPTIONS
-  std::string cache_dir_;  // "" = no on-disk program cache
+  std::string cache_dir_;      // "" = no on-disk program cache
   cl::Context context_;
   cl::CommandQueue queue_;
   BuildStats stats_;

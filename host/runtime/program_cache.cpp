@@ -1,8 +1,8 @@
 #include "runtime/program_cache.hpp"
 
-#include "util/error.hpp"
 #include "runtime/opencl.hpp"
 #include "runtime/provenance.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 
@@ -59,7 +59,7 @@ std::optional<std::vector<unsigned char>> ProgramCache::load(const std::string& 
   uint64_t size = 0;
   if (!(h >> magic >> file_key >> size >> digest) || magic != kMagic || file_key != key) return std::nullopt;
   std::vector<unsigned char> payload((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (payload.size() != size || size == 0) return std::nullopt;  // truncated, or grown
+  if (payload.size() != size || size == 0) return std::nullopt;                                // truncated, or grown
   if (sha256_hex(std::string(payload.begin(), payload.end())) != digest) return std::nullopt;  // corrupt
   return payload;
 }
@@ -74,8 +74,8 @@ void ProgramCache::store(const std::string& key, const std::vector<unsigned char
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) return;
-    out << kMagic << ' ' << key << ' ' << binary.size() << ' '
-        << sha256_hex(std::string(binary.begin(), binary.end())) << '\n';
+    out << kMagic << ' ' << key << ' ' << binary.size() << ' ' << sha256_hex(std::string(binary.begin(), binary.end()))
+        << '\n';
     out.write(reinterpret_cast<const char*>(binary.data()), std::streamsize(binary.size()));
     if (!out.flush()) {
       out.close();

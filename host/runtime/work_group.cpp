@@ -16,8 +16,8 @@ size_t local_size_cap_from_env() {
   const char* env = std::getenv("MFV_MAX_LOCAL_SIZE");
   if (!env) return 0;
   const std::string s(env);
-  const bool digits = !s.empty() && s.size() <= 9 &&
-                      std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+  const bool digits =
+      !s.empty() && s.size() <= 9 && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
   if (!digits || std::stoul(s) == 0)
     throw Error(fmt::format("MFV_MAX_LOCAL_SIZE={}: expected a positive integer (the most work-items a group)", s));
   return std::stoul(s);

@@ -3,8 +3,8 @@
 // bufferView (§3.8), decoded only where a texture scales a checked parameter.
 #include "scene/gltf_file.hpp"
 
-#include "util/error.hpp"
 #include "scene/json_input.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 

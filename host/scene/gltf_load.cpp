@@ -9,10 +9,10 @@
 // optional BIN chunk); the KHR_materials_* extension specifications.
 #include "scene/scene.hpp"
 
-#include "util/error.hpp"
 #include "scene/gltf_file.hpp"
 #include "scene/json_input.hpp"
 #include "scene/texture_range.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 
@@ -28,15 +28,16 @@ using nlohmann::json;
 
 // Extensions mfv models (their parameters enter the glTF model)...
 const std::set<std::string> kModelled = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_anisotropy",
-                                          "KHR_materials_sheen"};
+                                         "KHR_materials_sheen"};
 // ... that it accounts for per material without a surface check (see account_extension) ...
-const std::set<std::string> kAccounted = {"KHR_materials_clearcoat",
-                                          "KHR_materials_transmission", "KHR_materials_volume",
-                                          "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+const std::set<std::string> kAccounted = {"KHR_materials_clearcoat", "KHR_materials_transmission",
+                                          "KHR_materials_volume", "KHR_materials_emissive_strength",
+                                          "KHR_materials_unlit"};
 // ... and that change nothing a BSDF check sees (geometry, texture coordinates, encodings, lights, instancing).
-const std::set<std::string> kHarmless = {"KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
-                                         "KHR_texture_transform", "KHR_texture_basisu",         "EXT_texture_webp",
-                                         "KHR_lights_punctual",   "KHR_materials_variants",     "EXT_mesh_gpu_instancing"};
+const std::set<std::string> kHarmless = {
+    "KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+    "KHR_texture_transform", "KHR_texture_basisu",         "EXT_texture_webp",
+    "KHR_lights_punctual",   "KHR_materials_variants",     "EXT_mesh_gpu_instancing"};
 
 // Where a field sits, for messages: material 'x' (materials[3]): pbrMetallicRoughness.roughnessFactor
 std::string at(const SceneMaterial& m, const std::string& field) {
@@ -74,7 +75,8 @@ ParamRange textured(const SceneMaterial& m, Images& images, const json& parent, 
   const char* ch = "RGBA" + slot.channel;
   if (!tex.contains("source")) {
     r = {0.0, factor, fmt::format("texture {} has no PNG/JPEG source: [0, factor {:g}]", t, factor)};
-    notes.push_back(fmt::format("{} {}: texture {} has no PNG/JPEG source: checked over [0, {:g}]", prefix, slot.field, t, factor));
+    notes.push_back(
+        fmt::format("{} {}: texture {} has no PNG/JPEG source: checked over [0, {:g}]", prefix, slot.field, t, factor));
     return r;
   }
   const size_t src = json_index(tex["source"], fmt::format("{}: textures[{}].source", images.f.path, t));
@@ -91,7 +93,8 @@ ParamRange textured(const SceneMaterial& m, Images& images, const json& parent, 
   double lo = im.ranges->rgba[size_t(slot.channel)].lo, hi = im.ranges->rgba[size_t(slot.channel)].hi;
   if (slot.srgb) lo = srgb_to_linear(lo), hi = srgb_to_linear(hi);
   r = {lo * factor, hi * factor,
-       fmt::format("{} {}{}: [{:.4g}, {:.4g}] x factor {:g}", im.label, *ch, slot.srgb ? " (sRGB decoded)" : "", lo, hi, factor)};
+       fmt::format("{} {}{}: [{:.4g}, {:.4g}] x factor {:g}", im.label, *ch, slot.srgb ? " (sRGB decoded)" : "", lo, hi,
+                   factor)};
   notes.push_back(fmt::format("{}{}: {} channel {} spans [{:.4g}, {:.4g}]{}: checked over [{:.4g}, {:.4g}]", prefix,
                               slot.field, im.label, *ch, lo, hi, slot.srgb ? " (sRGB decoded)" : "", r.lo, r.hi));
   return r;
@@ -108,21 +111,26 @@ void account_extension(SceneMaterial& m, const std::string& ext, const json& v) 
     const double t = number_or(v, "transmissionFactor", 0.0, m, p);
     check_unit_range(m, p + "transmissionFactor", t);
     if (t > 0.0 || v.contains("transmissionTexture"))
-      m.not_checked = fmt::format("KHR_materials_transmission (transmissionFactor {:g}): no surface check fits rough "
-                                  "dielectric transmission until mfv models it; not checked (and never as a metal)", t);
+      m.not_checked = fmt::format(
+          "KHR_materials_transmission (transmissionFactor {:g}): no surface check fits rough "
+          "dielectric transmission until mfv models it; not checked (and never as a metal)",
+          t);
     else
       m.account.push_back("KHR_materials_transmission: transmissionFactor 0, no transmission: the surface is checked");
   } else if (ext == "KHR_materials_unlit") {
-    m.not_checked = "KHR_materials_unlit: no BSDF (shaded by the base colour alone): nothing to check on a surface BSDF";
+    m.not_checked =
+        "KHR_materials_unlit: no BSDF (shaded by the base colour alone): nothing to check on a surface BSDF";
   } else if (ext == "KHR_materials_volume") {
     const double th = number_or(v, "thicknessFactor", 0.0, m, p);
     if (th < 0.0) throw Error(fmt::format("{} = {:g} is negative", at(m, p + "thicknessFactor"), th));
-    m.account.push_back("KHR_materials_volume: the medium under the surface (attenuation, thickness): nothing to "
-                        "check on a surface BSDF");
+    m.account.push_back(
+        "KHR_materials_volume: the medium under the surface (attenuation, thickness): nothing to "
+        "check on a surface BSDF");
   } else if (ext == "KHR_materials_emissive_strength") {
     const double s = number_or(v, "emissiveStrength", 1.0, m, p);
     if (s < 0.0) throw Error(fmt::format("{} = {:g} is negative", at(m, p + "emissiveStrength"), s));
-    m.account.push_back("KHR_materials_emissive_strength: emission, not reflection: nothing to check on a surface BSDF");
+    m.account.push_back(
+        "KHR_materials_emissive_strength: emission, not reflection: nothing to check on a surface BSDF");
   }
 }
 
@@ -139,20 +147,23 @@ void read_clearcoat(SceneMaterial& m, Images& images, const json& v) {
   m.clearcoat = textured(m, images, v, p, {"clearcoatTexture", 0, false}, c, m.account);
   m.clearcoat_roughness = textured(m, images, v, p, {"clearcoatRoughnessTexture", 1, false}, r, m.account);
   if (m.specular.lo != 1.0 || m.specular.hi != 1.0) {
-    m.account.push_back("KHR_materials_clearcoat: the coat is NOT checked: the gltf_clearcoat models layer it over a "
-                        "base with specularFactor 1, and this base is not one");
+    m.account.push_back(
+        "KHR_materials_clearcoat: the coat is NOT checked: the gltf_clearcoat models layer it over a "
+        "base with specularFactor 1, and this base is not one");
     return;
   }
   m.coat_checked = true;
   const bool aniso = m.anisotropy_strength.hi > 0.0;
-  m.account.push_back(fmt::format("KHR_materials_clearcoat: checked as the {} model (fresnel_coat over "
-                                  "the base) over clearcoat [{:.4g}, {:.4g}], clearcoatRoughness [{:.4g}, {:.4g}]",
-                                  aniso ? "gltf_clearcoat_aniso (anisotropic base) and gltf_clearcoat" : "gltf_clearcoat",
-                                  m.clearcoat.lo, m.clearcoat.hi, m.clearcoat_roughness.lo, m.clearcoat_roughness.hi));
+  m.account.push_back(
+      fmt::format("KHR_materials_clearcoat: checked as the {} model (fresnel_coat over "
+                  "the base) over clearcoat [{:.4g}, {:.4g}], clearcoatRoughness [{:.4g}, {:.4g}]",
+                  aniso ? "gltf_clearcoat_aniso (anisotropic base) and gltf_clearcoat" : "gltf_clearcoat",
+                  m.clearcoat.lo, m.clearcoat.hi, m.clearcoat_roughness.lo, m.clearcoat_roughness.hi));
   if (m.clearcoat_roughness.lo * m.clearcoat_roughness.lo < kSceneMinAlpha)
-    m.warnings.push_back(fmt::format("clearcoatRoughness {:g} gives a coat alpha below {:g}: the coat is checked at "
-                                     "alpha = {:g} (clearcoatRoughness 0.01)",
-                                     m.clearcoat_roughness.lo, kSceneMinAlpha, kSceneMinAlpha));
+    m.warnings.push_back(
+        fmt::format("clearcoatRoughness {:g} gives a coat alpha below {:g}: the coat is checked at "
+                    "alpha = {:g} (clearcoatRoughness 0.01)",
+                    m.clearcoat_roughness.lo, kSceneMinAlpha, kSceneMinAlpha));
 }
 
 // KHR_materials_sheen: sheenColor = sheenColorFactor x sheenColorTexture.rgb
@@ -166,7 +177,8 @@ void read_sheen(SceneMaterial& m, Images& images, const json& v) {
   for (int k = 0; k < 3; ++k) check_unit_range(m, fmt::format("{}sheenColorFactor[{}]", p, k), col[size_t(k)]);
   const double r = number_or(v, "sheenRoughnessFactor", 0.0, m, p);
   check_unit_range(m, p + "sheenRoughnessFactor", r);
-  if (!(col[0] > 0 || col[1] > 0 || col[2] > 0)) return;  // sheenColorFactor 0 (the default): no sheen, whatever the texture
+  if (!(col[0] > 0 || col[1] > 0 || col[2] > 0))
+    return;  // sheenColorFactor 0 (the default): no sheen, whatever the texture
   for (size_t k = 0; k < 3; ++k)
     m.sheen_color[k] = textured(m, images, v, p, {"sheenColorTexture", int(k), true}, col[k], m.account);
   m.sheen_roughness = textured(m, images, v, p, {"sheenRoughnessTexture", 3, false}, r, m.account);
@@ -177,12 +189,14 @@ void read_sheen(SceneMaterial& m, Images& images, const json& v) {
       "sheenRoughness [{:.4g}, {:.4g}]{}",
       m.sheen_color[0].lo, m.sheen_color[0].hi, m.sheen_color[1].lo, m.sheen_color[1].hi, m.sheen_color[2].lo,
       m.sheen_color[2].hi, m.sheen_roughness.lo, m.sheen_roughness.hi,
-      m.anisotropy_strength.hi > 0.0 ? " (over the isotropic base points only: an anisotropic base is not layered)" : ""));
+      m.anisotropy_strength.hi > 0.0 ? " (over the isotropic base points only: an anisotropic base is not layered)"
+                                     : ""));
   const double floor = gltf_sheen_model().params[4].lo;
   if (m.sheen_roughness.lo < floor)
-    m.warnings.push_back(fmt::format("sheenRoughness {:g} is below {:g}, where the Charlie lobe is a sliver at the "
-                                     "horizon: the sheen is checked at {:g}",
-                                     m.sheen_roughness.lo, floor, floor));
+    m.warnings.push_back(
+        fmt::format("sheenRoughness {:g} is below {:g}, where the Charlie lobe is a sliver at the "
+                    "horizon: the sheen is checked at {:g}",
+                    m.sheen_roughness.lo, floor, floor));
 }
 
 SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
@@ -219,9 +233,11 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
     m.account.push_back(m.ior_exact ? fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 (the spec) and "
                                                   "also the exact dielectric Fresnel at eta = {:g} "
                                                   "(ggx/smith_ggx_correlated/dielectric): energy at every roughness "
-                                                  "point", m.factors.ior, m.factors.ior)
+                                                  "point",
+                                                  m.factors.ior, m.factors.ior)
                                     : fmt::format("KHR_materials_ior: ior {:g} through Schlick's f0 only (the exact "
-                                                  "dielectric F takes eta in [1, 10])", m.factors.ior));
+                                                  "dielectric F takes eta in [1, 10])",
+                                                  m.factors.ior));
   }
   m.factors.specular = number_or(spec, "specularFactor", 1.0, m, "KHR_materials_specular.");
   if (spec.contains("specularColorFactor")) {
@@ -241,7 +257,8 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
     m.base[k] = textured(m, images, pbr, pp, {"baseColorTexture", int(k), true}, m.factors.base[k], notes);
   m.roughness = textured(m, images, pbr, pp, {"metallicRoughnessTexture", 1, false}, m.factors.roughness, notes);
   m.metallic = textured(m, images, pbr, pp, {"metallicRoughnessTexture", 2, false}, m.factors.metallic, notes);
-  m.specular = textured(m, images, spec, "KHR_materials_specular.", {"specularTexture", 3, false}, m.factors.specular, notes);
+  m.specular =
+      textured(m, images, spec, "KHR_materials_specular.", {"specularTexture", 3, false}, m.factors.specular, notes);
   for (size_t k = 0; k < 3; ++k)
     m.specular_color[k] = textured(m, images, spec, "KHR_materials_specular.", {"specularColorTexture", int(k), true},
                                    m.factors.specular_color[k], notes);
@@ -253,22 +270,26 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
     if (std::find(unique.begin(), unique.end(), n) == unique.end()) unique.push_back(n);
   notes = unique;
 
-  // KHR_materials_specular: dielectric F0 = min(f0_ior · specularColor, 1) per channel, the spec's own clamp: said where it acts
+  // KHR_materials_specular: dielectric F0 = min(f0_ior · specularColor, 1) per channel, the spec's own clamp: said
+  // where it acts
   const double r = m.factors.ior == 0 ? 1.0 : (m.factors.ior - 1.0) / (m.factors.ior + 1.0);
   for (size_t k = 0; k < 3; ++k)
     if (r * r * m.specular_color[k].hi > 1.0)
-      m.warnings.push_back(fmt::format("KHR_materials_specular: f0 x specularColor = {:g} x {:g} = {:g} in channel {} "
-                                       "is clamped to 1 (the extension's min(f0 x specularColor, 1))",
-                                       r * r, m.specular_color[k].hi, r * r * m.specular_color[k].hi, "rgb"[k]));
+      m.warnings.push_back(
+          fmt::format("KHR_materials_specular: f0 x specularColor = {:g} x {:g} = {:g} in channel {} "
+                      "is clamped to 1 (the extension's min(f0 x specularColor, 1))",
+                      r * r, m.specular_color[k].hi, r * r * m.specular_color[k].hi, "rgb"[k]));
   if (m.factors.anisotropy_rotation != 0.0)
-    m.warnings.push_back(fmt::format("anisotropyRotation {:g} turns the lobe about n: checked in the anisotropy "
-                                     "direction's own frame, where the BRDF does not depend on it",
-                                     m.factors.anisotropy_rotation));
+    m.warnings.push_back(
+        fmt::format("anisotropyRotation {:g} turns the lobe about n: checked in the anisotropy "
+                    "direction's own frame, where the BRDF does not depend on it",
+                    m.factors.anisotropy_rotation));
   read_clearcoat(m, images, ext_of("KHR_materials_clearcoat"));
   read_sheen(m, images, ext_of("KHR_materials_sheen"));
   for (auto& [name, v] : ext.items()) {
     if (kModelled.count(name)) continue;
-    if (kAccounted.count(name)) account_extension(m, name, v);
+    if (kAccounted.count(name))
+      account_extension(m, name, v);
     else if (name.rfind("KHR_materials_", 0) == 0 || name.rfind("EXT_materials_", 0) == 0)
       m.not_checked = fmt::format("{} changes the BSDF and mfv does not model it: not checked", name);
     else if (!kHarmless.count(name))
@@ -305,14 +326,16 @@ void collect_node(const GltfFile& f, size_t node, Usage& u) {
     for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
       const json& prim = mesh["primitives"][p];
       if (prim.is_object() && prim.contains("material"))
-        u.materials.insert(json_index(prim["material"], fmt::format("{}: meshes[{}].primitives[{}].material", f.path, mi, p)));
+        u.materials.insert(
+            json_index(prim["material"], fmt::format("{}: meshes[{}].primitives[{}].material", f.path, mi, p)));
       else
         u.default_used = true;
     }
   }
   if (n.contains("children")) {
     if (!n["children"].is_array()) throw Error(fmt::format("{}: nodes[{}].children is not an array", f.path, node));
-    for (auto& c : n["children"]) collect_node(f, json_index(c, fmt::format("{}: nodes[{}].children", f.path, node)), u);
+    for (auto& c : n["children"])
+      collect_node(f, json_index(c, fmt::format("{}: nodes[{}].children", f.path, node)), u);
   }
 }
 
@@ -331,8 +354,10 @@ Usage used_materials(const GltfFile& f) {
     if (sc.contains("nodes"))
       for (auto& n : sc["nodes"]) roots.push_back(json_index(n, fmt::format("{}: scenes[{}].nodes", f.path, s)));
   };
-  if (f.j.contains("scene")) scene_nodes(json_index(f.j["scene"], f.path + ": scene"));
-  else for (size_t s = 0; s < scenes.size(); ++s) scene_nodes(s);
+  if (f.j.contains("scene"))
+    scene_nodes(json_index(f.j["scene"], f.path + ": scene"));
+  else
+    for (size_t s = 0; s < scenes.size(); ++s) scene_nodes(s);
   if (scenes.empty())  // no scene: every node
     for (size_t i = 0; i < top_array(f, "nodes").size(); ++i) roots.push_back(i);
   for (size_t r : roots) collect_node(f, r, u);
@@ -354,9 +379,10 @@ Scene load_gltf(const std::string& path, bool binary) {
     for (auto& e : f.j["extensionsRequired"]) {
       const std::string ext = e.is_string() ? e.get<std::string>() : json_shown(e);
       if (!kModelled.count(ext) && !kAccounted.count(ext) && !kHarmless.count(ext))
-        throw Error(fmt::format("{} requires extension {}, which mfv neither models nor accounts for (it models "
-                                "KHR_materials_ior, KHR_materials_specular, KHR_materials_anisotropy; see docs/scenes.md)",
-                                path, ext));
+        throw Error(
+            fmt::format("{} requires extension {}, which mfv neither models nor accounts for (it models "
+                        "KHR_materials_ior, KHR_materials_specular, KHR_materials_anisotropy; see docs/scenes.md)",
+                        path, ext));
     }
   }
   const Usage u = used_materials(f);
@@ -370,8 +396,8 @@ Scene load_gltf(const std::string& path, bool binary) {
   for (auto& [i, users] : images.missing_users) {
     std::string who;
     for (auto& w : users) who += (who.empty() ? "" : ", ") + w;
-    sc.warnings.push_back(fmt::format("{}: its textured parameters are checked over [0, factor] ({})",
-                                      images.cache.at(i).missing, who));
+    sc.warnings.push_back(
+        fmt::format("{}: its textured parameters are checked over [0, factor] ({})", images.cache.at(i).missing, who));
   }
   return sc;
 }

@@ -43,8 +43,10 @@ struct PathTracker {
   std::string path() const {
     std::string s;
     for (auto& f : frames) {
-      if (f.array) s += fmt::format("[{}]", f.index);
-      else if (!f.key.empty()) s += (s.empty() ? "" : ".") + f.key;
+      if (f.array)
+        s += fmt::format("[{}]", f.index);
+      else if (!f.key.empty())
+        s += (s.empty() ? "" : ".") + f.key;
     }
     return s.empty() ? "top level" : s;
   }
@@ -80,7 +82,8 @@ double finite_number(const json& v, const std::string& where) {
 }
 
 size_t json_index(const json& v, const std::string& where) {
-  if (!v.is_number_unsigned()) throw Error(fmt::format("{} = {} is not an index (an integer >= 0)", where, json_shown(v)));
+  if (!v.is_number_unsigned())
+    throw Error(fmt::format("{} = {} is not an index (an integer >= 0)", where, json_shown(v)));
   return v.get<size_t>();
 }
 

@@ -1,8 +1,8 @@
 #include "scene/scene.hpp"
 
 #include "catalog/roughness.hpp"
-#include "util/error.hpp"
 #include "scene/json_input.hpp"
+#include "util/error.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -53,13 +53,14 @@ void validate_gltf_factors(const std::string& name, const GltfFactors& f) {  // 
   check_unit(name, "KHR_materials_specular specularFactor", f.specular);
   check_unit(name, "KHR_materials_anisotropy anisotropyStrength", f.anisotropy_strength);
   if (!std::isfinite(f.anisotropy_rotation))
-    throw Error(fmt::format("{}: KHR_materials_anisotropy anisotropyRotation = {} is not finite", name,
-                            f.anisotropy_rotation));
+    throw Error(
+        fmt::format("{}: KHR_materials_anisotropy anisotropyRotation = {} is not finite", name, f.anisotropy_rotation));
   for (int k = 0; k < 3; ++k)
     if (!(f.specular_color[k] >= 0.0 && std::isfinite(f.specular_color[k])))
-      throw Error(fmt::format("{}: KHR_materials_specular specularColorFactor.{} = {} must be a finite "
-                              "number >= 0",
-                              name, channel_names(k), f.specular_color[k]));
+      throw Error(
+          fmt::format("{}: KHR_materials_specular specularColorFactor.{} = {} must be a finite "
+                      "number >= 0",
+                      name, channel_names(k), f.specular_color[k]));
 }
 
 namespace {
@@ -93,8 +94,8 @@ void reject_unknown_keys(const json& j, const std::set<std::string>& known, cons
 
 const Term& named_term(const json& j, const char* key, Kind kind, const std::string& material) {
   if (!j.contains(key) || !j[key].is_string())
-    throw Error(fmt::format("material '{}': needs \"{}\" naming a {} term (see 'mfv list')", material, key,
-                            kind_name(kind)));
+    throw Error(
+        fmt::format("material '{}': needs \"{}\" naming a {} term (see 'mfv list')", material, key, kind_name(kind)));
   const std::string id = j[key].get<std::string>();
   if (const Term* t = try_find_term(id, kind)) return *t;
   std::string known;
@@ -222,7 +223,8 @@ Scene load_scene(const std::string& path) {
     if (what.rfind(path, 0) == 0) throw;
     throw Error(path + ": " + what);
   }
-  throw Error(fmt::format("--scene {}: unknown format '{}' (expected .gltf, .glb or a material file .json)", path, ext));
+  throw Error(
+      fmt::format("--scene {}: unknown format '{}' (expected .gltf, .glb or a material file .json)", path, ext));
 }
 
 }  // namespace mfv

@@ -27,13 +27,13 @@ struct ParamRange {
 
 // glTF 2.0 metallic-roughness factors (the largest values textures can give).
 struct GltfFactors {
-  std::array<double, 3> base{1, 1, 1};  // baseColorFactor (rgb; alpha is coverage, not reflectance)
-  double metallic = 1, roughness = 1;   // metallicFactor, roughnessFactor
-  double ior = 1.5;                     // KHR_materials_ior
-  double specular = 1;                  // KHR_materials_specular specularFactor
+  std::array<double, 3> base{1, 1, 1};            // baseColorFactor (rgb; alpha is coverage, not reflectance)
+  double metallic = 1, roughness = 1;             // metallicFactor, roughnessFactor
+  double ior = 1.5;                               // KHR_materials_ior
+  double specular = 1;                            // KHR_materials_specular specularFactor
   std::array<double, 3> specular_color{1, 1, 1};  // specularColorFactor
-  double anisotropy_strength = 0;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
-  double anisotropy_rotation = 0;       // anisotropyRotation (radians; recorded, see SceneMaterial::channels)
+  double anisotropy_strength = 0;                 // KHR_materials_anisotropy anisotropyStrength, [0, 1]
+  double anisotropy_rotation = 0;                 // anisotropyRotation (radians; recorded, see SceneMaterial::channels)
 };
 
 // The smallest width the suite's float32 estimators resolve (its d_norm grid
@@ -75,7 +75,7 @@ struct SceneMaterial {
   std::string origin;  // where it came from: "materials[3]", "default material (primitive without one)"
   bool gltf = true;    // glTF metallic-roughness model; else a D x G x F BRDF
   GltfFactors factors;
-  double alpha = 0;    // glTF: roughness² (at least kSceneMinAlpha); D/G/F: the shared width
+  double alpha = 0;  // glTF: roughness² (at least kSceneMinAlpha); D/G/F: the shared width
   // D x G x F (material files): terms and native parameters, Lambert kd
   const Term *d = nullptr, *g = nullptr, *f = nullptr;
   double pd = 0, pg = 0, f0 = 0, f1 = 0, kd = 0;
@@ -120,12 +120,12 @@ struct SceneMaterial {
   std::vector<ModelParams> sheen_points() const;
   // glTF: the whole-model points energy and reciprocity run at (channels(), or coat_points())
   std::vector<WholePoint> whole_points() const;
-  std::string model() const;                        // "gltf" or "d/g/f"
+  std::string model() const;  // "gltf" or "d/g/f"
 };
 
 struct Scene {
   std::string path;
-  std::string format;  // "gltf", "glb", "materials"
+  std::string format;                    // "gltf", "glb", "materials"
   std::vector<SceneMaterial> materials;  // the materials the scene uses, in file order
   size_t materials_in_file = 0;          // including ones no mesh uses
   std::vector<std::string> warnings;     // about the file as a whole

@@ -1,7 +1,7 @@
 #include "scene/scene_checks.hpp"
 
-#include "catalog/roughness.hpp"
 #include "catalog/models.hpp"
+#include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -79,7 +79,6 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
   sp.plan.points.push_back(p);
 }
 
-
 // The catalog's glTF model at one channel's parameters.
 IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
   return model_spec(IntegralKind::Albedo, gltf_model(), c.params(), cos_l);
@@ -92,7 +91,7 @@ std::map<std::string, double> whole_params(const WholePoint& w) {
 }
 
 struct SceneSets {
-  std::map<std::string, SetPlan> plans;  // by check
+  std::map<std::string, SetPlan> plans;              // by check
   std::vector<std::set<std::string>> material_keys;  // per material: "check|key"
 };
 
@@ -137,8 +136,8 @@ void MaterialSets::add_width_checks() {
   if (m.gltf) {
     for (double a : m.alphas()) widths.push_back({a, a});
     for (double a : m.coat_alphas()) widths.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
-  }
-  else widths.push_back({pd, pg});
+  } else
+    widths.push_back({pd, pg});
   for (auto [wd, wg] : widths) {
     const double a = m.gltf ? wd : m.alpha;
     if (suite_check_wanted(opt, "d_norm")) {
@@ -222,7 +221,8 @@ void MaterialSets::add_energy() {
       if (m.ior_exact) {
         const Term* exact = &term("dielectric", Kind::F);
         for (double a : m.alphas()) {
-          std::string key = fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
+          std::string key =
+              fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
           if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
           for (double co : views) {
             MicrofacetIntegral mi = dgf_integral(IntegralKind::Albedo, ggx, smith, exact, a, a, a, co);
@@ -237,8 +237,8 @@ void MaterialSets::add_energy() {
     } else if (m.f != none || m.kd > 0) {
       const bool diffuse = m.kd > 0;
       SetPlan& dp = sp;
-      std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
-                                    m.f1, m.kd);
+      std::string key =
+          fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0, m.f1, m.kd);
       if (claim(dp, key, m.model())) {
         for (double co : views) {
           IntegralSpec is = material_spec(m, co);
@@ -266,8 +266,8 @@ void MaterialSets::add_reciprocity() {
         sp.add_model(*w.model);
       }
     } else {
-      std::string key = fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0,
-                                    m.f1, m.kd);
+      std::string key =
+          fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0, m.f1, m.kd);
       if (claim(sp, key, m.model())) {
         IntegralSpec is = material_spec(m, 1.0);
         add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
@@ -287,8 +287,18 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
     const SceneMaterial& m = scene.materials[mi];
     if (!m.not_checked.empty()) continue;  // accounted for in the report (skipped), never checked as something else
-    MaterialSets c{s,     m,     opt,  s.material_keys[mi], views, m.gltf ? ggx : m.d, m.gltf ? smith : m.g,
-                   ggx,   smith, none, m.gltf ? m.alpha : m.pd, m.gltf ? m.alpha : m.pg};
+    MaterialSets c{s,
+                   m,
+                   opt,
+                   s.material_keys[mi],
+                   views,
+                   m.gltf ? ggx : m.d,
+                   m.gltf ? smith : m.g,
+                   ggx,
+                   smith,
+                   none,
+                   m.gltf ? m.alpha : m.pd,
+                   m.gltf ? m.alpha : m.pg};
     c.add_width_checks();
     c.add_furnace();
     c.add_energy();
@@ -318,8 +328,10 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     auto it = sets.plans.find(check);
     if (it == sets.plans.end() || it->second.plan.specs.empty()) continue;
     Plan& plan = it->second.plan;
-    if (check == "reciprocity") run_reciprocity(rt, plan, opt, run.rep);
-    else run_plan(rt, plan, opt, stream, run.rep);
+    if (check == "reciprocity")
+      run_reciprocity(rt, plan, opt, run.rep);
+    else
+      run_plan(rt, plan, opt, stream, run.rep);
     stat_of[check] = run.rep.stats.size() - 1;
   }
   const bool any_checked =
@@ -376,8 +388,8 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     row->full_combinations = full_models[fp.check].size();
     row->full_integrals += fp.specs.size();
     // reciprocity: per batch 64 work-items x 64 x scale pairs, two evaluations each (suite.cpp)
-    const uint64_t per = fp.check == "reciprocity" ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2
-                                                   : fp.samples;
+    const uint64_t per =
+        fp.check == "reciprocity" ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2 : fp.samples;
     if (!compare_full) row->full_samples += fp.specs.size() * per;  // requested; a run rounds up to whole work-groups
   }
   return run;

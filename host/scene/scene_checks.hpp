@@ -29,7 +29,7 @@ struct SceneRun {
   std::vector<std::vector<size_t>> material_groups;
   std::vector<LeftOut> left_out;
   int full_builds = 0, scene_builds = 0;
-  double seconds = 0;       // measured: the whole scene run, builds and reference included
+  double seconds = 0;  // measured: the whole scene run, builds and reference included
   bool full_measured = false;
   double full_seconds = 0;  // measured the same way for the full catalog (compare_full)
 };

@@ -33,7 +33,8 @@ std::vector<ModelPoint> gltf_points(const SceneMaterial& m) {
   if (!m.not_checked.empty()) return out;
   const auto points = m.whole_points();
   for (size_t k = 0; k < points.size(); ++k)
-    out.push_back({points[k].model, fmt::format("{} ({} point {} of {})", m.name, points[k].model->id, k + 1, points.size()),
+    out.push_back({points[k].model,
+                   fmt::format("{} ({} point {} of {})", m.name, points[k].model->id, k + 1, points.size()),
                    points[k].p, points[k].energy, points[k].energy_why});
   auto lobes = m.lobes();
   for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // KHR_materials_clearcoat: the coat's own lobe
@@ -76,22 +77,26 @@ void print_scene_energy(const Scene& scene, const EnergyReport& rep) {
   const size_t full = terms_of(Kind::D).size() * terms_of(Kind::G).size();
   size_t cases = 0;
   for (auto& m : models()) cases += m.cases.size();
-  fmt::print("\nscene {}: {} of {} D x G tables and {} glTF parameter sets computed (the catalog's {} whole-model "
-             "cases left out)\n",
-             scene.path, rep.tables.size(), full, rep.models.size(), cases);
+  fmt::print(
+      "\nscene {}: {} of {} D x G tables and {} glTF parameter sets computed (the catalog's {} whole-model "
+      "cases left out)\n",
+      scene.path, rep.tables.size(), full, rep.models.size(), cases);
   for (auto& m : scene.materials) {
     if (m.gltf) {
       for (auto& p : gltf_points(m)) {
         const ModelEnergy* me = find_point(rep, p);
         if (!me) continue;
-        const GltfChannelParams c{p.p[0], p.p[1], p.p[2], p.p[3], p.p[4], p.p[5], p.model == &gltf_model() ? p.p[6] : 0.0};
-        fmt::print("  material {}: alpha {:g}{}: E_avg {:.4f} ± {:.1e}, energy loss 1 - E_avg {:.4f}; max E {:.4f} ± "
-                   "{:.1e} at cos_l {:.3g}{}\n",
-                   p.name, c.alpha, c.alpha_b > 0 ? fmt::format(", alpha_b {:g}", c.alpha_b) : "", me->eavg.mean,
-                   me->eavg.se, me->loss(), me->E[me->max_at].mean, me->E[me->max_at].se, rep.mu[me->max_at],
-                   me->gains ? (p.expect == Expect::Hold ? " (GAINS energy beyond noise: a defect)"
+        const GltfChannelParams c{
+            p.p[0], p.p[1], p.p[2], p.p[3], p.p[4], p.p[5], p.model == &gltf_model() ? p.p[6] : 0.0};
+        fmt::print(
+            "  material {}: alpha {:g}{}: E_avg {:.4f} ± {:.1e}, energy loss 1 - E_avg {:.4f}; max E {:.4f} ± "
+            "{:.1e} at cos_l {:.3g}{}\n",
+            p.name, c.alpha, c.alpha_b > 0 ? fmt::format(", alpha_b {:g}", c.alpha_b) : "", me->eavg.mean, me->eavg.se,
+            me->loss(), me->E[me->max_at].mean, me->E[me->max_at].se, rep.mu[me->max_at],
+            me->gains        ? (p.expect == Expect::Hold ? " (GAINS energy beyond noise: a defect)"
                                                          : " (gains energy beyond noise, as the catalog expects there)")
-                   : me->unresolved ? " (UNRESOLVED: standard error above target, gain not ruled out)" : "");
+            : me->unresolved ? " (UNRESOLVED: standard error above target, gain not ruled out)"
+                             : "");
       }
       continue;
     }
@@ -109,8 +114,8 @@ void print_scene_energy(const Scene& scene, const EnergyReport& rep) {
       const double w = std::clamp((la - l0) / (l1 - l0), 0.0, 1.0);
       e = (1 - w) * t->eavg[k].mean + w * t->eavg[k + 1].mean;
     }
-    fmt::print("  material '{}': {}/{} at alpha {:g}{}: E_avg {:.4f}, energy loss 1 - E_avg {:.4f}\n", m.name,
-               m.d->id, m.g->id, m.alpha,
+    fmt::print("  material '{}': {}/{} at alpha {:g}{}: E_avg {:.4f}, energy loss 1 - E_avg {:.4f}\n", m.name, m.d->id,
+               m.g->id, m.alpha,
                m.alpha < rep.alpha.front() || m.alpha > rep.alpha.back() ? " (outside the grid: nearest end)" : "", e,
                1 - e);
   }
@@ -154,13 +159,15 @@ void print_scene_stability(const Scene& scene, const StabilityReport& rep) {
   size_t points = 0;
   for (auto& c : rep.cases)
     for (auto& r : c.regions) points += r.points;
-  fmt::print("\nscene {}: {} of {} term, BRDF and whole-model cases swept ({} points; alternative formulations left "
-             "out)\n",
-             scene.path, rep.cases.size(), full, points);
+  fmt::print(
+      "\nscene {}: {} of {} term, BRDF and whole-model cases swept ({} points; alternative formulations left "
+      "out)\n",
+      scene.path, rep.cases.size(), full, points);
   bool gltf = std::any_of(scene.materials.begin(), scene.materials.end(), [](auto& m) { return m.gltf; });
   if (gltf) {
-    fmt::print("  the glTF model is swept whole (MODEL gltf) at the scene's own parameter points and each parameter's "
-               "range ends, and through its terms (GGX D, height-correlated Smith G and G1, Schlick F):\n");
+    fmt::print(
+        "  the glTF model is swept whole (MODEL gltf) at the scene's own parameter points and each parameter's "
+        "range ends, and through its terms (GGX D, height-correlated Smith G and G1, Schlick F):\n");
     for (auto& m : scene.materials) {
       if (!m.gltf) continue;
       if (!m.not_checked.empty()) {

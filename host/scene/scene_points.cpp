@@ -54,7 +54,8 @@ std::vector<GltfChannelParams> SceneMaterial::channels() const {
   std::vector<double> f0_max;
   for (bool high : {false, true}) {
     double m = 0;
-    for (int k = 0; k < 3; ++k) m = std::max(m, f0_of(factors, high ? specular_color[size_t(k)].hi : specular_color[size_t(k)].lo));
+    for (int k = 0; k < 3; ++k)
+      m = std::max(m, f0_of(factors, high ? specular_color[size_t(k)].hi : specular_color[size_t(k)].lo));
     push_unique(f0_max, m);
   }
   for (double rough : ends_and_inside(roughness))
@@ -94,14 +95,16 @@ std::vector<std::pair<double, double>> SceneMaterial::lobes() const {
 std::vector<double> SceneMaterial::alphas() const {
   if (!gltf) return {alpha};
   std::vector<double> out;
-  for (double rough : ends_and_inside(roughness)) push_unique(out, std::max(alpha_from_perceptual(rough), kSceneMinAlpha));
+  for (double rough : ends_and_inside(roughness))
+    push_unique(out, std::max(alpha_from_perceptual(rough), kSceneMinAlpha));
   return out;
 }
 
 std::vector<double> SceneMaterial::coat_alphas() const {
   std::vector<double> out;
   if (!coat_checked) return out;
-  for (double r : ends_and_inside(clearcoat_roughness)) push_unique(out, std::max(alpha_from_perceptual(r), kSceneMinAlpha));
+  for (double r : ends_and_inside(clearcoat_roughness))
+    push_unique(out, std::max(alpha_from_perceptual(r), kSceneMinAlpha));
   return out;
 }
 
@@ -114,7 +117,8 @@ std::vector<ModelParams> SceneMaterial::coat_points() const {
   for (auto& c : channels())
     if (!(c.alpha_b > 0.0))
       for (double cc : ends(clearcoat))
-        for (double ca : coat_alphas()) push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, c.f0_max, ca, cc});
+        for (double ca : coat_alphas())
+          push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, c.f0_max, ca, cc});
   return out;
 }
 
@@ -126,7 +130,8 @@ std::vector<ModelParams> SceneMaterial::coat_aniso_points() const {
   for (auto& c : channels())
     if (c.alpha_b > 0.0)
       for (double cc : ends(clearcoat))
-        for (double ca : coat_alphas()) push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, ca, cc, c.alpha_b});
+        for (double ca : coat_alphas())
+          push_unique(out, ModelParams{c.alpha, c.metallic, c.base, c.f0, ca, cc, c.alpha_b});
   return out;
 }
 
@@ -177,7 +182,8 @@ std::vector<WholePoint> SceneMaterial::whole_points() const {
     const bool gain = p[5] > 0.0 && e_max > 1.0;
     out.push_back({&gltf_sheen_model(), p, gain ? Expect::May : Expect::Hold,
                    gain ? fmt::format("E_sheen reaches {:.3g} at grazing for sheenRoughness {:g} (the Charlie "
-                                      "visibility's fitted Lambda under-masks there)", e_max, p[4])
+                                      "visibility's fitted Lambda under-masks there)",
+                                      e_max, p[4])
                         : "",
                    Expect::Hold, ""});
   }
@@ -194,7 +200,7 @@ std::vector<WholePoint> SceneMaterial::whole_points() const {
   for (auto& p : coat_points()) {
     const GltfChannelParams base{p[0], p[1], p[2], p[3], p[4], 1.0, 0.0};
     const Expect e = gltf_energy_expect(base);  // the coat takes its share from the base: the base's gain may remain
-    const bool coated = p[6] > 0.0;  // clearcoat
+    const bool coated = p[6] > 0.0;             // clearcoat
     out.push_back({&gltf_clearcoat_model(), p, e, e == Expect::Hold ? "" : kGltfFresnelMixGain,
                    // may, not must: where the coat and the base happen to coincide the asymmetry vanishes
                    coated ? Expect::May : Expect::Hold,

@@ -1,9 +1,9 @@
 // Console, results.json and report.md sections of mfv run --scene: one entry
 // per material, by name; what was left out against the full catalog; time.
-#include "util/files.hpp"
 #include "report/junit.hpp"
 #include "report/suite_report.hpp"
 #include "scene/scene_checks.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -19,7 +19,8 @@ using nlohmann::json;
 // One check of one material in a line: verdict and the number that matters.
 struct CheckLine {
   std::string check, set, verdict, text, reason;
-  double e_normal = std::numeric_limits<double>::quiet_NaN(), e_grazing = e_normal;  // furnace: E at cos 1 and the smallest cos
+  double e_normal = std::numeric_limits<double>::quiet_NaN(),
+         e_grazing = e_normal;  // furnace: E at cos 1 and the smallest cos
   double grazing_cos = 0;
 };
 
@@ -63,18 +64,20 @@ CheckLine check_line(const SuiteReport& rep, const GroupResult& g) {
 std::string material_params(const SceneMaterial& m) {
   if (m.gltf && m.factors.anisotropy_strength > 0.0) {
     const GltfChannelParams lobe = m.channels().front();
-    return fmt::format("gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g}, anisotropyStrength {:g} "
-                       "(alpha_t {:g}, alpha_b {:g}), ior {:g}, specular {:g}, specularColor ({:g}, {:g}, {:g})",
-                       m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness,
-                       m.factors.anisotropy_strength, lobe.alpha, lobe.alpha_b, m.factors.ior, m.factors.specular,
-                       m.factors.specular_color[0], m.factors.specular_color[1], m.factors.specular_color[2]);
+    return fmt::format(
+        "gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g}, anisotropyStrength {:g} "
+        "(alpha_t {:g}, alpha_b {:g}), ior {:g}, specular {:g}, specularColor ({:g}, {:g}, {:g})",
+        m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness,
+        m.factors.anisotropy_strength, lobe.alpha, lobe.alpha_b, m.factors.ior, m.factors.specular,
+        m.factors.specular_color[0], m.factors.specular_color[1], m.factors.specular_color[2]);
   }
   if (m.gltf)
-    return fmt::format("gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g} (alpha {:g}), ior {:g}, "
-                       "specular {:g}, specularColor ({:g}, {:g}, {:g})",
-                       m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness,
-                       m.alpha, m.factors.ior, m.factors.specular, m.factors.specular_color[0],
-                       m.factors.specular_color[1], m.factors.specular_color[2]);
+    return fmt::format(
+        "gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g} (alpha {:g}), ior {:g}, "
+        "specular {:g}, specularColor ({:g}, {:g}, {:g})",
+        m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness, m.alpha,
+        m.factors.ior, m.factors.specular, m.factors.specular_color[0], m.factors.specular_color[1],
+        m.factors.specular_color[2]);
   std::string s = fmt::format("{}: D {}={:g}", m.model(), m.d->params[0].name, m.pd);
   if (!m.g->params.empty()) s += fmt::format(", G {}={:g}", m.g->params[0].name, m.pg);
   for (size_t i = 0; i < m.f->params.size(); ++i) s += fmt::format(", {}={:g}", m.f->params[i].name, i ? m.f1 : m.f0);
@@ -95,7 +98,8 @@ std::string ranges_text(const SceneMaterial& m) {
     for (double a : m.alphas()) s += fmt::format(" {:.4g}", a);
   }
   s += "; " + range_text("metallic", m.metallic);
-  for (size_t k = 0; k < 3; ++k) s += fmt::format("; {}", range_text(k == 0 ? "base r" : k == 1 ? "base g" : "base b", m.base[k]));
+  for (size_t k = 0; k < 3; ++k)
+    s += fmt::format("; {}", range_text(k == 0 ? "base r" : k == 1 ? "base g" : "base b", m.base[k]));
   if (m.specular.varies()) s += "; " + range_text("specular", m.specular);
   for (size_t k = 0; k < 3; ++k)
     if (m.specular_color[k].varies()) s += "; " + range_text("specularColor", m.specular_color[k]);
@@ -107,7 +111,8 @@ std::string ranges_text(const SceneMaterial& m) {
   }
   if (m.sheen_checked) {
     for (size_t k = 0; k < 3; ++k) s += "; " + range_text(fmt::format("sheenColor[{}]", k).c_str(), m.sheen_color[k]);
-    s += "; " + range_text("sheenRoughness", m.sheen_roughness) + fmt::format(" ({} gltf_sheen points)", m.sheen_points().size());
+    s += "; " + range_text("sheenRoughness", m.sheen_roughness) +
+         fmt::format(" ({} gltf_sheen points)", m.sheen_points().size());
   }
   return s + fmt::format(" ({} parameter points; the ends of every range, roughness and anisotropy also inside)",
                          m.channels().size());
@@ -116,8 +121,10 @@ std::string ranges_text(const SceneMaterial& m) {
 // The account of one material: what is checked over which range, what is not and why.
 std::vector<std::string> account_lines(const SceneMaterial& m) {
   std::vector<std::string> out;
-  if (!m.not_checked.empty()) out.push_back("NOT checked: " + m.not_checked);
-  else if (m.gltf) out.push_back(ranges_text(m));
+  if (!m.not_checked.empty())
+    out.push_back("NOT checked: " + m.not_checked);
+  else if (m.gltf)
+    out.push_back(ranges_text(m));
   for (auto& a : m.account) out.push_back(a);
   return out;
 }
@@ -147,13 +154,15 @@ std::string pct(uint64_t part, uint64_t whole) {
 
 std::string time_text(const SceneRun& run) {
   if (!run.full_measured)
-    return fmt::format("time: this scene run {:.2f} s (measured: builds, integration, reference); the full catalog "
-                       "was not run (--compare-full runs it and measures the time saved)",
-                       run.seconds);
-  return fmt::format("time: this scene run {:.2f} s, the full catalog {:.2f} s (both measured the same way on this "
-                     "device: builds, integration, reference): saved {:.2f} s ({:.1f}x faster)",
-                     run.seconds, run.full_seconds, run.full_seconds - run.seconds,
-                     run.seconds > 0 ? run.full_seconds / run.seconds : 0.0);
+    return fmt::format(
+        "time: this scene run {:.2f} s (measured: builds, integration, reference); the full catalog "
+        "was not run (--compare-full runs it and measures the time saved)",
+        run.seconds);
+  return fmt::format(
+      "time: this scene run {:.2f} s, the full catalog {:.2f} s (both measured the same way on this "
+      "device: builds, integration, reference): saved {:.2f} s ({:.1f}x faster)",
+      run.seconds, run.full_seconds, run.full_seconds - run.seconds,
+      run.seconds > 0 ? run.full_seconds / run.seconds : 0.0);
 }
 
 // junit.xml: one skipped testcase per part of a material that is not checked, with the reason.
@@ -164,8 +173,9 @@ std::string with_skipped_testcases(std::string xml, const Scene& sc) {
     for (auto& line : account_lines(m))
       if (is_skip(line)) {
         ++skipped;
-        cases += fmt::format("  <testcase classname=\"scene\" name=\"material {}\"><skipped message=\"{}\"/></testcase>\n",
-                             xml_escape(m.name), xml_escape(line));
+        cases +=
+            fmt::format("  <testcase classname=\"scene\" name=\"material {}\"><skipped message=\"{}\"/></testcase>\n",
+                        xml_escape(m.name), xml_escape(line));
       }
   const size_t end = xml.rfind("</testsuite>");
   if (skipped == 0 || end == std::string::npos) return xml;
@@ -201,9 +211,11 @@ void print_scene_console(const SceneRun& run) {
     }
   }
   fmt::print("left out against the full catalog (same checks and scale):\n");
-  fmt::print("  {:<15} {:>22} {:>24} {:>26}\n", "check", "models run/full", "integrals run/full", "samples run (share)");
+  fmt::print("  {:<15} {:>22} {:>24} {:>26}\n", "check", "models run/full", "integrals run/full",
+             "samples run (share)");
   for (auto& lo : run.left_out)
-    fmt::print("  {:<15} {:>22} {:>24} {:>26}\n", lo.check, fmt::format("{}/{}", lo.scene_combinations, lo.full_combinations),
+    fmt::print("  {:<15} {:>22} {:>24} {:>26}\n", lo.check,
+               fmt::format("{}/{}", lo.scene_combinations, lo.full_combinations),
                fmt::format("{}/{}", lo.scene_integrals, lo.full_integrals),
                fmt::format("{} ({})", lo.scene_samples, pct(lo.scene_samples, lo.full_samples)));
   fmt::print("  kernel builds: {} run, {} in a full run\n", run.scene_builds, run.full_builds);
@@ -220,13 +232,19 @@ std::string scene_json(const SceneRun& run) {
   j["materials"] = json::array();
   for (size_t mi = 0; mi < sc.materials.size(); ++mi) {
     const SceneMaterial& m = sc.materials[mi];
-    json mj{{"name", m.name}, {"origin", m.origin}, {"model", m.model()}, {"alpha", m.alpha},
-            {"verdict", material_verdict(run, mi)}, {"parameters", material_params(m)}, {"warnings", m.warnings},
-            {"account", account_lines(m)}, {"not_checked", m.not_checked}};
+    json mj{{"name", m.name},
+            {"origin", m.origin},
+            {"model", m.model()},
+            {"alpha", m.alpha},
+            {"verdict", material_verdict(run, mi)},
+            {"parameters", material_params(m)},
+            {"warnings", m.warnings},
+            {"account", account_lines(m)},
+            {"not_checked", m.not_checked}};
     if (m.gltf) {
-      mj["factors"] = {{"baseColor", m.factors.base}, {"metallic", m.factors.metallic},
+      mj["factors"] = {{"baseColor", m.factors.base},      {"metallic", m.factors.metallic},
                        {"roughness", m.factors.roughness}, {"ior", m.factors.ior},
-                       {"specular", m.factors.specular}, {"specularColor", m.factors.specular_color}};
+                       {"specular", m.factors.specular},   {"specularColor", m.factors.specular_color}};
       mj["channels_checked"] = m.channels().size();
     }
     mj["checks"] = json::array();
@@ -254,7 +272,8 @@ std::string scene_json(const SceneRun& run) {
                              {"samples_full", lo.full_samples},
                              {"seconds_run", lo.scene_seconds},
                              {"seconds_full", lo.full_seconds}});
-  j["kernel_builds"] = {{"run", run.scene_builds}, {"full", run.full_builds},
+  j["kernel_builds"] = {{"run", run.scene_builds},
+                        {"full", run.full_builds},
                         {"skipped", std::max(0, run.full_builds - run.scene_builds)}};
   j["seconds"] = {{"scene", run.seconds}, {"full_measured", run.full_measured}};
   if (run.full_measured) j["seconds"].update({{"full", run.full_seconds}, {"saved", run.full_seconds - run.seconds}});
@@ -289,7 +308,8 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
       for (auto& w : sc.warnings) md += fmt::format("- warning: {}\n", w);
       for (size_t mi = 0; mi < sc.materials.size(); ++mi) {
         const SceneMaterial& m = sc.materials[mi];
-        md += fmt::format("### {} — {}\n\n{} ({})\n\n", m.name, material_verdict(run, mi), material_params(m), m.origin);
+        md +=
+            fmt::format("### {} — {}\n\n{} ({})\n\n", m.name, material_verdict(run, mi), material_params(m), m.origin);
         for (auto& w : m.warnings) md += fmt::format("- warning: {}\n", w);
         for (auto& a : account_lines(m)) md += fmt::format("- account: {}\n", a);
         if (!m.not_checked.empty()) {
@@ -303,8 +323,10 @@ void write_scene_outputs(const SceneRun& run, const Runtime& rt, const SuiteOpti
         }
         md += "\n";
       }
-      md += "### Left out against the full catalog\n\n| check | models run/full | integrals run/full | samples run/full |\n"
-            "|---|---:|---:|---:|\n";
+      md +=
+          "### Left out against the full catalog\n\n| check | models run/full | integrals run/full | samples run/full "
+          "|\n"
+          "|---|---:|---:|---:|\n";
       for (auto& lo : run.left_out)
         md += fmt::format("| {} | {}/{} | {}/{} | {}/{} |\n", lo.check, lo.scene_combinations, lo.full_combinations,
                           lo.scene_integrals, lo.full_integrals, lo.scene_samples, lo.full_samples);

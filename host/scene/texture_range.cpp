@@ -45,13 +45,20 @@ std::string base64_decode(const std::string& text, const std::string& where) {
   int bits = 0;
   for (char ch : text) {
     int v;
-    if (ch >= 'A' && ch <= 'Z') v = ch - 'A';
-    else if (ch >= 'a' && ch <= 'z') v = ch - 'a' + 26;
-    else if (ch >= '0' && ch <= '9') v = ch - '0' + 52;
-    else if (ch == '+' || ch == '-') v = 62;  // '-', '_': the URL-safe alphabet (RFC 4648 §5)
-    else if (ch == '/' || ch == '_') v = 63;
-    else if (ch == '=') break;
-    else throw Error(fmt::format("{}: the data URI is not base64 (character '{}')", where, ch));
+    if (ch >= 'A' && ch <= 'Z')
+      v = ch - 'A';
+    else if (ch >= 'a' && ch <= 'z')
+      v = ch - 'a' + 26;
+    else if (ch >= '0' && ch <= '9')
+      v = ch - '0' + 52;
+    else if (ch == '+' || ch == '-')
+      v = 62;  // '-', '_': the URL-safe alphabet (RFC 4648 §5)
+    else if (ch == '/' || ch == '_')
+      v = 63;
+    else if (ch == '=')
+      break;
+    else
+      throw Error(fmt::format("{}: the data URI is not base64 (character '{}')", where, ch));
     acc = (acc << 6) | uint32_t(v);
     bits += 6;
     if (bits >= 8) {

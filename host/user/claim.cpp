@@ -55,7 +55,8 @@ std::string Claim::mapping(const UserBrdf& u) const {
     if (std::find(seen.begin(), seen.end(), sl.name()) != seen.end()) continue;  // D and G share alpha
     seen.push_back(sl.name());
     if (!out.empty()) out += " ";
-    out += sl.name() + "=" + (s.param < 0 ? fmt::format("{:g}", s.constant) : u.params[size_t(s.param)].name + (s.squared ? "^2" : ""));
+    out += sl.name() + "=" +
+           (s.param < 0 ? fmt::format("{:g}", s.constant) : u.params[size_t(s.param)].name + (s.squared ? "^2" : ""));
   }
   return out;
 }
@@ -76,7 +77,8 @@ Claim parse_claim(const std::string& as, const std::vector<std::string>& map, co
     for (auto& kv : split(entry, ',')) {
       auto eq = kv.find('=');
       if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
-        throw Error(fmt::format("--map wants NAME=EXPR (EXPR a parameter of {}, PARAM^2 or a number), got '{}'", u.path, kv));
+        throw Error(
+            fmt::format("--map wants NAME=EXPR (EXPR a parameter of {}, PARAM^2 or a number), got '{}'", u.path, kv));
       given[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
   auto slots = slots_of(c);
@@ -86,7 +88,8 @@ Claim parse_claim(const std::string& as, const std::vector<std::string>& map, co
   for (auto& [name, expr] : given) {
     bool known = false;
     for (auto& [k, sl] : slots) known = known || sl.name() == name;
-    if (!known) throw Error(fmt::format("--map {}: {} has no parameter {} (its parameters: {})", name, as, name, names));
+    if (!known)
+      throw Error(fmt::format("--map {}: {} has no parameter {} (its parameters: {})", name, as, name, names));
   }
   auto user_index = [&](const std::string& n) {
     for (size_t i = 0; i < u.params.size(); ++i)
@@ -99,8 +102,9 @@ Claim parse_claim(const std::string& as, const std::vector<std::string>& map, co
     if (it == given.end()) {
       s.param = user_index(sl.name());
       if (s.param < 0 && sl.term)
-        throw Error(fmt::format("--as {}: no value for {}.{}; give --map {}=NAME (a parameter of {}), NAME^2 or a number",
-                                as, sl.term->id, sl.name(), sl.name(), u.name));
+        throw Error(
+            fmt::format("--as {}: no value for {}.{}; give --map {}=NAME (a parameter of {}), NAME^2 or a number", as,
+                        sl.term->id, sl.name(), sl.name(), u.name));
       continue;  // kd without a user parameter: 0
     }
     std::string expr = it->second;
@@ -108,7 +112,8 @@ Claim parse_claim(const std::string& as, const std::vector<std::string>& map, co
     s.param = user_index(expr);
     if (s.param >= 0) continue;
     if (s.squared) throw Error(fmt::format("--map {}={}^2: {} has no parameter {}", sl.name(), expr, u.name, expr));
-    s.constant = parse_number(fmt::format("--map {} (neither a parameter of {} nor a number)", sl.name(), u.name), expr);
+    s.constant =
+        parse_number(fmt::format("--map {} (neither a parameter of {} nor a number)", sl.name(), u.name), expr);
   }
   return c;
 }

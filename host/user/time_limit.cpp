@@ -38,7 +38,7 @@ int run_with_time_limit(double seconds, const std::string& what, const std::func
   pid_t pid = ::fork();
   if (pid < 0) throw Error(fmt::format("cannot start the check process: {}", std::strerror(errno)));
   if (pid == 0) {
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // its handlers still remove temporary files
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);     // its handlers still remove temporary files
     if (::getppid() != parent) ::_exit(2);  // the parent died before prctl
     int rc = work();
     std::fflush(stdout);
@@ -52,9 +52,10 @@ int run_with_time_limit(double seconds, const std::string& what, const std::func
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
     }
-    throw Error(fmt::format("{} did not finish within --timeout {:g} s and was stopped (the BRDF code may not "
-                            "terminate; an OpenCL kernel cannot be interrupted, so the check runs in a child process)",
-                            what, seconds));
+    throw Error(
+        fmt::format("{} did not finish within --timeout {:g} s and was stopped (the BRDF code may not "
+                    "terminate; an OpenCL kernel cannot be interrupted, so the check runs in a child process)",
+                    what, seconds));
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   int sig = WTERMSIG(status);

@@ -85,8 +85,8 @@ std::vector<std::string> words(const std::string& s) {
 }
 
 bool qualifier(const std::string& w) {
-  static const char* q[] = {"const", "static", "inline", "__inline", "restrict", "__restrict", "volatile",
-                            "__private", "private", "__attribute__", "overloadable"};
+  static const char* q[] = {"const",    "static",    "inline",  "__inline",      "restrict",    "__restrict",
+                            "volatile", "__private", "private", "__attribute__", "overloadable"};
   return std::find(std::begin(q), std::end(q), w) != std::end(q);
 }
 
@@ -96,8 +96,10 @@ std::string param_type(const std::string& decl, std::string& name) {
   std::vector<std::string> ids;
   size_t stars = 0;
   for (auto& w : words(decl)) {
-    if (w == "*") ++stars;
-    else if (!qualifier(w)) ids.push_back(w);
+    if (w == "*")
+      ++stars;
+    else if (!qualifier(w))
+      ids.push_back(w);
   }
   name.clear();
   if (ids.size() >= 2) name = ids.back(), ids.pop_back();
@@ -148,8 +150,10 @@ UserParam parse_declaration(const UserBrdf& u, int line, const std::string& body
   std::vector<std::string> t;
   for (std::string w; in >> w;) t.push_back(w);
   const std::string form = "// mfv: param NAME LO HI [default V] [roughness|perceptual]";
-  if (t.empty() || t[0] != "param") throw Error(fmt::format("{}: unknown mfv directive '{}' (the form is '{}')", where, body, form));
-  if (t.size() < 4) throw Error(fmt::format("{}: '{}' needs a name, a lower and an upper end ('{}')", where, body, form));
+  if (t.empty() || t[0] != "param")
+    throw Error(fmt::format("{}: unknown mfv directive '{}' (the form is '{}')", where, body, form));
+  if (t.size() < 4)
+    throw Error(fmt::format("{}: '{}' needs a name, a lower and an upper end ('{}')", where, body, form));
   UserParam p;
   p.name = t[1];
   p.line = line;
@@ -159,10 +163,14 @@ UserParam parse_declaration(const UserBrdf& u, int line, const std::string& body
   p.hi = parse_number(where + ": " + p.name + " upper end", t[3]);
   p.value = 0.5 * (p.lo + p.hi);
   for (size_t i = 4; i < t.size(); ++i) {
-    if (t[i] == "default" && i + 1 < t.size()) p.value = parse_number(where + ": " + p.name + " default", t[++i]);
-    else if (t[i] == "roughness") p.role = Roughness::Alpha;
-    else if (t[i] == "perceptual") p.role = Roughness::Perceptual;
-    else throw Error(fmt::format("{}: unexpected '{}' in '{}' (the form is '{}')", where, t[i], body, form));
+    if (t[i] == "default" && i + 1 < t.size())
+      p.value = parse_number(where + ": " + p.name + " default", t[++i]);
+    else if (t[i] == "roughness")
+      p.role = Roughness::Alpha;
+    else if (t[i] == "perceptual")
+      p.role = Roughness::Perceptual;
+    else
+      throw Error(fmt::format("{}: unexpected '{}' in '{}' (the form is '{}')", where, t[i], body, form));
   }
   if (!std::isfinite(p.lo) || !std::isfinite(p.hi) || p.lo > p.hi)
     throw Error(fmt::format("{}: {} has the range [{}, {}]; give finite LO <= HI", where, p.name, p.lo, p.hi));
@@ -237,9 +245,8 @@ std::string guard_param_reads(const std::string& text, const std::string& code, 
   size_t at = 0;
   for (auto& [open, close] : spans) {
     if (open < at) continue;  // nested in a span already rewritten: guarded by the outer read's rewrite below
-    out += text.substr(at, open - at) + "MFV_PARAM_INDEX(" + guard_param_reads(text.substr(open, close - open),
-                                                                               code.substr(open, close - open), names) +
-           ")";
+    out += text.substr(at, open - at) + "MFV_PARAM_INDEX(" +
+           guard_param_reads(text.substr(open, close - open), code.substr(open, close - open), names) + ")";
     at = close;
   }
   return out + text.substr(at);
@@ -273,23 +280,28 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   if (!args.roughness.empty()) {
     std::string name = args.roughness;
     Roughness role = Roughness::Alpha;
-    if (name.size() > 2 && name.compare(name.size() - 2, 2, "^2") == 0) name.resize(name.size() - 2), role = Roughness::Perceptual;
+    if (name.size() > 2 && name.compare(name.size() - 2, 2, "^2") == 0)
+      name.resize(name.size() - 2), role = Roughness::Perceptual;
     UserParam* p = find_param(u, name);
-    if (!p) throw Error(fmt::format("--roughness {}: no parameter of that name (declare it in the file or with --param)", name));
+    if (!p)
+      throw Error(
+          fmt::format("--roughness {}: no parameter of that name (declare it in the file or with --param)", name));
     for (auto& q : u.params) q.role = Roughness::None;
     p->role = role;
   }
   for (size_t i = 0; i < u.params.size(); ++i) {
     if (u.params[i].role == Roughness::None) continue;
     if (u.roughness >= 0)
-      throw Error(fmt::format("{}: both {} and {} are marked as the roughness; mark one", path, u.params[size_t(u.roughness)].name,
-                              u.params[i].name));
+      throw Error(fmt::format("{}: both {} and {} are marked as the roughness; mark one", path,
+                              u.params[size_t(u.roughness)].name, u.params[i].name));
     if (!(u.params[i].lo > 0))
-      throw Error(fmt::format("roughness {} must be positive (range [{}, {}])", u.params[i].name, u.params[i].lo, u.params[i].hi));
+      throw Error(fmt::format("roughness {} must be positive (range [{}, {}])", u.params[i].name, u.params[i].lo,
+                              u.params[i].hi));
     u.roughness = int(i);
   }
   if (u.params.size() > kUserMaxParams)
-    throw Error(fmt::format("{} declares {} parameters; mfv check passes at most {}", path, u.params.size(), kUserMaxParams));
+    throw Error(
+        fmt::format("{} declares {} parameters; mfv check passes at most {}", path, u.params.size(), kUserMaxParams));
 
   // Functions and signatures.
   const std::string code = strip_comments(u.text);
@@ -315,11 +327,11 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
       if (k < u.params.size()) continue;
       std::string names;
       for (auto& p : u.params) names += (names.empty() ? "" : ", ") + p.name;
-      throw Error(fmt::format("{}:{}: the code reads {}[{}] but {} parameter{} declared{}{}{}; add "
-                              "'// mfv: param NAME LO HI default V' or pass --param NAME=LO:HI",
-                              path, line_of(code, size_t(it->position(0))), f->params_name, k, u.params.size(),
-                              u.params.size() == 1 ? " is" : "s are", names.empty() ? "" : " (", names,
-                              names.empty() ? "" : ")"));
+      throw Error(fmt::format(
+          "{}:{}: the code reads {}[{}] but {} parameter{} declared{}{}{}; add "
+          "'// mfv: param NAME LO HI default V' or pass --param NAME=LO:HI",
+          path, line_of(code, size_t(it->position(0))), f->params_name, k, u.params.size(),
+          u.params.size() == 1 ? " is" : "s are", names.empty() ? "" : " (", names, names.empty() ? "" : ")"));
     }
   }
   return u;

@@ -11,7 +11,6 @@
 
 namespace mfv {
 
-
 struct UserParam {
   std::string name;
   double lo = 0, hi = 0, value = 0;  // range and default
@@ -27,10 +26,10 @@ struct UserParam {
 
 struct UserBrdf {
   std::string path, name, text;  // name: the file's stem, used as the model name
-  std::string guarded_text;       // text with each params[k] read bounds-checked (kernels/user_guard.cl)
+  std::string guarded_text;      // text with each params[k] read bounds-checked (kernels/user_guard.cl)
   bool has_d = false, has_g1 = false;
-  std::vector<UserParam> params;  // params[k] of the contract
-  int roughness = -1;             // index of the width parameter, -1: none declared
+  std::vector<UserParam> params;                          // params[k] of the contract
+  int roughness = -1;                                     // index of the width parameter, -1: none declared
   double width(const std::vector<double>& values) const;  // proposal width at these parameter values (<= 0: mixture)
   std::vector<double> defaults() const;
 };

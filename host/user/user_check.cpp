@@ -18,7 +18,8 @@
 namespace mfv {
 
 const std::vector<std::string>& user_checks() {
-  static const std::vector<std::string> c = {"d_norm", "masking", "furnace", "energy", "reciprocity", "finite", "agree"};
+  static const std::vector<std::string> c = {"d_norm",      "masking", "furnace", "energy",
+                                             "reciprocity", "finite",  "agree"};
   return c;
 }
 
@@ -50,8 +51,8 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
     std::vector<std::string> files = {"common.cl", "rng.cl", kDispatchBefore};
     for (auto& f : integration_files()) files.push_back(f);
     for (const char* f : {"user_guard.cl", "user_brdf.cl"}) files.push_back(f);
-    return rt.build(files, defines,
-                    generate_dispatch(TermSelection{}), kDispatchBefore, {{u.path, u.guarded_text, "user_brdf.cl"}});
+    return rt.build(files, defines, generate_dispatch(TermSelection{}), kDispatchBefore,
+                    {{u.path, u.guarded_text, "user_brdf.cl"}});
   } catch (const Error& e) {
     std::string log = e.what(), first;
     size_t errors = 0;
@@ -203,8 +204,7 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
 
 // ---- reciprocity -------------------------------------------------------------
 
-void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOptions& opt,
-                          SuiteReport& rep) {
+void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep) {
   auto t0 = Clock::now();
   std::vector<IntegralSpec> specs;
   std::vector<PointResult> pts;
@@ -227,7 +227,8 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   std::vector<std::string> checks = opt.checks;
   auto available = [&](const std::string& c) -> std::string {
     if (c == "d_norm" && !u.has_d) return "needs 'float D(float3 m, const float* params)'";
-    if (c == "masking" && !(u.has_d && u.has_g1)) return "needs D and 'float G1(float3 v, float3 m, const float* params)'";
+    if (c == "masking" && !(u.has_d && u.has_g1))
+      return "needs D and 'float G1(float3 v, float3 m, const float* params)'";
     if (c == "agree" && !claim) return "needs a claimed model (--as D/G/F)";
     if (c == "energy" && corners(u, u.defaults()).size() < 2) return "has no parameter besides the roughness to vary";
     return "";
@@ -238,9 +239,10 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   } else {
     for (auto& c : checks) {
       if (std::find(user_checks().begin(), user_checks().end(), c) == user_checks().end())
-        throw Error(fmt::format("unknown check '{}' (mfv check runs: d_norm, masking, furnace, energy, reciprocity, "
-                                "finite, agree)",
-                                c));
+        throw Error(
+            fmt::format("unknown check '{}' (mfv check runs: d_norm, masking, furnace, energy, reciprocity, "
+                        "finite, agree)",
+                        c));
       if (!available(c).empty()) throw Error(fmt::format("--check {}: {} {}", c, u.path, available(c)));
     }
   }

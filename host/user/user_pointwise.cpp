@@ -68,7 +68,9 @@ glm::dvec3 as_float(const glm::dvec3& v) {
   volatile float x = float(v.x), y = float(v.y), z = float(v.z);
   return glm::dvec3(double(x), double(y), double(z));
 }
-std::string vec_text(const glm::dvec3& v) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", float(v.x), float(v.y), float(v.z)); }
+std::string vec_text(const glm::dvec3& v) {
+  return fmt::format("({:.9g}, {:.9g}, {:.9g})", float(v.x), float(v.y), float(v.z));
+}
 
 // The half vector in double, where both directions are above the horizon and it exists.
 bool half_vector(const glm::dvec3& wi, const glm::dvec3& wo, glm::dvec3& h) {
@@ -83,7 +85,8 @@ bool half_vector(const glm::dvec3& wi, const glm::dvec3& wo, glm::dvec3& h) {
 
 }  // namespace
 
-void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep) {
+void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt,
+                SuiteReport& rep) {
   auto t0 = Clock::now();
   // Widths from the sweep's extremes (alpha 1e-7 .. 2), the range ends, every other parameter at its ends.
   std::vector<Values> settings;
@@ -199,7 +202,8 @@ void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, cons
       glm::dvec3 wi = dir(u01_open(r[2]), 2 * M_PI * u01_open(r[3]));
       if (k % 2) {
         double t = w * std::sqrt(1.0 / ((1.0 - u01_open(r[2])) * (1.0 - u01_open(r[2]))) - 1.0);
-        glm::dvec3 m = glm::normalize(glm::dvec3(t * std::cos(2 * M_PI * u01_open(r[3])), t * std::sin(2 * M_PI * u01_open(r[3])), 1.0));
+        glm::dvec3 m = glm::normalize(
+            glm::dvec3(t * std::cos(2 * M_PI * u01_open(r[3])), t * std::sin(2 * M_PI * u01_open(r[3])), 1.0));
         glm::dvec3 refl = 2.0 * glm::dot(wo, m) * m - wo;
         if (refl.z > 1e-4) wi = refl;
       }
@@ -241,8 +245,9 @@ void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, cons
         };
         double dev = std::max(std::fabs(ref::brdf(refs[s], raw_shading(r.wi, r.wo)) - rv),
                               input_sensitivity(6, 1.0, false, moved, rv));
-        double err = std::isfinite(uv) ? std::max(0.0, std::fabs(uv - rv) - 2 * dev) / std::max({std::fabs(rv), 1e-6 * rmax, 1e-30})
-                                       : std::numeric_limits<double>::infinity();
+        double err = std::isfinite(uv)
+                         ? std::max(0.0, std::fabs(uv - rv) - 2 * dev) / std::max({std::fabs(rv), 1e-6 * rmax, 1e-30})
+                         : std::numeric_limits<double>::infinity();
         if (err > worst) {
           worst = err;
           p.detail = fmt::format("brdf(wi={}, wo={}).{} = {:.9g}, {} gives {:.9g}", vec_text(r.wi), vec_text(r.wo),
@@ -254,6 +259,5 @@ void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, cons
     }
   rep.stats.push_back({"agree", settings.size() * opt.channels.size(), recs.size(), since(t0)});
 }
-
 
 }  // namespace mfv::user_detail

@@ -1,7 +1,7 @@
 #include "util/files.hpp"
 
-#include "util/temp_files.hpp"
 #include "util/error.hpp"
+#include "util/temp_files.hpp"
 
 #include <fmt/format.h>
 

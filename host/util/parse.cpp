@@ -36,7 +36,8 @@ uint64_t magnitude(const std::string& what, const std::string& text, const std::
   if (!std::isfinite(x)) throw Error(fmt::format("{}: '{}' is not a finite number", what, text));
   if (x != std::floor(x)) throw Error(fmt::format("{}: {} is not a whole number", what, text));
   // 2^64 is exact in double; every double below it with no fraction converts exactly.
-  if (x < 0 || x >= 0x1p64 || uint64_t(x) > hi) throw Error(fmt::format("{}: {} is out of range {}", what, text, range));
+  if (x < 0 || x >= 0x1p64 || uint64_t(x) > hi)
+    throw Error(fmt::format("{}: {} is out of range {}", what, text, range));
   return uint64_t(x);
 }
 

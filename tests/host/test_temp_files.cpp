@@ -1,8 +1,8 @@
 // Temporary files are removed on SIGINT, SIGTERM and SIGHUP, and earlier
 // results survive (util/temp_files.hpp, util/files.hpp; issue 17).
+#include "util/error.hpp"
 #include "util/files.hpp"
 #include "util/temp_files.hpp"
-#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
