@@ -116,8 +116,8 @@ namespace {
 // program includes first).
 void plant_in_common(const std::filesystem::path& dir, const std::string& line) {
   namespace fs = std::filesystem;
-  const fs::path src = fs::path(MFV_TEST_DATA_DIR) / "../../kernels";
-  for (auto& e : fs::directory_iterator(src)) fs::copy_file(e.path(), dir / e.path().filename());
+  // with kernels/abi/, the headers kernel files include
+  fs::copy(fs::path(MFV_TEST_DATA_DIR) / "../../kernels", dir, fs::copy_options::recursive);
   std::ofstream(dir / "common.cl", std::ios::app) << "\n" << line << "\n";
 }
 

@@ -80,6 +80,11 @@ TEST_CASE("Kernel and reference G1 give 1 at tan = 0 and at (v.n) rounded above 
     for (auto& c : rep->cases) {
       bool g1 = c.family == "G1" || (c.group == "variant" && c.family == "G1_smith_ggx");
       if (!g1) continue;
+      const Term* term = try_find_term(c.name.substr(c.name.find(' ') + 1), Kind::G);
+      if (term && !term->g1_not_one_at_normal.empty()) {  // a fitted Lambda (the catalog says why): no 1 expected
+        for (auto* name : {"tan_zero", "above_one"}) CHECK(region(c, name)->expect.empty());
+        continue;
+      }
       ++g1_cases;
       for (auto* name : {"tan_zero", "above_one"}) {
         CAPTURE(fp64, c.name, name);

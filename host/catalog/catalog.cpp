@@ -248,6 +248,9 @@ std::vector<Term> build_catalog() {
                 Roughness::Alpha, ref_::G_charlie_sheen);
     t->g1_kernel_fn = "G1_charlie";
     t->ref_g1 = ref_::G1_charlie;
+    // Λ(1) = exp(2 L(0.5) − L(0)) with L(0) = a + e: the fit is no Smith Λ
+    // at normal incidence (Estevez and Kulla 2017 §3)
+    t->g1_not_one_at_normal = "the fitted Lambda(1) = exp(2 L(0.5) - L(0)) is not 0";
     t->own_lobe = true;
     // Λ = exp(L): L's absolute rounding becomes Λ's relative error; L sums terms
     // up to a/(1 + b x^c) <= 25.3, |e| <= 4.9, |d x| <= 2 (~3 roundings of ~32:

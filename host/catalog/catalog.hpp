@@ -70,6 +70,9 @@ struct Term : ref::TermTwins {
   // Smith G terms: the kernel G1 they are built from (its reference twin is
   // ref_g1), used by the masking check; empty for G terms that are no Smith G1 of any D.
   std::string g1_kernel_fn;
+  // Smith G1 = 1 at normal incidence (Λ(tan θ = 0) = 0), as every analytic
+  // Λ gives and the stability sweep expects; a fitted Λ may not
+  std::string g1_not_one_at_normal;  // empty, or why not
   // Anisotropic D and Smith G (aniso, see ref::TermTwins): their kernel functions
   // take the tangent components (kernels/terms_d.cl, terms_g.cl). terms_of()
   // leaves them out: its callers pass one width.

@@ -127,7 +127,8 @@ void add_term_regions(CaseDef& c, const Term& t, bool fp64, bool g1, Fill fill) 
   for (auto& cc : coss) {
     std::string expect;
     if (cc.name == "below_horizon" && t.kind != Kind::F) expect = "0";
-    if (g1 && (cc.name == "tan_zero" || cc.name == "above_one")) expect = "1";  // seed 000
+    // seed 000 (G1 = 1 where tan = 0), unless the catalog says the term's Λ is a fit that is not 0 there
+    if (g1 && t.g1_not_one_at_normal.empty() && (cc.name == "tan_zero" || cc.name == "above_one")) expect = "1";
     // F takes VoH = |l + v|/2 >= 0; below it the kernel uses |VoH| (seed 000,
     // c = |L.H|) and the reference clamps to 0: reported, not gated.
     bool in_domain = cc.in_domain && !(t.kind == Kind::F && cc.name == "below_horizon");
