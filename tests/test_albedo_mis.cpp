@@ -5,6 +5,7 @@
 // quadrature and its replicate standard error is honest; it beats the
 // defensive proposal alone; and the defects it must not cancel still fail the
 // suite's gate.
+#include "albedo_spec.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
@@ -25,16 +26,7 @@ namespace {
 
 IntegralSpec mis_spec(const std::string& d, const std::string& g, const std::string& f, double alpha, double cos_o,
                       double f0, double kd, uint32_t stream, IntegralKind kind = IntegralKind::AlbedoMis) {
-  const Term &td = find_term(d), &tg = find_term(g), &tf = find_term(f);
-  MicrofacetIntegral m;
-  m.kind = kind;
-  m.d = &td, m.g = &tg, m.f = &tf;
-  m.pd = native_from_alpha(td.roughness, alpha), m.pg = native_from_alpha(tg.roughness, alpha);
-  m.f0 = f0, m.f1 = 1.0, m.kd = kd;
-  m.width = alpha, m.cos_o = cos_o;
-  IntegralSpec s = spec_of(m);
-  s.stream = stream;
-  return s;
+  return test::albedo_spec(d, g, f, alpha, cos_o, f0, kd, stream, kind);
 }
 
 TermSelection selection() {
@@ -117,18 +109,6 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
   }
 }
 
-// The verdict of `check` on `model` with one replacement planted in a kernel
-// file; gate_ok: whether the whole run still passed the gate.
-static Verdict planted_verdict(const char* file, const char* from, const char* to, const SuiteOptions& opt,
-                               const char* check, const char* model, bool& gate_ok) {
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace(file, from, to));
-  Runtime planted("", dir.path());
-  const SuiteReport bad = run_suite(planted, opt);
-  gate_ok = bad.gate_ok();
-  return test::verdict_of(bad, check, model);
-}
-
 TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that cancels a bug is a defect)",
           "[suite][device][mis][planted]") {
   Runtime* rt = test::device_runtime();
@@ -144,19 +124,19 @@ TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that canc
   const char* ggx_d = "return R(1.0) / (MFV_PI * a2 * k * k);";
   bool gate_ok = true;
   // D without its 1/pi: the albedo is pi times too large
-  CHECK(planted_verdict("terms_d.cl", ggx_d, "return R(1.0) / (a2 * k * k);", opt, "furnace",
-                        "ggx/smith_ggx_correlated/none", gate_ok) == Verdict::Fail);
+  CHECK(test::planted_verdict("terms_d.cl", ggx_d, "return R(1.0) / (a2 * k * k);", opt, "furnace",
+                              "ggx/smith_ggx_correlated/none", gate_ok) == Verdict::Fail);
   CHECK_FALSE(gate_ok);
   // Lambda with alpha for alpha^2: masking fails (the albedo only loses energy, which the upper-only furnace allows)
-  CHECK(planted_verdict("terms_g.cl", "real x = alpha * alpha * tan2_from_cos(NoV);",
-                        "real x = alpha * tan2_from_cos(NoV);", opt, "masking", "ggx/smith_ggx_correlated",
-                        gate_ok) == Verdict::Fail);
+  CHECK(test::planted_verdict("terms_g.cl", "real x = alpha * alpha * tan2_from_cos(NoV);",
+                              "real x = alpha * tan2_from_cos(NoV);", opt, "masking", "ggx/smith_ggx_correlated",
+                              gate_ok) == Verdict::Fail);
   CHECK_FALSE(gate_ok);
   // D scaled by 1.001: d_norm fails (the upper-only furnace need not: E < 0.999 almost everywhere)
   SuiteOptions norm = opt;
   norm.checks = {"d_norm"};
   norm.models = {"ggx"};
-  CHECK(planted_verdict("terms_d.cl", ggx_d, "return R(1.001) / (MFV_PI * a2 * k * k);", norm, "d_norm", "ggx",
-                        gate_ok) == Verdict::Fail);
+  CHECK(test::planted_verdict("terms_d.cl", ggx_d, "return R(1.001) / (MFV_PI * a2 * k * k);", norm, "d_norm", "ggx",
+                              gate_ok) == Verdict::Fail);
   CHECK_FALSE(gate_ok);
 }

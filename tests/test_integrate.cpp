@@ -3,6 +3,7 @@
 // general `integrate` kernel takes and gives the same estimates: over
 // several D x G x F, grazing and normal views, tiny widths, diffuse kd,
 // launches split along the sample axis, and later passes (first_index > 0).
+#include "albedo_spec.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
@@ -19,15 +20,7 @@ namespace {
 
 IntegralSpec albedo(const std::string& d, const std::string& g, const std::string& f, double alpha, double cos_o,
                     double f0, double kd, uint32_t stream) {
-  const Term &td = find_term(d), &tg = find_term(g), &tf = find_term(f);
-  MicrofacetIntegral m;
-  m.d = &td, m.g = &tg, m.f = &tf;
-  m.pd = native_from_alpha(td.roughness, alpha), m.pg = native_from_alpha(tg.roughness, alpha);
-  m.f0 = f0, m.f1 = 1.0, m.kd = kd;
-  m.width = alpha, m.cos_o = cos_o;
-  IntegralSpec s = spec_of(m);
-  s.stream = stream;
-  return s;
+  return test::albedo_spec(d, g, f, alpha, cos_o, f0, kd, stream);
 }
 
 void require_same(const std::vector<Estimate>& fast, const std::vector<Estimate>& general) {

@@ -8,6 +8,7 @@
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 #include "runtime/kernel_includes.hpp"
+#include "stability_options.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
@@ -114,11 +115,7 @@ TEST_CASE("A sweep value written to the wrong slot reads as the NaN sentinel and
   test::PlantedKernelDir dir;
   REQUIRE(dir.replace("stability.cl", "g_rec[PW_VALUE] =", "g_rec[PW_VALUE_LO] ="));
   Runtime rt("", dir.path());
-  StabilityOptions opt;
-  opt.combinations = false;
-  opt.models = false;
-  opt.only = {"F schlick"};
-  StabilityReport rep = run_stability(rt, opt);
+  StabilityReport rep = run_stability(rt, test::one_term("F schlick"));
   REQUIRE(rep.cases.size() == 1);
   CHECK(rep.cases[0].count(&RegionResult::nan, true) == rep.cases[0].count(&RegionResult::points, true));
   CHECK_FALSE(rep.gate_pass());

@@ -5,6 +5,7 @@
 #include "checks/stability.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
+#include "stability_options.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -28,11 +29,7 @@ TEST_CASE("Planted: GGX D without its horizon test fails the stability gate and 
   REQUIRE(dir.replace("terms_d.cl", "  if (NoH <= R(0.0)) return R(0.0);\n  real c = min(NoH, R(1.0));\n  // divide",
                       "  real c = min(NoH, R(1.0));\n  // divide"));
   Runtime rt("", dir.path());
-  StabilityOptions sopt;
-  sopt.combinations = false;
-  sopt.models = false;
-  sopt.only = {"D ggx"};
-  StabilityReport rep = run_stability(rt, sopt);
+  StabilityReport rep = run_stability(rt, test::one_term("D ggx"));
   CHECK_FALSE(rep.gate_pass());
   CHECK(any_line_has(rep.gate_failures, "outside the domain in region 'below_horizon'"));
 

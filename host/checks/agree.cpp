@@ -27,23 +27,12 @@ namespace {
 
 using namespace pw;  // the record's named slots and modes (kernels/abi/pointwise.h)
 
-enum Mode : int {
-  kD = PW_D,
-  kG = PW_G,
-  kF = PW_F,
-  kG1 = PW_G1,
-  kBrdf = PW_BRDF,
-  kModel = PW_MODEL,
-  kDAniso = PW_D_ANISO,
-  kG1Aniso = PW_G1_ANISO,
-  kBrdfAniso = PW_BRDF_ANISO
-};
 constexpr int kRecord = PW_RECORD;  // floats per record
 constexpr int kSlots = 6;           // D param, G param, F p0, F p1, kd, p5 (a whole model: its p[0..5])
 
 struct Case {
   std::string name;
-  Mode mode;
+  EvalMode mode;
   const Term* d = nullptr;
   const Term* g = nullptr;
   const Term* f = nullptr;
@@ -57,23 +46,24 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
     if (t.aniso) {
       // both widths and the tangent components; the G2 is covered by the BRDFs below
       if (t.kind == Kind::D)
-        cases.push_back({fmt::format("D {}", t.id), kDAniso, &t, nullptr, nullptr, t.ulp_budget, t.abs_floor});
+        cases.push_back({fmt::format("D {}", t.id), EvalMode::DAniso, &t, nullptr, nullptr, t.ulp_budget, t.abs_floor});
       else
-        cases.push_back({fmt::format("G1 {}", t.id), kG1Aniso, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
+        cases.push_back(
+            {fmt::format("G1 {}", t.id), EvalMode::G1Aniso, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
       continue;
     }
-    Mode m = t.kind == Kind::D ? kD : t.kind == Kind::G ? kG : kF;
+    EvalMode m = t.kind == Kind::D ? EvalMode::D : t.kind == Kind::G ? EvalMode::G : EvalMode::F;
     Case c{fmt::format("{} {}", kind_name(t.kind), t.id), m, nullptr, nullptr, nullptr, t.ulp_budget, t.abs_floor};
     (t.kind == Kind::D ? c.d : t.kind == Kind::G ? c.g : c.f) = &t;
     cases.push_back(c);
     if (!t.g1_kernel_fn.empty() && t.id != "smith_ggx_correlated")  // shares smith_ggx's G1
-      cases.push_back({fmt::format("G1 {}", t.id), kG1, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
+      cases.push_back({fmt::format("G1 {}", t.id), EvalMode::G1, nullptr, &t, nullptr, t.ulp_budget, t.abs_floor});
   }
   if (opt.combinations)
     for (auto* d : terms_of(Kind::D))
       for (auto* g : terms_of(Kind::G))
         for (auto* f : terms_of(Kind::F))
-          cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdf, d, g, f,
+          cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), EvalMode::Brdf, d, g, f,
                            d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
                            std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
   if (opt.combinations)  // anisotropic D with its own Smith G, every F
@@ -81,11 +71,11 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
       for (auto* g : aniso_terms_of(Kind::G))
         for (auto* f : terms_of(Kind::F))
           if (g->fit_for(d->id))
-            cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), kBrdfAniso, d, g, f,
+            cases.push_back({fmt::format("BRDF {}/{}/{}", d->id, g->id, f->id), EvalMode::BrdfAniso, d, g, f,
                              d->ulp_budget + g->ulp_budget + f->ulp_budget + 8,
                              std::max({d->abs_floor, g->abs_floor, f->abs_floor})});
   for (auto& m : models()) {
-    Case c{fmt::format("MODEL {}", m.id), kModel, nullptr, nullptr, nullptr, m.ulp_budget, m.abs_floor};
+    Case c{fmt::format("MODEL {}", m.id), EvalMode::Model, nullptr, nullptr, nullptr, m.ulp_budget, m.abs_floor};
     c.model = &m;
     cases.push_back(c);
   }
@@ -151,12 +141,12 @@ struct Evaluator {
     // A whole model's direction components are bumped by an absolute amount:
     // rounding a unit vector moves each component by ~eps of its length, not
     // of the component (a small z is as uncertain as a large x).
-    if (c.mode == kModel && bump_index >= 0 && bump_index < 6)
+    if (c.mode == EvalMode::Model && bump_index >= 0 && bump_index < 6)
       in[bump_index] += bump;
-    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == kModel ? 13 : 11))
+    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == EvalMode::Model ? 13 : 11))
       in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
-      case kDAniso: {
+      case EvalMode::DAniso: {
         // The kernels take the recorded h as if unit; both anisotropic D forms
         // (GGX: 1/(π ax ay k²), k = c² + (hx/ax)² + (hy/ay)²; Beckmann:
         // exp(-((hx/ax)² + (hy/ay)²)/c²)/(π ax ay c⁴)) are homogeneous of
@@ -167,9 +157,9 @@ struct Evaluator {
         const double len2 = glm::dot(h, h);
         return c.d->ref_d_aniso(h, in[PW_PD], in[PW_ALPHA_Y]) / (len2 * len2);
       }
-      case kG1Aniso:
+      case EvalMode::G1Aniso:
         return c.g->ref_g1_aniso(glm::dvec3(in[PW_AUX_X], in[PW_AUX_Y], in[PW_NOV]), in[PW_PG], in[PW_ALPHA_Y]);
-      case kBrdfAniso: {
+      case EvalMode::BrdfAniso: {
         // as kernels/agree.cl and the whole models: the record's directions as
         // they are in float32 (made unit in float64 builds), the half vector
         // formed from them (nearly opposite l and v leave it ill-conditioned)
@@ -182,11 +172,11 @@ struct Evaluator {
         return s.kd / M_PI + ref::eval_d(s, sum / glm::length(sum)) * c.f->ref_f(sh.VoH, s.f0, s.f1) *
                                  ref::eval_g(s, wi, wo, sh) / (4.0 * sh.NoL * sh.NoV);
       }
-      case kD: return c.d->ref_d(in[PW_NOH], in[PW_PD]);
-      case kG: return c.g->ref_g(in[PW_NOL], in[PW_NOV], in[PW_NOH], in[PW_VOH], in[PW_PG]);
-      case kG1: return c.g->ref_g1(in[PW_NOV], in[PW_PG]);
-      case kF: return c.f->ref_f(in[PW_VOH], in[PW_F0], in[PW_F1]);
-      case kModel: {
+      case EvalMode::D: return c.d->ref_d(in[PW_NOH], in[PW_PD]);
+      case EvalMode::G: return c.g->ref_g(in[PW_NOL], in[PW_NOV], in[PW_NOH], in[PW_VOH], in[PW_PG]);
+      case EvalMode::G1: return c.g->ref_g1(in[PW_NOV], in[PW_PG]);
+      case EvalMode::F: return c.f->ref_f(in[PW_VOH], in[PW_F0], in[PW_F1]);
+      case EvalMode::Model: {
         // as kernels/agree.cl: the float record's directions as they are in
         // float32 (the model's formula then sees the kernel's own inputs, not
         // unit vectors 1e-7 away), made unit in float64 as the kernel does
@@ -194,7 +184,7 @@ struct Evaluator {
         if (fp64) wi = unit_exact(wi), wo = unit_exact(wo);
         return c.model->ref(wi, wo, in + PW_P0);
       }
-      case kBrdf: {
+      case EvalMode::Brdf: {
         ref::BrdfSpec s{c.d, c.g, c.f, in[PW_PD], in[PW_PG], in[PW_F0], in[PW_F1], in[PW_KD]};
         glm::dvec3 wi, wo;
         ref::Shading sh =
@@ -207,13 +197,15 @@ struct Evaluator {
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
-  bool aniso() const { return c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso; }
-  int inputs() const { return aniso() ? 13 : c.mode == kBrdf ? 15 : c.mode == kModel ? 13 : 11; }
+  bool aniso() const {
+    return c.mode == EvalMode::DAniso || c.mode == EvalMode::G1Aniso || c.mode == EvalMode::BrdfAniso;
+  }
+  int inputs() const { return aniso() ? 13 : c.mode == EvalMode::Brdf ? 15 : c.mode == EvalMode::Model ? 13 : 11; }
 };
 
 std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string in;
-  if (c.mode == kBrdf || c.mode == kModel || c.mode == kBrdfAniso)
+  if (c.mode == EvalMode::Brdf || c.mode == EvalMode::Model || c.mode == EvalMode::BrdfAniso)
     in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z], r[PW_WO_X],
                      r[PW_WO_Y], r[PW_WO_Z]);
   else
@@ -221,8 +213,8 @@ std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string ps;
   const char* slot[kSlots] = {"pD", "pG", "f0", "f1", "kd", "p5"};
   for (int s = 0; s < kSlots; ++s) ps += fmt::format(" {}={:a}", slot[s], r[PW_P0 + s]);
-  if (c.mode == kModel && r[PW_P6] != 0.0f) ps += fmt::format(" p6={:a}", r[PW_P6]);
-  if (c.mode == kDAniso || c.mode == kG1Aniso || c.mode == kBrdfAniso)
+  if (c.mode == EvalMode::Model && r[PW_P6] != 0.0f) ps += fmt::format(" p6={:a}", r[PW_P6]);
+  if (c.mode == EvalMode::DAniso || c.mode == EvalMode::G1Aniso || c.mode == EvalMode::BrdfAniso)
     ps += fmt::format(" h.x|v.x={:a} h.y|v.y={:a} alpha_y={:a}", r[PW_AUX_X], r[PW_AUX_Y], r[PW_ALPHA_Y]);
   return fmt::format("{}{} kernel={:a} reference={:a}", in, ps, k, ref);
 }
@@ -261,7 +253,7 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
       // Whole models form their cosines (v·r, n·h) from three products and
       // a normalisation each: several roundings of the inputs' scale, which
       // a lobe (v·r)^n multiplies by n; their bump is 4 units, not 2.
-      const double units = c.mode == kModel ? 4 : 2;
+      const double units = c.mode == EvalMode::Model ? 4 : 2;
       const double dev = input_sensitivity(
           ev.inputs(), units, fp64, [&](int j, double b) { return ev.eval(j, b); }, ref);
       fail = diff > std::max(allowed, 2.0 * dev);
@@ -331,7 +323,8 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   progress::Task task("agree: cases", cases.size());
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
-    const DrawRanges ranges = draw_ranges(c.d, c.g, c.f, c.model, c.mode == kBrdf || c.mode == kBrdfAniso);
+    const DrawRanges ranges =
+        draw_ranges(c.d, c.g, c.f, c.model, c.mode == EvalMode::Brdf || c.mode == EvalMode::BrdfAniso);
     rt.queue().enqueueWriteBuffer(range_buf, CL_TRUE, 0, sizeof(ranges), ranges.data());
 
     Stats total;
@@ -398,7 +391,7 @@ PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   kern.setArg(4, buf);
   rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(1));
   rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, sizeof(rec), rec.data());
-  Case c{"point", static_cast<Mode>(p.mode), p.d, p.g, p.f, 0, 0, p.model};
+  Case c{"point", p.mode, p.d, p.g, p.f, 0, 0, p.model};
   PointValue r;
   r.kernel = record_value(rec.data());
   r.reference = Evaluator{c, rec.data(), fp64}.eval(-1, 0.0);
