@@ -1,8 +1,11 @@
 #include "checks/check_table.hpp"
 
+#include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace mfv {
 
@@ -61,10 +64,44 @@ const std::vector<CheckRow>& dgf_check_rows() {
   return rows;
 }
 
+const std::vector<CheckRow>& energy_check_rows() {
+  // RQMC replicates (IntegralKind::AlbedoRqmc / EavgRqmc, kernels/albedo.cl);
+  // base_samples: points per replicate of the first pass (--min-points).
+  static const std::vector<CheckRow> rows = {
+      {"energy_mu",
+       IntegralKind::AlbedoRqmc,
+       1024,
+       32,
+       32,
+       FSet::None,
+       {0.0},
+       true,
+       "tables: measured, no verdict; whole models: E(mu) <= 1 beyond noise and float rounding (ModelCase::energy)"},
+      {"energy_avg",
+       IntegralKind::EavgRqmc,
+       1024,
+       32,
+       0,
+       FSet::None,
+       {0.0},
+       true,
+       "measured, no verdict (cross-checked by the midpoint rule over energy_mu)"},
+  };
+  return rows;
+}
+
 const CheckRow& check_row(const std::string& check) {
-  for (auto& r : dgf_check_rows())
-    if (check == r.check) return r;
+  for (auto* rows : {&dgf_check_rows(), &energy_check_rows()})
+    for (auto& r : *rows)
+      if (check == r.check) return r;
   throw Error(fmt::format("internal: no check row named '{}'", check));
+}
+
+NativeWidths native_widths(const Term& d, const Term& g, double alpha) {
+  NativeWidths w;
+  w.pd = native_from_alpha(d.roughness, alpha);
+  w.pg = g.params.empty() ? 0.0 : std::min(native_from_alpha(g.roughness, alpha), g.params[0].hi);
+  return w;
 }
 
 }  // namespace mfv

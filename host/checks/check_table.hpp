@@ -5,6 +5,7 @@
 // (checks/suite_plans.cpp) turns rows and "what to check" into integrals.
 #pragma once
 
+#include "catalog/catalog.hpp"
 #include "runtime/integrator.hpp"
 
 #include <cstdint>
@@ -38,8 +39,20 @@ struct CheckRow {
 
 // The D x G x F rows in plan order: d_norm, masking, furnace, energy, energy_diffuse.
 const std::vector<CheckRow>& dgf_check_rows();
-// The row of `check` (d_norm ... energy_diffuse); throws mfv::Error for another name.
+// mfv energy's rows, per D x G (F = none) and width of its grid, or per whole
+// model point: energy_mu, E(mu) and (same points) B at each view cosine of
+// the grid; energy_avg, E_avg with mu drawn with density 2 mu (view unused:
+// the normal). n_alpha and n_view give the default grid; --grid replaces it.
+const std::vector<CheckRow>& energy_check_rows();
+// The row of `check` (d_norm ... energy_diffuse, energy_mu, energy_avg); throws mfv::Error for another name.
 const CheckRow& check_row(const std::string& check);
+
+// D's and G's native parameters at the shared width alpha (catalog/roughness.hpp);
+// G's is clamped to the top of its range (its G1 is flat beyond).
+struct NativeWidths {
+  double pd = 0, pg = 0;
+};
+NativeWidths native_widths(const Term& d, const Term& g, double alpha);
 
 // Whole models (catalog/models.hpp): energy (albedo <= 1, one-sided, at
 // kModelLights light directions) and closed_form (the exact albedo, two-sided).

@@ -217,8 +217,7 @@ Plan dgf_plan(const CheckRow& row, const SuiteOptions& opt) {
       for (auto* f : fs) {
         if (!suite_model_wanted(opt.models, d->id + "/" + g->id + (masking ? "" : "/" + f->id))) continue;
         for (double alpha : row_alphas(row)) {
-          double pd = native_from_alpha(d->roughness, alpha);
-          double pg = g->params.empty() ? 0.0 : std::min(native_from_alpha(g->roughness, alpha), g->params[0].hi);
+          const NativeWidths w = native_widths(*d, *g, alpha);
           for (auto& fp : masking ? std::vector<ParamPoint>{{0, 0, ""}} : f->check_points)
             for (double kd : row.kds)
               for (double co : views) {
@@ -228,7 +227,7 @@ Plan dgf_plan(const CheckRow& row, const SuiteOptions& opt) {
                   if (f->params.size() > 1) params[f->params[1].name] = fp.p1;
                 }
                 if (kd > 0) params["kd"] = kd;
-                add_point(p, row.kind, d, g, masking ? nullptr : f, alpha, pd, pg, fp.p0, fp.p1, kd, co, 1.0,
+                add_point(p, row.kind, d, g, masking ? nullptr : f, alpha, w.pd, w.pg, fp.p0, fp.p1, kd, co, 1.0,
                           row.upper_only, params);
               }
         }

@@ -1,0 +1,182 @@
+#include "checks/energy_plan.hpp"
+
+#include "checks/check_table.hpp"
+#include "checks/integrate.hpp"
+#include "checks/suite.hpp"
+#include "util/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mfv {
+
+std::vector<double> energy_mu_grid(int n) {
+  std::vector<double> mu;
+  for (int m = 0; m < n; ++m) mu.push_back((m + 0.5) / n);  // cell midpoints of (0, 1]
+  return mu;
+}
+
+std::vector<double> energy_alpha_grid(int n) {
+  std::vector<double> a;
+  for (int j = 0; j < n; ++j) a.push_back(n == 1 ? 1.0 : std::pow(10.0, -3.0 + 3.0 * j / (n - 1)));
+  return a;
+}
+
+void validate_energy_options(const EnergyOptions& o) {
+  if (o.n_mu < 2 || o.n_mu > 256 || o.n_alpha < 2 || o.n_alpha > 256)
+    throw Error(fmt::format("--grid {}x{}: each side must be 2..256", o.n_mu, o.n_alpha));
+  if (!(o.target > 0) || !std::isfinite(o.target) || o.target >= 1)
+    throw Error(fmt::format("--target {}: must be a standard error in (0, 1)", o.target));
+  if (o.replicates < 2 || o.replicates > 256) throw Error(fmt::format("--replicates {}: must be 2..256", o.replicates));
+  if (o.min_points < 64 || o.max_points < o.min_points || o.max_points > (uint64_t(1) << 24))
+    throw Error(fmt::format("points per replicate {}..{}: need 64 <= min <= max <= 2^24", o.min_points, o.max_points));
+  // Every filter must match something, or the user made a typo.
+  for (auto& f : o.models) {
+    bool hit = false;
+    if (o.tables)
+      for (auto [d, g] : energy_table_pairs()) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
+    if (o.catalog_models)
+      for (auto& m : models())
+        for (auto& c : m.cases) hit = hit || model_case_name(m, c).find(f) != std::string::npos;
+    if (!hit) throw Error(fmt::format("--models '{}' matches no D/G combination or model[case] (see 'mfv list')", f));
+  }
+  for (auto& mp : o.model_points)
+    for (size_t i = 0; i < mp.model->params.size(); ++i) validate_model_param(*mp.model, i, mp.p[i]);
+}
+
+std::vector<std::pair<const Term*, const Term*>> energy_table_pairs() {
+  std::vector<std::pair<const Term*, const Term*>> pairs;
+  for (auto* d : terms_of(Kind::D))
+    for (auto* g : terms_of(Kind::G)) pairs.push_back({d, g});
+  for (auto* d : own_lobe_terms_of(Kind::D))
+    for (auto* g : own_lobe_terms_of(Kind::G))
+      if (g->fit_for(d->id)) pairs.push_back({d, g});
+  return pairs;
+}
+
+namespace {
+
+// The whole-model points a run integrates: catalog cases (filtered), then the caller's.
+std::vector<ModelPoint> model_points_of(const EnergyOptions& opt) {
+  std::vector<ModelPoint> out;
+  if (opt.catalog_models)
+    for (auto& m : models())
+      for (auto& c : m.cases) {
+        const std::string name = model_case_name(m, c);
+        if (suite_model_wanted(opt.models, name)) out.push_back({&m, name, c.p, c.energy, c.energy_why});
+      }
+  out.insert(out.end(), opt.model_points.begin(), opt.model_points.end());
+  return out;
+}
+
+// The table of D x G at every alpha of the grid, its cells not yet run.
+EnergyTable empty_table(const Term& d, const Term& g, const std::vector<double>& alpha, size_t nm) {
+  EnergyTable t;
+  t.d = &d;
+  t.g = &g;
+  for (double a : alpha) {
+    const NativeWidths w = native_widths(d, g, a);
+    validate_param(d, 0, w.pd);
+    t.pd.push_back(w.pd);
+    t.pg.push_back(w.pg);
+  }
+  const size_t na = alpha.size();
+  t.E.resize(nm * na);
+  t.A = t.B = t.E;
+  t.points.assign(nm * na, 0);
+  t.eavg.resize(na);
+  t.eavg_quad.resize(na);
+  return t;
+}
+
+template <class T>
+void add_once(std::vector<T>& v, T x) {
+  if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+}
+
+// The view cosines of a row: every mu of the grid (energy_mu), or the normal (energy_avg).
+std::vector<double> row_views(const CheckRow& row, const std::vector<double>& mu) {
+  return row.n_view > 0 ? mu : std::vector<double>{1.0};
+}
+
+// Appends a row's units of one table width or one model point, R streams each.
+template <class SpecAt>
+void add_row_units(std::vector<EnergyUnit>& units, const CheckRow& row, const std::vector<double>& mu, size_t table,
+                   size_t first_index, bool model, size_t R, uint32_t& stream, SpecAt spec_at) {
+  const bool eavg = row.kind == IntegralKind::EavgRqmc;
+  const std::vector<double> views = row_views(row, mu);
+  for (size_t m = 0; m < views.size(); ++m) {
+    units.push_back({table, eavg ? first_index : first_index + m, eavg, spec_at(row.kind, views[m]), stream, model});
+    stream += uint32_t(R);
+  }
+}
+
+}  // namespace
+
+TermSelection add_energy_subjects(EnergyReport& rep) {
+  const EnergyOptions& opt = rep.opt;
+  const size_t nm = rep.mu.size();
+  TermSelection sel;
+  for (auto [d, g] : energy_table_pairs()) {
+    if (!opt.tables || !suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
+    rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
+    add_once(sel.d, d);
+    add_once(sel.g, g);
+  }
+  for (auto& mp : model_points_of(opt)) {
+    ModelEnergy me;
+    me.point = mp;
+    me.E.resize(nm);
+    me.points.assign(nm, 0);
+    rep.models.push_back(me);
+    add_once(sel.models, mp.model);
+  }
+  if (rep.tables.empty() && rep.models.empty()) throw Error("no D/G combination or whole model selected");
+  sel.f = {&find_term("none")};
+  return sel;
+}
+
+std::vector<EnergyUnit> energy_units(const EnergyReport& rep, uint32_t& next_stream) {
+  // Streams are fixed per unit, so a run with more points extends the same shifted point sets.
+  const size_t nm = rep.mu.size(), R = size_t(rep.opt.replicates);
+  const Term& none = find_term("none");
+  std::vector<EnergyUnit> units;
+  uint32_t stream = 0;
+  for (size_t ti = 0; ti < rep.tables.size(); ++ti) {
+    const EnergyTable& t = rep.tables[ti];
+    for (size_t a = 0; a < rep.alpha.size(); ++a) {
+      auto spec_at = [&](IntegralKind kind, double cos_o) {
+        MicrofacetIntegral m;
+        m.kind = kind;
+        m.d = t.d, m.g = t.g, m.f = &none;
+        m.pd = t.pd[a], m.pg = t.pg[a];
+        m.width = proposal_width(*t.d, rep.alpha[a]);
+        m.cos_o = cos_o;
+        return spec_of(m);
+      };
+      for (const CheckRow& row : energy_check_rows())
+        add_row_units(units, row, rep.mu, ti, row.n_view > 0 ? a * nm : a, false, R, stream, spec_at);
+    }
+  }
+  for (size_t mi = 0; mi < rep.models.size(); ++mi) {
+    const ModelPoint& mp = rep.models[mi].point;
+    auto spec_at = [&](IntegralKind kind, double cos_o) { return model_spec(kind, *mp.model, mp.p, cos_o); };
+    for (const CheckRow& row : energy_check_rows()) add_row_units(units, row, rep.mu, mi, 0, true, R, stream, spec_at);
+  }
+  next_stream = stream;
+  return units;
+}
+
+std::vector<IntegralSpec> specs_of(const EnergyUnit& u, size_t R) {
+  std::vector<IntegralSpec> v;
+  for (size_t r = 0; r < R; ++r) {
+    IntegralSpec s = u.base;
+    s.stream = u.first_stream + uint32_t(r);
+    v.push_back(s);
+  }
+  return v;
+}
+
+}  // namespace mfv
