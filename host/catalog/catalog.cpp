@@ -12,12 +12,8 @@ namespace mfv {
 namespace ref_ = ::mfv::ref;
 
 const char* kind_name(Kind k) {
-  switch (k) {
-    case Kind::D: return "D";
-    case Kind::G: return "G";
-    case Kind::F: return "F";
-  }
-  return "?";
+  static const char* const names[] = {"D", "G", "F"};  // in Kind's order
+  return names[static_cast<int>(k)];
 }
 
 namespace {
@@ -40,18 +36,24 @@ SmithFit beckmann_as_phong(double tol, const char* d) {
 
 std::vector<Term> build_catalog() {
   std::vector<Term> c;
-  auto D = [&](std::string id, std::string fn, std::string src, std::string formula, Param p, Roughness r, RefD ref) {
+  // A term of kind k, appended to the catalog; the D, G and F below add its reference twin.
+  auto term = [&](Kind k, std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> p,
+                  Roughness r) {
     Term t;
     t.id = std::move(id);
-    t.kind = Kind::D;
+    t.kind = k;
     t.kernel_fn = std::move(fn);
     t.source = std::move(src);
     t.formula = std::move(formula);
-    t.params = {std::move(p)};
+    t.params = std::move(p);
     t.roughness = r;
-    t.ref_d = ref;
     c.push_back(t);
     return &c.back();
+  };
+  auto D = [&](std::string id, std::string fn, std::string src, std::string formula, Param p, Roughness r, RefD ref) {
+    Term* t = term(Kind::D, std::move(id), std::move(fn), std::move(src), std::move(formula), {std::move(p)}, r);
+    t->ref_d = ref;
+    return t;
   };
   D("phong", "D_phong", "seed 000 \"Phong\"; seed 003 Blinn normalisation", "(ap+2)/(2pi) (n.h)^ap", p_alpha_p(),
     Roughness::PhongExponent, ref_::D_phong);
@@ -74,17 +76,27 @@ std::vector<Term> build_catalog() {
 
   auto G = [&](std::string id, std::string fn, std::string src, std::string formula, std::optional<Param> p,
                Roughness r, RefG ref) {
-    Term t;
-    t.id = std::move(id);
-    t.kind = Kind::G;
-    t.kernel_fn = std::move(fn);
-    t.source = std::move(src);
-    t.formula = std::move(formula);
-    if (p) t.params = {*p};
-    t.roughness = r;
-    t.ref_g = ref;
-    c.push_back(t);
-    return &c.back();
+    std::vector<Param> ps;
+    if (p) ps = {*p};
+    Term* t = term(Kind::G, std::move(id), std::move(fn), std::move(src), std::move(formula), std::move(ps), r);
+    t->ref_g = ref;
+    return t;
+  };
+  // A separable Smith G, G1(l) G1(v), with its G1's kernel and reference twins.
+  auto separable = [](Term* t, std::string g1_fn, RefG1 g1) {
+    t->g1_kernel_fn = std::move(g1_fn);
+    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    t->ref_g1 = g1;
+    return t;
+  };
+  // A separable Smith G with a Beckmann G1: it fits Beckmann within `tol`
+  // (`why`) and the Phong-type Ds as Beckmann, and under-masks GGX's heavier tails.
+  auto beckmann_smith = [&](Term* t, std::string g1_fn, RefG1 g1, double tol, std::string why) {
+    separable(t, std::move(g1_fn), g1);
+    t->smith_for = {{"beckmann", tol, 1e300, std::move(why)},
+                    beckmann_as_phong(0.03, "phong"),
+                    beckmann_as_phong(0.03, "blinn_rho")};
+    t->under_masks = {"ggx"};
   };
   G("implicit", "G_implicit", "seed 000 \"V(L,V) = 1\"", "(n.l)(n.v)", std::nullopt, Roughness::None, ref_::G_implicit);
   G("kelemen", "G_kelemen", "seed 000 \"G/((L.N)(V.N)) ~ 1/(L.H)^2\"; Kelemen 2001", "(n.l)(n.v)/(l.h)^2", std::nullopt,
@@ -98,47 +110,27 @@ std::vector<Term> build_catalog() {
     auto* t = G("smith_beckmann_approx", "G_smith_beckmann_approx", "seed 000 Beckman rational G1",
                 "G1(l)G1(v), G1 = (3.535a+2.181a^2)/(1+2.276a+2.577a^2), a = 1/(alpha tan)", p_alpha(),
                 Roughness::Alpha, ref_::G_smith_beckmann_approx);
-    t->g1_kernel_fn = "G1_smith_beckmann_approx";
-    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
-    t->ref_g1 = ref_::G1_smith_beckmann_approx;
     // seed 000: "very accurate"; Walter et al. 2007 eq. 27 report under 0.35 %
-    t->smith_for = {{"beckmann", 0.004, 1e300, "Walter et al. 2007 eq. 27"},
-                    beckmann_as_phong(0.03, "phong"),
-                    beckmann_as_phong(0.03, "blinn_rho")};
-    t->under_masks = {"ggx"};
+    beckmann_smith(t, "G1_smith_beckmann_approx", ref_::G1_smith_beckmann_approx, 0.004, "Walter et al. 2007 eq. 27");
   }
   {
     auto* t = G("smith_beckmann", "G_smith_beckmann", "Walter et al. 2007 eq. 23-25 (exact Lambda, erf)",
                 "G1(l)G1(v), G1 = 1/(1+Lambda_beckmann)", p_alpha(), Roughness::Alpha, ref_::G_smith_beckmann);
-    t->g1_kernel_fn = "G1_smith_beckmann";
-    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
-    t->ref_g1 = ref_::G1_smith_beckmann;
-    t->smith_for = {{"beckmann", 0.0, 1e300, "Walter et al. 2007 eq. 25 (exact)"},
-                    beckmann_as_phong(0.03, "phong"),
-                    beckmann_as_phong(0.03, "blinn_rho")};
-    t->under_masks = {"ggx"};
+    beckmann_smith(t, "G1_smith_beckmann", ref_::G1_smith_beckmann, 0.0, "Walter et al. 2007 eq. 25 (exact)");
   }
   {
     auto* t =
         G("smith_phong", "G_smith_phong", "seed 000 \"Phong\" G1", "Beckman rational G1 with a = sqrt(ap/2+1)/tan",
           p_alpha_p(), Roughness::PhongExponent, ref_::G_smith_phong);
-    t->g1_kernel_fn = "G1_smith_phong";
-    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
-    t->ref_g1 = ref_::G1_smith_phong;
     // a = sqrt(alpha_p/2 + 1)/tan with alpha_p = 2/alpha^2 - 2 is a = 1/(alpha tan):
     // exactly seed 000's rational Beckmann G1, so it fits Beckmann to 0.4 %.
-    t->smith_for = {
-        {"beckmann", 0.004, 1e300, "alpha_p = 2/alpha^2 - 2 makes a = 1/(alpha tan): Walter et al. 2007 eq. 27"},
-        beckmann_as_phong(0.03, "phong"),
-        beckmann_as_phong(0.03, "blinn_rho")};
-    t->under_masks = {"ggx"};
+    beckmann_smith(t, "G1_smith_phong", ref_::G1_smith_phong, 0.004,
+                   "alpha_p = 2/alpha^2 - 2 makes a = 1/(alpha tan): Walter et al. 2007 eq. 27");
   }
   {
     auto* t = G("smith_ggx", "G_smith_ggx", "seed 000 \"GGX\"; Walter et al. 2007 eq. 34",
                 "G1(l)G1(v), G1 = 2/(1+sqrt(1+alpha^2 tan^2))", p_alpha(), Roughness::Alpha, ref_::G_smith_ggx);
-    t->g1_kernel_fn = "G1_smith_ggx";
-    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
-    t->ref_g1 = ref_::G1_smith_ggx;
+    separable(t, "G1_smith_ggx", ref_::G1_smith_ggx);
     t->smith_for = {{"ggx", 0.0, 1e300, "Walter et al. 2007 eq. 34 (exact)"}};
   }
   {
@@ -179,9 +171,7 @@ std::vector<Term> build_catalog() {
           "Heitz 2014: the isotropic Lambda at the projected width alpha_o = sqrt(cos^2 phi ax^2 + sin^2 phi ay^2)",
           formula, p_alpha(), Roughness::Alpha, slice),
         nullptr, g1, g);
-    t->g1_kernel_fn = g1_fn;
-    t->ref_g1 = g1_slice;
-    t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
+    separable(t, g1_fn, g1_slice);
     t->smith_for = {{exact_for, 0.0, 1e300, note}};
   };
   aniso_smith("smith_aniso_ggx", "G_smith_ggx_aniso", "G1_smith_ggx_aniso",
@@ -194,16 +184,10 @@ std::vector<Term> build_catalog() {
               "aniso_beckmann", "Heitz 2014, anisotropic Beckmann (exact)");
 
   auto F = [&](std::string id, std::string fn, std::string src, std::string formula, std::vector<Param> p, RefF ref) {
-    Term t;
-    t.id = std::move(id);
-    t.kind = Kind::F;
-    t.kernel_fn = std::move(fn);
-    t.source = std::move(src);
-    t.formula = std::move(formula);
-    t.params = std::move(p);
-    t.ref_f = ref;
-    c.push_back(t);
-    return &c.back();
+    Term* t =
+        term(Kind::F, std::move(id), std::move(fn), std::move(src), std::move(formula), std::move(p), Roughness::None);
+    t->ref_f = ref;
+    return t;
   };
   F("none", "F_none", "white furnace", "1", {}, ref_::F_none);
   F("schlick", "F_schlick", "seed 000; Schlick 1994", "F0 + (1-F0)(1-l.h)^5",
@@ -333,8 +317,16 @@ void validate_param(const Term& t, size_t index, double value) {
 }
 
 double alpha_from_native(Roughness r, double native) {
-  if (r == Roughness::PhongExponent) return alpha_from_phong_exponent(native);
-  if (r == Roughness::Perceptual) return alpha_from_perceptual(native);
+  switch (r) {
+    case Roughness::None: return native;
+    case Roughness::Alpha: return native;
+    case Roughness::PhongExponent: return alpha_from_phong_exponent(native);
+    case Roughness::Rho: return native;
+    case Roughness::BeckmannM: return native;
+    case Roughness::Perceptual: return alpha_from_perceptual(native);
+    case Roughness::MirrorExponent: return alpha_from_mirror_exponent(native);
+    case Roughness::HalfCosine: return alpha_from_half_cosine(native);
+  }
   return native;
 }
 
@@ -345,7 +337,9 @@ double native_from_alpha(Roughness r, double alpha) {
     case Roughness::PhongExponent: return phong_exponent_from_alpha(alpha);
     case Roughness::Rho: return alpha;
     case Roughness::BeckmannM: return alpha;
-    case Roughness::Perceptual: return std::sqrt(alpha);  // the inverse of alpha_from_perceptual
+    case Roughness::Perceptual: return perceptual_from_alpha(alpha);
+    case Roughness::MirrorExponent: return phong_exponent_from_alpha(alpha) / 4.0;
+    case Roughness::HalfCosine: return 1.0 / std::sqrt(1.0 + alpha * alpha);  // cos(atan alpha)
   }
   return alpha;
 }

@@ -16,10 +16,20 @@ namespace mfv {
 enum class Kind { D, G, F };
 const char* kind_name(Kind k);
 
-// How the shared microfacet width alpha (GGX/Beckmann slope RMS) maps onto a
-// term's native parameter (and a user BRDF's roughness parameter, mfv
-// check); see roughness.hpp. Perceptual: r with alpha = r² (Burley 2012).
-enum class Roughness { None, Alpha, PhongExponent, Rho, BeckmannM, Perceptual };
+// The one width mapping: how the shared microfacet width alpha (GGX/Beckmann
+// slope RMS) maps onto a native roughness parameter, of a term, of a whole
+// model's lobe (Model::width) and of a user BRDF (mfv check). The formulas
+// are roughness.hpp's alpha_from_native and native_from_alpha.
+enum class Roughness {
+  None,            // no width (a G without parameter; a diffuse model, whose proposal is the cosine lobe's)
+  Alpha,           // alpha itself
+  PhongExponent,   // (n.h)^e lobe: alpha = sqrt(2/(e+2)) (Walter et al. 2007)
+  Rho,             // seed 004's rho (= alpha)
+  BeckmannM,       // seed 001's m, the Beckmann RMS slope (= alpha)
+  Perceptual,      // r with alpha = r² (Burley 2012)
+  MirrorExponent,  // (v.r)^e lobe: about (n.h)^(4e) in half-vector space
+  HalfCosine,      // threshold t on n.h: alpha = tan(acos t)
+};
 
 // One parameter point of a term that mfv run checks (F: F0 or eta, and a
 // conductor's k), with the label its points show.

@@ -29,16 +29,12 @@ using ModelParams = std::array<double, kModelParams>;
 using ref::RefAlbedo;
 using ref::RefModel;
 
-// Where the albedo estimator's proposal width comes from (never the formula).
-enum class Width {
-  Diffuse,         // no lobe: width 1 (the cosine lobe of the proposal does the work)
-  Alpha,           // p[width_param] is a microfacet width alpha
-  AlphaPair,       // anisotropic: sqrt(p[a] p[b]); p[a] where p[b] = 0 (isotropic)
-  AlphaMin,        // two lobes (a coat over a base): the narrower, min(p[a], p[b])
-  Perceptual,      // seed 002 roughness r: alpha = r^2
-  HalfExponent,    // (n.h)^e lobe: alpha = sqrt(2/(e+2)) (Walter et al. 2007)
-  MirrorExponent,  // (v.r)^e lobe: about (n.h)^(4e) in half-vector space
-  HalfCosine,      // threshold t on n.h: alpha = tan(acos t)
+// How a model with a second width p[width_param2] forms its proposal's width
+// from the two (each mapped by Model::width).
+enum class TwoWidths {
+  One,            // p[width_param2] unused
+  GeometricMean,  // anisotropic: sqrt(a b); a where b = 0 (isotropic)
+  Narrower,       // two lobes (a coat over a base): min(a, b)
 };
 
 struct ModelCase {
@@ -60,7 +56,10 @@ struct Model : ref::ModelTwins {
   // Non-empty where the seed gives reflected radiance per unit irradiance,
   // f (n·l), rather than f: how the catalog's BRDF was formed from it.
   std::string radiance;
-  Width width = Width::Diffuse;
+  // Where the albedo estimator's proposal width comes from (never the formula):
+  // p[width_param] mapped by `width` (None: no lobe, width 1).
+  Roughness width = Roughness::None;
+  TwoWidths two_widths = TwoWidths::One;
   int width_param = -1, width_param2 = -1;
   std::string albedo_doc;  // where ref_albedo's closed form holds and why
   double ulp_budget = 64;  // kernel float vs double reference, identical inputs
