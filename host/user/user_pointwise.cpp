@@ -8,6 +8,7 @@
 #include "checks/pointwise.hpp"
 #include "checks/pointwise_inputs.hpp"
 #include "rng/philox.hpp"
+#include "util/float_round.hpp"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -60,14 +61,6 @@ std::vector<FloatRecord> eval_records(Runtime& rt, const cl::Program& prog, cons
   return rec;
 }
 
-// The float directions of a record, in double. Through volatile floats: in
-// this translation unit GCC 12 -O3 was seen to drop the round trip
-// double(float(x)) (the agreement then ran the reference on unrounded
-// directions and moved its values by ~1e-6).
-glm::dvec3 as_float(const glm::dvec3& v) {
-  volatile float x = float(v.x), y = float(v.y), z = float(v.z);
-  return glm::dvec3(double(x), double(y), double(z));
-}
 std::string vec_text(const glm::dvec3& v) {
   return fmt::format("({:.9g}, {:.9g}, {:.9g})", float(v.x), float(v.y), float(v.z));
 }
@@ -105,7 +98,7 @@ void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const U
   for (auto& ps : pair_sets(false))
     for (auto& pr : ps.pairs) {
       Input r{pr.wi, pr.wo, {0, 0, 1}, false, ps.name, 0};
-      r.has_m = half_vector(as_float(pr.wi), as_float(pr.wo), r.m);
+      r.has_m = half_vector(through_float(pr.wi), through_float(pr.wo), r.m);
       base.push_back(r);
     }
   // D and G1 at every cosine class: m at that angle (and v = m), and m = n.
@@ -207,7 +200,7 @@ void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, cons
         glm::dvec3 refl = 2.0 * glm::dot(wo, m) * m - wo;
         if (refl.z > 1e-4) wi = refl;
       }
-      Input rec{as_float(wi), as_float(wo), {0, 0, 1}, false, "", s};
+      Input rec{through_float(wi), through_float(wo), {0, 0, 1}, false, "", s};
       rec.has_m = half_vector(rec.wi, rec.wo, rec.m);
       recs.push_back(rec);
     }
