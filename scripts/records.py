@@ -23,9 +23,16 @@ they conclude and measure: every verdict and count exactly, every estimate,
 standard error and error figure as a number. Time stamps, timings, commit ids
 and build details are left out: they differ between any two runs.
 
-`compare` exits 1 when a record is missing, added, or different: strings
-(verdicts, reasons, inputs) must be equal once their numbers are taken out,
-integers (counts) equal, and other numbers equal within RTOL relative. The
+Each value is keyed by what it is, not where it stands in a list: a record of
+a list (a verdict group, an integral, a stability case or region, a model's
+energy row) by its check, model, terms, name, region and numeric parameters,
+e.g. run.groups{check=energy model=lambert[kd=1]}.verdict. A change that
+inserts a case shows as that record added; the rest still compare equal.
+
+`compare` reports records added, records removed and values changed
+separately, and exits 1 on any of them: strings (verdicts, reasons, inputs)
+must be equal once their numbers are taken out, integers (counts) equal, and
+other numbers equal within RTOL relative. The
 default RTOL, 1e-5, is the float32 accumulation bound of docs/statistics.md
 (Higham's gamma_k for the kernels' reduction depth, 7.63e-6) rounded up: two
 builds that sum the same float terms in another order may differ by that
@@ -39,6 +46,7 @@ import os
 import re
 import subprocess
 import sys
+import zlib
 
 SEED = "7"
 DEVICE_KEY = "_device"  # numbers are compared only between runs on the same device
@@ -50,7 +58,46 @@ VOLATILE = {
     "timings", "tool", "samples_per_second", "build_seconds", "command", "kernel_dir",
 }
 
+CLOSE = re.compile(r"\}")
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|0x[0-9a-fA-Fp.+-]+")
+
+
+# A record in a list is keyed by what it is, not by where it stands: the
+# values of these fields (those it has, in this order) and its numeric
+# parameters, e.g. run.groups{check=energy model=lambert[kd=1]}.verdict, so a
+# case inserted before it leaves its key unchanged. Records with the same
+# identity are told apart by a count (#2, #3, ...). Lists of numbers (a grid's
+# values, a table's cells) stay indexed by position: the grid fixes them.
+ID_FIELDS = ("check", "model", "name", "group", "family", "D", "G", "F", "d", "g", "f", "region", "at", "params")
+
+
+def identity(record):
+    """The identity of a list element, or None for one that is not a record."""
+    if not isinstance(record, dict):
+        return None
+    parts = []
+    for k in ID_FIELDS:
+        v = record.get(k)
+        if isinstance(v, dict):  # parameters: the numeric ones (not a measured worst_pair)
+            v = ",".join(f"{p}={x!r}" for p, x in sorted(v.items())
+                         if isinstance(x, (int, float)) and not isinstance(x, bool))
+        elif k == "at" and isinstance(v, str):  # "D in region cos_grazing (160 evaluated)": the place, not the count
+            v = re.sub(r"\s*\([^()]*\)$", "", v)
+        if v not in (None, ""):
+            parts.append(f"{k}={v}")
+    return " ".join(parts) or None
+
+
+def keyed(values):
+    """(key, element) per element of a list: {identity} for records, [index] otherwise."""
+    seen = {}
+    for i, v in enumerate(values):
+        name = identity(v)
+        if name is None:
+            yield f"[{i}]", v
+            continue
+        seen[name] = seen.get(name, 0) + 1
+        yield "{" + name + (f" #{seen[name]}" if seen[name] > 1 else "") + "}", v
 
 
 def flatten(value, path, out):
@@ -59,10 +106,18 @@ def flatten(value, path, out):
             if k not in VOLATILE:
                 flatten(v, f"{path}.{k}" if path else k, out)
     elif isinstance(value, list):
-        for i, v in enumerate(value):
-            flatten(v, f"{path}[{i}]", out)
+        for key, v in keyed(value):
+            flatten(v, f"{path}{key}", out)
     else:
         out[path] = value
+
+
+def flatten_sample(values, every, path, out):
+    """About one record in `every`, chosen by its key (not its position), so
+    that an inserted record does not change which others are kept."""
+    for key, v in keyed(values):
+        if zlib.crc32(key.encode()) % every == 0:
+            flatten(v, f"{path}{key}", out)
 
 
 def run_mfv(mfv, args, allowed=(0, 1)):
@@ -103,10 +158,10 @@ def collect(mfv, repo, out):
     records[DEVICE_KEY] = " | ".join(run["device"].get(k, "") for k in ("name", "version", "driver"))
     records["run.exit"] = code
     # every group (one model x check verdict, with its pooled test and worst
-    # point) and every 53rd integral: the groups summarise all integrals, the
-    # sample of integrals pins individual estimates without a 100 MB file
+    # point) and one integral in 53 (by identity): the groups summarise all
+    # integrals, the sample pins individual estimates without a 100 MB file
     flatten({k: run[k] for k in ("groups", "reference", "run")}, "run", records)
-    flatten(run["results"][::53], "run.results", records)
+    flatten_sample(run["results"], 53, "run.results", records)
     records["run.results.count"] = len(run["results"])
 
     code, _ = run_mfv(mfv, ["energy", "--grid", "8x8", "--max-points", "1024", "--replicates", "4",
@@ -129,7 +184,7 @@ def collect(mfv, repo, out):
                                 "--samples", "1024", "--out", f"{out}/check_{example}"])
         records[f"check.{example}.exit"] = code
         check = json.load(open(f"{out}/check_{example}/results.json"))
-        check["results"] = check["results"][::53]
+        flatten_sample(check.pop("results"), 53, f"check.{example}.results", records)
         flatten(check, f"check.{example}", records)
 
     with gzip.open(f"{out}/records.json.gz", "wt") as f:
@@ -164,9 +219,44 @@ def same_string(a, b, rtol):
     return True
 
 
-def compare(before_path, after_path, rtol, limit):
-    before, after = (json.load(gzip.open(p, "rt")) for p in (before_path, after_path))
-    problems = []
+def record_prefixes(key):
+    """The keys of the records that hold `key`, outermost first: each prefix
+    that ends in a {identity} (identities hold no braces)."""
+    return [key[:m.end()] for m in CLOSE.finditer(key)] if "{" in key else []
+
+
+def whole_records(keys, other):
+    """`keys` (values on one side only) as the outermost records the other
+    side lacks entirely, plus single values added to or removed from records both have."""
+    if not keys:
+        return []
+    present = {p for k in other for p in record_prefixes(k)}
+    found = set()
+    for k in keys:
+        found.add(next((p for p in record_prefixes(k) if p not in present), k))
+    return sorted(found)
+
+
+def same_value(a, b, rtol):
+    if isinstance(a, str) and isinstance(b, str):
+        return same_string(a, b, rtol)
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return same_number(a, b, rtol)
+    return a == b
+
+
+def differences(before, after, rtol):
+    """{'added': records, 'removed': records, 'changed': 'key: a -> b' lines}."""
+    return {
+        "added": whole_records(after.keys() - before.keys(), before.keys()),
+        "removed": whole_records(before.keys() - after.keys(), after.keys()),
+        "changed": [f"{k}: {before[k]!r} -> {after[k]!r}" for k in sorted(before.keys() & after.keys())
+                    if not same_value(before[k], after[k], rtol)],
+    }
+
+
+def report(before, after, rtol, limit):
+    """Prints the differences of two record sets; returns (exit code, differences)."""
     same_device = before.get(DEVICE_KEY) == after.get(DEVICE_KEY)
     if not same_device:
         # another CPU may round a builtin (exp, pow, sqrt) differently in its
@@ -175,53 +265,66 @@ def compare(before_path, after_path, rtol, limit):
         print(f"records: devices differ ({before.get(DEVICE_KEY)!r} vs {after.get(DEVICE_KEY)!r}): "
               "comparing verdicts, counts and messages, not values")
         rtol = math.inf
-    for k in sorted(before.keys() - after.keys()):
-        problems.append(f"missing after: {k} = {before[k]!r}")
-    for k in sorted(after.keys() - before.keys()):
-        problems.append(f"new after: {k} = {after[k]!r}")
-    for k in sorted(before.keys() & after.keys()):
-        a, b = before[k], after[k]
-        if isinstance(a, str) and isinstance(b, str):
-            ok = same_string(a, b, rtol)
-        elif isinstance(a, (int, float)) and isinstance(b, (int, float)):
-            ok = same_number(a, b, rtol)
-        else:
-            ok = a == b
-        if not ok:
-            problems.append(f"changed: {k}: {a!r} -> {b!r}")
-    print(f"records: {len(before)} before, {len(after)} after, {len(problems)} differ (rtol {rtol:g})")
-    for p in problems[:limit]:
-        print("  " + p)
-    if len(problems) > limit:
-        print(f"  ... and {len(problems) - limit} more")
-    return 1 if problems else 0
+    diff = differences(before, after, rtol)
+    print(f"records: {len(before)} values before, {len(after)} after: {len(diff['added'])} records added, "
+          f"{len(diff['removed'])} removed, {len(diff['changed'])} values changed (rtol {rtol:g})")
+    for kind in ("added", "removed", "changed"):
+        for line in diff[kind][:limit]:
+            print(f"  {kind}: {line}")
+        if len(diff[kind]) > limit:
+            print(f"  ... and {len(diff[kind]) - limit} more {kind}")
+    return (1 if any(diff.values()) else 0), diff
+
+
+def compare(before_path, after_path, rtol, limit):
+    before, after = (json.load(gzip.open(p, "rt")) for p in (before_path, after_path))
+    return report(before, after, rtol, limit)[0]
+
+
+def inserted_record(records):
+    """A copy of `records` with one run group inserted: a new model's copy of the first group."""
+    first = next(p for k in sorted(records) if k.startswith("run.groups{") for p in record_prefixes(k)[:1])
+    new = first.replace("model=", "model=inserted_", 1)
+    out = dict(records)
+    out.update({new + k[len(first):]: v for k, v in records.items() if k.startswith(first)})
+    return out
 
 
 def selftest(golden):
     """compare must fail on a changed verdict, a value moved by 1e-4, a lost
-    record, and pass a value moved within rounding."""
-    import copy
-    import tempfile
+    record and an inserted one (reported as one record added, nothing
+    changed), and pass a value moved within rounding; flatten must key a
+    list's records by identity, so an insertion shifts nothing."""
     base = json.load(gzip.open(golden, "rt"))
     verdict = next(k for k, v in base.items() if k.endswith(".verdict") and v == "pass")
     estimate = next(k for k, v in base.items() if k.endswith(".estimate") and isinstance(v, float) and v > 0)
     cases = {
-        "a verdict changed": (lambda r: r.__setitem__(verdict, "FAIL"), 1),
-        "an estimate moved by 1e-4": (lambda r: r.__setitem__(estimate, r[estimate] * (1 + 1e-4)), 1),
-        "a record lost": (lambda r: r.pop(verdict), 1),
-        "an estimate moved by 1e-6 (rounding)": (lambda r: r.__setitem__(estimate, r[estimate] * (1 + 1e-6)), 0),
+        "a verdict changed": (lambda r: r.__setitem__(verdict, "FAIL"), 1, (0, 0, 1)),
+        "an estimate moved by 1e-4": (lambda r: r.__setitem__(estimate, r[estimate] * (1 + 1e-4)), 1, (0, 0, 1)),
+        "a record lost": (lambda r: r.pop(verdict), 1, (0, 1, 0)),
+        "a record inserted": (lambda r: r.update(inserted_record(r)), 1, (1, 0, 0)),
+        "an estimate moved by 1e-6 (rounding)": (lambda r: r.__setitem__(estimate, r[estimate] * (1 + 1e-6)), 0,
+                                                 (0, 0, 0)),
     }
     failed = 0
-    with tempfile.TemporaryDirectory() as tmp:
-        for name, (change, want) in cases.items():
-            r = copy.deepcopy(base)
-            change(r)
-            path = os.path.join(tmp, "changed.json.gz")
-            with gzip.open(path, "wt") as f:
-                json.dump(r, f)
-            got = compare(golden, path, 1e-5, 3)
-            print(f"selftest: {name}: compare exits {got} (want {want})")
-            failed += got != want
+    for name, (change, want, counts) in cases.items():
+        r = dict(base)  # values are scalars: a shallow copy is a copy
+        change(r)
+        got, diff = report(base, r, 1e-5, 3)
+        got_counts = tuple(len(diff[k]) for k in ("added", "removed", "changed"))
+        print(f"selftest: {name}: compare exits {got} (want {want}); added/removed/changed {got_counts} "
+              f"(want {counts})")
+        failed += got != want or got_counts != counts
+    # flatten: a group inserted before others keys nothing else differently
+    groups = [{"check": "energy", "model": m, "verdict": "pass", "params": {"a": 0.5, "worst_pair": "x"}}
+              for m in ("b", "c")]
+    old, new = {}, {}
+    flatten({"groups": groups}, "run", old)
+    flatten({"groups": [dict(groups[0], model="a")] + groups}, "run", new)
+    diff = differences(old, new, 1e-5)
+    ok = diff == {"added": ["run.groups{check=energy model=a params=a=0.5}"], "removed": [], "changed": []}
+    print(f"selftest: flatten keys records by identity: {'ok' if ok else 'NO: ' + repr(diff)}")
+    failed += not ok
     return 1 if failed else 0
 
 
