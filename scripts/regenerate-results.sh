@@ -60,6 +60,10 @@ run.pop("results", None)  # the per-integral records stay in results.json, out o
 json.dump(run, open(sys.argv[2], "w"), indent=1)
 PY
 step energy $mfv energy --out "$out/energy" "${energy[@]}"
+# kernels/abi/sheen_table.h is the one copy of the E_sheen table (what the
+# kernel and the reference read, from its own 16x16 run; see its header):
+# the default run's sheen_table.h is not kept beside it.
+rm -f "$out/energy/sheen_table.h"
 step energy_models $mfv energy --out "$out/energy_models" "${energy_models[@]}"
 step stability $mfv stability --out "$out/stability" "${stability[@]}"
 step samplers $mfv samplers --plots --out "$out/samplers" "${samplers[@]}"

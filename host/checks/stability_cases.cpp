@@ -218,6 +218,18 @@ void g_term(CaseDef& c, const Term& t, bool fp64) {
   });
 }
 
+// The region sweep of a term of one input: the swept value at slot `input`,
+// the region's parameters at the slots `params` (in the term's order).
+void add_input_points(CaseDef& c, const Term& t, bool fp64, bool g1, int input, std::vector<int> params) {
+  add_term_regions(c, t, fp64, g1, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
+    Point pt;
+    pt.region = reg;
+    pt.in[size_t(input)] = a;
+    for (size_t k = 0; k < params.size(); ++k) pt.in[size_t(params[k])] = p[k];
+    c.points.push_back(pt);
+  });
+}
+
 }  // namespace
 
 CaseDef term_case(const Term& t, bool g1, bool fp64) {
@@ -235,13 +247,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
     c.describe = [&t](const In& r) {
       return fmt::format("NoV={}", hx(r[PW_NOV])) + describe_params(r, nullptr, &t, nullptr);
     };
-    add_term_regions(c, t, fp64, true, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
-      Point pt;
-      pt.region = reg;
-      pt.in[PW_NOV] = a;
-      pt.in[PW_PG] = p[0];
-      c.points.push_back(pt);
-    });
+    add_input_points(c, t, fp64, true, PW_NOV, {PW_PG});
   } else if (t.kind == Kind::D) {
     c.mode = PW_D;
     c.d = &t;
@@ -250,13 +256,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
     c.describe = [&t](const In& r) {
       return fmt::format("NoH={} sin2H={}", hx(r[PW_NOH]), hx(r[PW_SIN2H])) + describe_params(r, &t, nullptr, nullptr);
     };
-    add_term_regions(c, t, fp64, false, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
-      Point pt;
-      pt.region = reg;
-      pt.in[PW_NOH] = a;
-      pt.in[PW_PD] = p[0];
-      c.points.push_back(pt);
-    });
+    add_input_points(c, t, fp64, false, PW_NOH, {PW_PD});
   } else if (t.kind == Kind::G) {
     g_term(c, t, fp64);
   } else {
@@ -267,14 +267,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64) {
     c.describe = [&t](const In& r) {
       return fmt::format("VoH={}", hx(r[PW_VOH])) + describe_params(r, nullptr, nullptr, &t);
     };
-    add_term_regions(c, t, fp64, false, [&](int reg, double a, const std::vector<double>&, std::array<double, 2> p) {
-      Point pt;
-      pt.region = reg;
-      pt.in[PW_VOH] = a;
-      pt.in[PW_F0] = p[0];
-      pt.in[PW_F1] = p[1];
-      c.points.push_back(pt);
-    });
+    add_input_points(c, t, fp64, false, PW_VOH, {PW_F0, PW_F1});
   }
   add_scan(c, t);
   return c;

@@ -1,14 +1,13 @@
 // mfv devices, mfv list.
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
-#include "cli/commands.hpp"
+#include "cli/shared_options.hpp"
 #include "runtime/opencl.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <iostream>
-#include <memory>
 
 namespace mfv::cli {
 
@@ -27,80 +26,94 @@ void add_devices(CLI::App& app, Globals&, int& rc) {
 
 namespace {
 
-// mfv list's command-line values, bound to its options (Globals::command_values keeps them).
-struct ListCommandOptions {
+// What `mfv list --json` says of a term and of a whole model alike.
+template <class Entry>
+nlohmann::json entry_json(const Entry& e, const std::string& kind) {
+  nlohmann::json j{{"id", e.id},           {"kind", kind},          {"source", e.source},
+                   {"formula", e.formula}, {"kernel", e.kernel_fn}, {"ulp_budget", e.ulp_budget}};
+  j["params"] = nlohmann::json::array();
+  for (auto& p : e.params)
+    j["params"].push_back({{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
+  return j;
+}
+
+// "alpha in [0.001, 1], f0 in [0, 1]": a term's or a model's parameters.
+template <class Entry>
+std::string params_text(const Entry& e) {
+  std::string ps;
+  for (auto& p : e.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
+  return ps;
+}
+
+// mfv list: its option and its work.
+struct ListCommand : SharedValues {
   bool json = false;
+
+  void add_options(CLI::App* cmd) {
+    cmd->description("print the catalog of terms and whole models with sources, parameters and expected verdicts");
+    cmd->add_flag("--json", json, "machine-readable output");
+  }
+
+  int run(const Globals&) {
+    if (json)
+      print_json();
+    else
+      print_text();
+    return 0;
+  }
+
+  static void print_json() {
+    nlohmann::json out = nlohmann::json::array();
+    for (auto& t : catalog()) {
+      nlohmann::json j = entry_json(t, kind_name(t.kind));
+      if (!t.known_bad.empty()) j["known_bad"] = t.known_bad;
+      for (auto& f : t.smith_for) {
+        nlohmann::json fj{{"d", f.d}, {"tol", f.tol}, {"why", f.why}};
+        if (f.alpha_max < 1e300) fj["alpha_max"] = f.alpha_max;
+        j["smith_for"].push_back(fj);
+      }
+      if (!t.under_masks.empty()) j["under_masks"] = t.under_masks;
+      if (!t.masking_exact.empty()) j["masking_exact"] = t.masking_exact;
+      j["stable"] = t.stable;
+      out.push_back(j);
+    }
+    for (auto& m : models()) {
+      nlohmann::json j = entry_json(m, "model");
+      if (!m.radiance.empty()) j["radiance"] = m.radiance;
+      if (m.ref_albedo) j["closed_form_albedo"] = m.albedo_doc;
+      j["cases"] = nlohmann::json::array();
+      for (auto& c : m.cases)
+        j["cases"].push_back({{"case", m.id + "[" + c.label + "]"},
+                              {"energy", expect_name(c.energy)},
+                              {"energy_why", c.energy_why},
+                              {"reciprocity", expect_name(c.reciprocity)},
+                              {"reciprocity_why", c.reciprocity_why}});
+      out.push_back(j);
+    }
+    std::cout << out.dump(2) << "\n";
+  }
+
+  static void print_text() {
+    for (auto& t : catalog()) {
+      const std::string ps = params_text(t);
+      fmt::print("{} {:<22} {:<40} {}\n", kind_name(t.kind), t.id, t.formula, ps.empty() ? "-" : ps);
+      fmt::print("  {:<22} source: {}{}\n", "", t.source,
+                 t.known_bad.empty() ? "" : "  [known bad: " + t.known_bad + "]");
+    }
+    for (auto& m : models()) {
+      const std::string ps = params_text(m);
+      fmt::print("M {:<22} {}\n  {:<22} params: {}\n  {:<22} source: {}\n", m.id, m.formula, "", ps, "", m.source);
+      if (!m.radiance.empty()) fmt::print("  {:<22} radiance form: {}\n", "", m.radiance);
+      for (auto& c : m.cases)
+        fmt::print("  {:<22} [{}] energy {}{}; reciprocity {}{}\n", "", c.label, expect_name(c.energy),
+                   c.energy_why.empty() ? "" : " (" + c.energy_why + ")", expect_name(c.reciprocity),
+                   c.reciprocity_why.empty() ? "" : " (" + c.reciprocity_why + ")");
+    }
+  }
 };
 
 }  // namespace
 
-void add_list(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand(
-      "list", "print the catalog of terms and whole models with sources, parameters and expected verdicts");
-  auto values = std::make_shared<ListCommandOptions>();  // the command's values
-  g.command_values.push_back(values);
-  cmd->add_flag("--json", values->json, "machine-readable output");
-  cmd->callback([&rc, values] {
-    if (values->json) {
-      nlohmann::json out = nlohmann::json::array();
-      for (auto& t : catalog()) {
-        nlohmann::json j{{"id", t.id},           {"kind", kind_name(t.kind)}, {"source", t.source},
-                         {"formula", t.formula}, {"kernel", t.kernel_fn},     {"ulp_budget", t.ulp_budget}};
-        j["params"] = nlohmann::json::array();
-        for (auto& p : t.params)
-          j["params"].push_back(
-              {{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
-        if (!t.known_bad.empty()) j["known_bad"] = t.known_bad;
-        for (auto& f : t.smith_for) {
-          nlohmann::json fj{{"d", f.d}, {"tol", f.tol}, {"why", f.why}};
-          if (f.alpha_max < 1e300) fj["alpha_max"] = f.alpha_max;
-          j["smith_for"].push_back(fj);
-        }
-        if (!t.under_masks.empty()) j["under_masks"] = t.under_masks;
-        if (!t.masking_exact.empty()) j["masking_exact"] = t.masking_exact;
-        j["stable"] = t.stable;
-        out.push_back(j);
-      }
-      for (auto& m : models()) {
-        nlohmann::json j{{"id", m.id},           {"kind", "model"},       {"source", m.source},
-                         {"formula", m.formula}, {"kernel", m.kernel_fn}, {"ulp_budget", m.ulp_budget}};
-        j["params"] = nlohmann::json::array();
-        for (auto& p : m.params)
-          j["params"].push_back(
-              {{"name", p.name}, {"min", p.lo}, {"max", p.hi}, {"default", p.fallback}, {"doc", p.doc}});
-        if (!m.radiance.empty()) j["radiance"] = m.radiance;
-        if (m.ref_albedo) j["closed_form_albedo"] = m.albedo_doc;
-        j["cases"] = nlohmann::json::array();
-        for (auto& c : m.cases)
-          j["cases"].push_back({{"case", m.id + "[" + c.label + "]"},
-                                {"energy", expect_name(c.energy)},
-                                {"energy_why", c.energy_why},
-                                {"reciprocity", expect_name(c.reciprocity)},
-                                {"reciprocity_why", c.reciprocity_why}});
-        out.push_back(j);
-      }
-      std::cout << out.dump(2) << "\n";
-    } else {
-      for (auto& t : catalog()) {
-        std::string ps;
-        for (auto& p : t.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
-        fmt::print("{} {:<22} {:<40} {}\n", kind_name(t.kind), t.id, t.formula, ps.empty() ? "-" : ps);
-        fmt::print("  {:<22} source: {}{}\n", "", t.source,
-                   t.known_bad.empty() ? "" : "  [known bad: " + t.known_bad + "]");
-      }
-      for (auto& m : models()) {
-        std::string ps;
-        for (auto& p : m.params) ps += fmt::format("{}{} in [{:g}, {:g}]", ps.empty() ? "" : ", ", p.name, p.lo, p.hi);
-        fmt::print("M {:<22} {}\n  {:<22} params: {}\n  {:<22} source: {}\n", m.id, m.formula, "", ps, "", m.source);
-        if (!m.radiance.empty()) fmt::print("  {:<22} radiance form: {}\n", "", m.radiance);
-        for (auto& c : m.cases)
-          fmt::print("  {:<22} [{}] energy {}{}; reciprocity {}{}\n", "", c.label, expect_name(c.energy),
-                     c.energy_why.empty() ? "" : " (" + c.energy_why + ")", expect_name(c.reciprocity),
-                     c.reciprocity_why.empty() ? "" : " (" + c.reciprocity_why + ")");
-      }
-    }
-    rc = 0;
-  });
-}
+void add_list(CLI::App& app, Globals& g, int& rc) { add_command<ListCommand>(app, g, rc, "list"); }
 
 }  // namespace mfv::cli

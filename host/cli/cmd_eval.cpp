@@ -4,7 +4,7 @@
 #include "catalog/models.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/agree.hpp"
-#include "cli/commands.hpp"
+#include "cli/shared_options.hpp"
 #include "util/error.hpp"
 #include "util/parse.hpp"
 
@@ -73,10 +73,11 @@ double term_param(const Term& t, size_t i, Given& given, double alpha, bool alph
   return v;
 }
 
+// The point: directions (unit, x,y,z) or cosines, and which of them were given.
 struct EvalArgs {
-  std::string wi, wo, h;
-  bool wi_given, wo_given, h_given, cosines_given;
-  double NoL, NoV, NoH, VoH;
+  std::string wi = "0,0,1", wo = "0,0,1", h;
+  double NoL = 1, NoV = 1, NoH = 1, VoH = 1;
+  bool wi_given = false, wo_given = false, h_given = false, cosines_given = false;
 };
 
 // A single term: cosines for the isotropic ones; an anisotropic D takes the
@@ -113,113 +114,102 @@ void single_term(PointSpec& ps, const Term& t, bool g1, const EvalArgs& a) {
 
 namespace {
 
-// mfv eval's command-line values, bound to its options (Globals::command_values keeps them).
-struct EvalCommandOptions {
+// mfv eval: its values, bound to its options, and its work.
+struct EvalCommand : SharedValues {
   std::string spec;
-  std::string wi_s = "0,0,1";
-  std::string wo_s = "0,0,1";
-  std::string h_s;
   std::vector<std::string> params;
-  double alpha = 0.3;
-  double kd = 0.0;
-  double NoL = 1;
-  double NoV = 1;
-  double NoH = 1;
-  double VoH = 1;
-  bool g1 = false;
-  bool fp64 = false;
-};
+  double alpha = 0.3, kd = 0.0;
+  bool g1 = false, fp64 = false;
+  EvalArgs args;
+  CLI::Option *alpha_opt = nullptr, *wi_opt = nullptr, *wo_opt = nullptr, *h_opt = nullptr;
+  std::vector<CLI::Option*> cos_opts;
 
-}  // namespace
+  void add_options(CLI::App* cmd) {
+    cmd->description("evaluate one term or one D/G/F BRDF at one point on the device and in the reference");
+    cmd->add_option("spec", spec,
+                    "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
+                    "a whole model (lambert, eon, phong_004...)")
+        ->required();
+    alpha_opt = cmd->add_option("--alpha", alpha, "shared width alpha, converted to each term's parameter");
+    cmd->add_option("--param", params,
+                    "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k, alpha_x, alpha_y...)");
+    cmd->add_option("--kd", kd, "Lambert albedo added to a BRDF");
+    wi_opt = cmd->add_option("--wi", args.wi, "light direction x,y,z, unit (n = +z, tangent t = +x)");
+    wo_opt = cmd->add_option("--wo", args.wo, "view direction x,y,z, unit (also the view of an anisotropic G1)");
+    h_opt = cmd->add_option("--h", args.h, "half vector x,y,z, unit, of an anisotropic D (aniso_ggx...)");
+    cos_opts = {
+        cmd->add_option("--NoL", args.NoL, "cos between normal and light (single isotropic terms), in [-1, 1]"),
+        cmd->add_option("--NoV", args.NoV, "cos between normal and view (single isotropic terms), in [-1, 1]"),
+        cmd->add_option("--NoH", args.NoH, "cos between normal and half vector (single isotropic terms), in [-1, 1]"),
+        cmd->add_option("--VoH", args.VoH, "cos between view and half vector (single isotropic terms), in [-1, 1]")};
+    cmd->add_flag("--g1", g1,
+                  "evaluate a Smith G term's G1 (at NoV, or at --wo for an anisotropic one) instead of its G2");
+    SharedOptions(cmd, *this).fp64(fp64);
+  }
 
-void add_eval(CLI::App& app, Globals& g, int& rc) {
-  auto* cmd = app.add_subcommand("eval",
-                                 "evaluate one term or one D/G/F BRDF at one point on the device and in "
-                                 "the reference");
-  auto values = std::make_shared<EvalCommandOptions>();  // the command's values
-  g.command_values.push_back(values);
-  cmd->add_option("spec", values->spec,
-                  "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
-                  "a whole model (lambert, eon, phong_004...)")
-      ->required();
-  auto* alpha_opt = cmd->add_option("--alpha", values->alpha, "shared width alpha, converted to each term's parameter");
-  cmd->add_option("--param", values->params,
-                  "native parameter NAME=VALUE (alpha_p, rho, m, f0, eta, n, k, alpha_x, alpha_y...)");
-  cmd->add_option("--kd", values->kd, "Lambert albedo added to a BRDF");
-  auto* wi_opt = cmd->add_option("--wi", values->wi_s, "light direction x,y,z, unit (n = +z, tangent t = +x)");
-  auto* wo_opt =
-      cmd->add_option("--wo", values->wo_s, "view direction x,y,z, unit (also the view of an anisotropic G1)");
-  auto* h_opt = cmd->add_option("--h", values->h_s, "half vector x,y,z, unit, of an anisotropic D (aniso_ggx...)");
-  std::vector<CLI::Option*> cos_opts = {
-      cmd->add_option("--NoL", values->NoL, "cos between normal and light (single isotropic terms), in [-1, 1]"),
-      cmd->add_option("--NoV", values->NoV, "cos between normal and view (single isotropic terms), in [-1, 1]"),
-      cmd->add_option("--NoH", values->NoH, "cos between normal and half vector (single isotropic terms), in [-1, 1]"),
-      cmd->add_option("--VoH", values->VoH, "cos between view and half vector (single isotropic terms), in [-1, 1]")};
-  cmd->add_flag("--g1", values->g1,
-                "evaluate a Smith G term's G1 (at NoV, or at --wo for an anisotropic one) instead of its G2");
-  cmd->add_flag("--fp64", values->fp64, "evaluate the kernel in double");
-  cmd->callback([&g, &rc, alpha_opt, wi_opt, wo_opt, h_opt, cos_opts, values] {
-    Given given;
-    for (auto& p : values->params) {
+  // The --param values, and every input checked; true when --alpha was given.
+  bool read_inputs(Given& given) {
+    for (auto& p : params) {
       auto kv = split(p, '=');
       if (kv.size() != 2) throw Error(fmt::format("--param wants NAME=VALUE, got '{}'", p));
       given.values[kv[0]] = parse_number("--param " + kv[0], kv[1]);
     }
-    bool alpha_given = alpha_opt->count() > 0;
-    if (alpha_given && !(values->alpha > 0.0 && std::isfinite(values->alpha)))
-      throw Error(fmt::format("--alpha = {} must be a positive finite number", values->alpha));
-    if (!(values->kd >= 0.0 && values->kd <= 1.0))
-      throw Error(fmt::format("--kd = {} is out of range [0, 1]", values->kd));
-    const char* cos_names[4] = {"--NoL", "--NoV", "--NoH", "--VoH"};
-    const double cos_values[4] = {values->NoL, values->NoV, values->NoH, values->VoH};
-    bool cosines_given = false;
-    for (int i = 0; i < 4; ++i) {
+    const bool alpha_given = alpha_opt->count() > 0;
+    if (alpha_given && !(alpha > 0.0 && std::isfinite(alpha)))
+      throw Error(fmt::format("--alpha = {} must be a positive finite number", alpha));
+    if (!(kd >= 0.0 && kd <= 1.0)) throw Error(fmt::format("--kd = {} is out of range [0, 1]", kd));
+    const double cos_values[4] = {args.NoL, args.NoV, args.NoH, args.VoH};
+    args.cosines_given = false;
+    for (size_t i = 0; i < 4; ++i) {
       if (!(cos_values[i] >= -1.0 && cos_values[i] <= 1.0))
-        throw Error(fmt::format("{} = {} is not a cosine (outside [-1, 1])", cos_names[i], cos_values[i]));
-      cosines_given = cosines_given || cos_opts[size_t(i)]->count() > 0;
+        throw Error(fmt::format("{} = {} is not a cosine (outside [-1, 1])", cos_opts[i]->get_name(), cos_values[i]));
+      args.cosines_given = args.cosines_given || cos_opts[i]->count() > 0;
     }
-    EvalArgs args{values->wi_s,        values->wo_s,       values->h_s,   wi_opt->count() > 0,
-                  wo_opt->count() > 0, h_opt->count() > 0, cosines_given, values->NoL,
-                  values->NoV,         values->NoH,        values->VoH};
-    auto directions = [&](PointSpec& ps) {
-      if (cosines_given || args.h_given)
-        throw Error(fmt::format("'{}' takes directions --wi and --wo, not cosines or --h", values->spec));
-      auto wi = parse_direction("--wi", values->wi_s), wo = parse_direction("--wo", values->wo_s);
-      for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
-    };
+    args.wi_given = wi_opt->count() > 0;
+    args.wo_given = wo_opt->count() > 0;
+    args.h_given = h_opt->count() > 0;
+    return alpha_given;
+  }
 
+  // --wi and --wo into the point's inputs (BRDFs and whole models).
+  void set_directions(PointSpec& ps) const {
+    if (args.cosines_given || args.h_given)
+      throw Error(fmt::format("'{}' takes directions --wi and --wo, not cosines or --h", spec));
+    auto wi = parse_direction("--wi", args.wi), wo = parse_direction("--wo", args.wo);
+    for (int i = 0; i < 3; ++i) ps.inputs[i] = wi[i], ps.inputs[3 + i] = wo[i];
+  }
+
+  // The point `spec` names: a D/G/F BRDF, a whole model or a single term.
+  PointSpec point(const std::vector<std::string>& parts, Given& given, bool alpha_given) const {
     PointSpec ps;
-    auto parts = split(values->spec, '/');
     if (parts.size() == 3) {
       ps.mode = EvalMode::Brdf;
       ps.d = &find_term(parts[0]);
       ps.g = &find_term(parts[1]);
       ps.f = &find_term(parts[2]);
       if (ps.d->kind != Kind::D || ps.g->kind != Kind::G || ps.f->kind != Kind::F)
-        throw Error(fmt::format("'{}' must name a D, a G and an F term, in that order", values->spec));
+        throw Error(fmt::format("'{}' must name a D, a G and an F term, in that order", spec));
       if (ps.d->aniso != ps.g->aniso)
         throw Error(fmt::format(
-            "'{}': an anisotropic D goes with an anisotropic Smith G (e.g. aniso_ggx/smith_aniso_ggx)", values->spec));
-      directions(ps);
-      ps.params[0] = static_cast<float>(term_param(*ps.d, 0, given, values->alpha, alpha_given));
-      if (!ps.g->params.empty())
-        ps.params[1] = static_cast<float>(term_param(*ps.g, 0, given, values->alpha, alpha_given));
+            "'{}': an anisotropic D goes with an anisotropic Smith G (e.g. aniso_ggx/smith_aniso_ggx)", spec));
+      set_directions(ps);
+      ps.params[0] = static_cast<float>(term_param(*ps.d, 0, given, alpha, alpha_given));
+      if (!ps.g->params.empty()) ps.params[1] = static_cast<float>(term_param(*ps.g, 0, given, alpha, alpha_given));
       for (size_t i = 0; i < ps.f->params.size(); ++i)
-        ps.params[2 + i] = static_cast<float>(term_param(*ps.f, i, given, values->alpha, alpha_given));
-      ps.params[4] = static_cast<float>(values->kd);
+        ps.params[2 + i] = static_cast<float>(term_param(*ps.f, i, given, alpha, alpha_given));
+      ps.params[4] = static_cast<float>(kd);
       if (ps.d->aniso) {
         // one alpha_y for both (kernels/agree.cl record slot 14), as D and G share the surface
         ps.mode = EvalMode::BrdfAniso;
-        ps.params[6] = static_cast<float>(term_param(*ps.d, 1, given, values->alpha, alpha_given));
-        term_param(*ps.g, 1, given, values->alpha, alpha_given);
+        ps.params[6] = static_cast<float>(term_param(*ps.d, 1, given, alpha, alpha_given));
+        term_param(*ps.g, 1, given, alpha, alpha_given);
       }
-    } else if (const Model* m = parts.size() == 1 ? try_find_model(values->spec) : nullptr) {
+    } else if (const Model* m = parts.size() == 1 ? try_find_model(spec) : nullptr) {
       // a whole model: f(wi, wo) with its parameters by name, defaults otherwise
-      if (alpha_given)
-        throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", values->spec));
+      if (alpha_given) throw Error(fmt::format("'{}' is a whole model: give its parameters with --param", spec));
       ps.mode = EvalMode::Model;
       ps.model = m;
-      directions(ps);
+      set_directions(ps);
       for (size_t i = 0; i < m->params.size(); ++i) {
         double v = m->params[i].fallback;
         if (const double* x = given.find(m->params[i].name)) v = *x;
@@ -227,35 +217,47 @@ void add_eval(CLI::App& app, Globals& g, int& rc) {
         ps.params[i] = static_cast<float>(v);
       }
     } else if (parts.size() == 1) {
-      const Term& t = find_term(values->spec);
+      const Term& t = find_term(spec);
       if (t.kind == Kind::D) ps.d = &t;
       if (t.kind == Kind::G) ps.g = &t;
       if (t.kind == Kind::F) ps.f = &t;
-      single_term(ps, t, values->g1, args);
+      single_term(ps, t, g1, args);
       int slot = t.kind == Kind::D ? 0 : t.kind == Kind::G ? 1 : 2;
       if (t.aniso) {
-        ps.params[slot] = static_cast<float>(term_param(t, 0, given, values->alpha, alpha_given));
-        ps.params[6] = static_cast<float>(term_param(t, 1, given, values->alpha, alpha_given));
+        ps.params[slot] = static_cast<float>(term_param(t, 0, given, alpha, alpha_given));
+        ps.params[6] = static_cast<float>(term_param(t, 1, given, alpha, alpha_given));
       } else {
         for (size_t i = 0; i < t.params.size(); ++i)
-          ps.params[slot + i] = static_cast<float>(term_param(t, i, given, values->alpha, alpha_given));
+          ps.params[slot + i] = static_cast<float>(term_param(t, i, given, alpha, alpha_given));
       }
     } else {
-      throw Error(fmt::format("'{}' is neither a term id nor D/G/F", values->spec));
+      throw Error(fmt::format("'{}' is neither a term id nor D/G/F", spec));
     }
-    if (values->g1 && parts.size() != 1) throw Error("--g1 applies to a single Smith G term");
+    return ps;
+  }
+
+  int run(const Globals& g) {
+    Given given;
+    const bool alpha_given = read_inputs(given);
+    const auto parts = split(spec, '/');
+    const PointSpec ps = point(parts, given, alpha_given);
+    if (g1 && parts.size() != 1) throw Error("--g1 applies to a single Smith G term");
     for (auto& [name, v] : given.values)
       if (!given.used.count(name))
-        throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, values->spec));
+        throw Error(fmt::format("parameter '{}' belongs to none of the terms in '{}'", name, spec));
 
     Runtime rt(g.device, g.kernel_dir);
-    PointValue r = eval_point(rt, ps, values->fp64);
+    PointValue r = eval_point(rt, ps, fp64);
     fmt::print("kernel    {:.9g}  ({:a})  on {}, {}\n", r.kernel, r.kernel, rt.device().name,
-               values->fp64 ? "float64" : "float32");
+               fp64 ? "float64" : "float32");
     fmt::print("reference {:.17g}  ({:a})  double\n", r.reference, r.reference);
     fmt::print("relative error {:.3g}, {:.3g} ulps\n", r.rel, r.ulps);
-    rc = 0;
-  });
-}
+    return 0;
+  }
+};
+
+}  // namespace
+
+void add_eval(CLI::App& app, Globals& g, int& rc) { add_command<EvalCommand>(app, g, rc, "eval"); }
 
 }  // namespace mfv::cli

@@ -4,7 +4,7 @@
 // host/catalog/models.cpp ("gltf").
 #pragma once
 
-#include <glm/vec3.hpp>
+#include "reference/models.hpp"
 
 #include <vector>
 
@@ -12,16 +12,16 @@ namespace mfv::ref {
 
 // f(l, v), l = light, v = view, unit (taken as given, as the other whole
 // models: host/reference/models.hpp), n = +z; 0 below either horizon.
-double model_gltf(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+ModelFn model_gltf;
 // KHR_materials_clearcoat over it: p[0..6] = alpha, metallic, base, f0, f0_max,
 // clearcoat_alpha, clearcoat ("gltf_clearcoat"; V = l, see kernels/model_gltf.cl).
-double model_gltf_clearcoat(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+ModelFn model_gltf_clearcoat;
 // The same over the anisotropic base: p[0..6] = alpha_t, metallic, base, f0,
 // clearcoat_alpha, clearcoat, alpha_b ("gltf_clearcoat_aniso").
-double model_gltf_clearcoat_aniso(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+ModelFn model_gltf_clearcoat_aniso;
 // KHR_materials_sheen over it: p[0..6] = alpha, metallic, base, f0, sheen_alpha,
 // sheen, sheen_others ("gltf_sheen"; see kernels/model_gltf.cl).
-double model_gltf_sheen(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+ModelFn model_gltf_sheen;
 // E_sheen(mu, alpha) from the table kernels/model_gltf.cl holds (parsed from
 // its text, bilinear in (mu, log10 alpha), written here independently).
 double sheen_albedo_table(double mu, double alpha);

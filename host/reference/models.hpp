@@ -8,20 +8,23 @@
 
 namespace mfv::ref {
 
-double model_lambert(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_oren_nayar(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_eon(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_toon_diffuse(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_toon_specular(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_phong(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_phong_normalized(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_blinn(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_ward(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_ward_dur(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_cook_torrance_kmix(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_torrance_sparrow(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_radiance_002(const glm::dvec3& l, const glm::dvec3& v, const double* p);
-double model_radiance_002_fixed(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+// A whole model's f(l, v): l = light, v = view, unit, n = +z; p its parameters.
+using ModelFn = double(const glm::dvec3& l, const glm::dvec3& v, const double* p);
+
+ModelFn model_lambert;
+ModelFn model_oren_nayar;
+ModelFn model_eon;
+ModelFn model_toon_diffuse;
+ModelFn model_toon_specular;
+ModelFn model_phong;
+ModelFn model_phong_normalized;
+ModelFn model_blinn;
+ModelFn model_ward;
+ModelFn model_ward_dur;
+ModelFn model_cook_torrance_kmix;
+ModelFn model_torrance_sparrow;
+ModelFn model_radiance_002;
+ModelFn model_radiance_002_fixed;
 
 // Exact directional albedos E(l) = ∫ f(l, v) (n·v) dv, NaN where no closed form.
 double albedo_lambert(double cos_l, const double* p);

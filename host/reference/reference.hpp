@@ -68,10 +68,15 @@ double G1_smith_beckmann_aniso_slice(double NoV, double alpha);
 double G_implicit(double NoL, double NoV, double NoH, double VoH, double unused);
 double G_kelemen(double NoL, double NoV, double NoH, double VoH, double unused);
 double G_cook_torrance(double NoL, double NoV, double NoH, double VoH, double unused);
-double G_smith_beckmann_approx(double NoL, double NoV, double NoH, double VoH, double alpha);
-double G_smith_beckmann(double NoL, double NoV, double NoH, double VoH, double alpha);
-double G_smith_phong(double NoL, double NoV, double NoH, double VoH, double alpha_p);
-double G_smith_ggx(double NoL, double NoV, double NoH, double VoH, double alpha);
+// Smith's separable form of a G1 above: G = G1(l) G1(v) (seed 000's "Smith
+// form G = G1(L, H) G1(V, H)"; Heitz 2014, eq. 98: separable, uncorrelated),
+// 0 unless both directions are above the surface and in front of the facet.
+template <double (*G1)(double NoV, double width)>
+double G_smith_separable(double NoL, double NoV, double NoH, double VoH, double width);
+inline constexpr auto G_smith_beckmann_approx = &G_smith_separable<G1_smith_beckmann_approx>;  // Walter 2007, eq. 27
+inline constexpr auto G_smith_beckmann = &G_smith_separable<G1_smith_beckmann>;  // G1 exact: Walter 2007, eq. 26
+inline constexpr auto G_smith_phong = &G_smith_separable<G1_smith_phong>;        // seed 000 "Phong"; width alpha_p
+inline constexpr auto G_smith_ggx = &G_smith_separable<G1_smith_ggx>;            // seed 000 "GGX"; Walter 2007, eq. 34
 double G_smith_ggx_correlated(double NoL, double NoV, double NoH, double VoH, double alpha);
 double G_hammon_002(double NoL, double NoV, double NoH, double VoH, double alpha);
 // KHR_materials_sheen's Charlie visibility times 4 NoL NoV: 1 / (1 + Λ(l) + Λ(v))

@@ -142,31 +142,17 @@ double G_cook_torrance(double NoL, double NoV, double NoH, double VoH, double) {
   return std::min({1.0, masking, shadowing});
 }
 
-double G_smith_beckmann_approx(double NoL, double NoV, double, double VoH, double alpha) {
-  // seed 000, Smith form G = G1(L, H) G1(V, H), G1 the Beckmann rational
+template <double (*G1)(double, double)>
+double G_smith_separable(double NoL, double NoV, double, double VoH, double width) {
+  // seed 000, Smith form G = G1(L, H) G1(V, H) (Heitz 2014, eq. 98: separable, uncorrelated)
   if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
-  return G1_smith_beckmann_approx(NoL, alpha) * G1_smith_beckmann_approx(NoV, alpha);
+  return G1(NoL, width) * G1(NoV, width);
 }
-
-double G_smith_beckmann(double NoL, double NoV, double, double VoH, double alpha) {
-  // seed 000, Smith form G = G1(L, H) G1(V, H); G1 exact (Walter 2007, eq. 26)
-  // (Heitz 2014, eq. 98: separable, uncorrelated)
-  if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
-  return G1_smith_beckmann(NoL, alpha) * G1_smith_beckmann(NoV, alpha);
-}
-
-double G_smith_phong(double NoL, double NoV, double, double VoH, double alpha_p) {
-  // seed 000, Smith form G = G1(L, H) G1(V, H), G1 "Phong"
-  if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
-  return G1_smith_phong(NoL, alpha_p) * G1_smith_phong(NoV, alpha_p);
-}
-
-double G_smith_ggx(double NoL, double NoV, double, double VoH, double alpha) {
-  // seed 000, Smith form G = G1(L, H) G1(V, H), G1 "GGX"
-  // (Heitz 2014, eq. 98: separable, uncorrelated)
-  if (!pair_visible(NoL, NoV, VoH)) return 0.0;  // χ+ factors
-  return G1_smith_ggx(NoL, alpha) * G1_smith_ggx(NoV, alpha);
-}
+// The catalog's four (reference.hpp): the Beckmann rational, exact Beckmann, "Phong" and "GGX" G1s of seed 000.
+template double G_smith_separable<G1_smith_beckmann_approx>(double, double, double, double, double);
+template double G_smith_separable<G1_smith_beckmann>(double, double, double, double, double);
+template double G_smith_separable<G1_smith_phong>(double, double, double, double, double);
+template double G_smith_separable<G1_smith_ggx>(double, double, double, double, double);
 
 double G_smith_ggx_correlated(double NoL, double NoV, double, double VoH, double alpha) {
   // Heitz 2014, "Understanding the masking-shadowing function", eq. 99

@@ -38,6 +38,15 @@ void push_unique(std::vector<T>& v, const T& x) {
   if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
 }
 
+// The widths of a perceptual roughness range, at its ends and inside, none
+// below kSceneMinAlpha (the alpha glTF roughness below 0.01 is checked at).
+std::vector<double> alphas_of(const ParamRange& roughness) {
+  std::vector<double> out;
+  for (double rough : ends_and_inside(roughness))
+    push_unique(out, std::max(alpha_from_perceptual(rough), kSceneMinAlpha));
+  return out;
+}
+
 // KHR_materials_ior: f0 = ((ior - 1)/(ior + 1))², ior = 0 giving 1 (the
 // specular-glossiness conversion); KHR_materials_specular: dielectric F0 =
 // min(f0 · specularColor, 1) per channel (the extension's own clamp).
@@ -92,20 +101,10 @@ std::vector<std::pair<double, double>> SceneMaterial::lobes() const {
   return out;
 }
 
-std::vector<double> SceneMaterial::alphas() const {
-  if (!gltf) return {alpha};
-  std::vector<double> out;
-  for (double rough : ends_and_inside(roughness))
-    push_unique(out, std::max(alpha_from_perceptual(rough), kSceneMinAlpha));
-  return out;
-}
+std::vector<double> SceneMaterial::alphas() const { return gltf ? alphas_of(roughness) : std::vector<double>{alpha}; }
 
 std::vector<double> SceneMaterial::coat_alphas() const {
-  std::vector<double> out;
-  if (!coat_checked) return out;
-  for (double r : ends_and_inside(clearcoat_roughness))
-    push_unique(out, std::max(alpha_from_perceptual(r), kSceneMinAlpha));
-  return out;
+  return coat_checked ? alphas_of(clearcoat_roughness) : std::vector<double>{};
 }
 
 // KHR_materials_clearcoat: the coat's weight clearcoat enters the layering
