@@ -1,5 +1,6 @@
-// Device tests share one Runtime; where no OpenCL platform exists they are
-// skipped with a message instead of failing.
+// Device tests share one Runtime; where no OpenCL platform exists (or, for
+// float64 tests, no cl_khr_fp64) they are skipped with a message instead of
+// failing.
 #pragma once
 
 #include "runtime/opencl.hpp"
@@ -8,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <memory>
+#include <string>
 
 namespace mfv::test {
 
@@ -23,6 +25,17 @@ inline Runtime* device_runtime() {
     }
   }
   return rt.get();
+}
+
+// The shared Runtime where its device has cl_khr_fp64; else null, and `what`
+// (the float64 part of a test) is skipped with a message.
+inline Runtime* fp64_runtime(const std::string& what) {
+  Runtime* rt = device_runtime();
+  if (rt && !rt->device().fp64) {
+    WARN("device has no cl_khr_fp64; " << what << " skipped");
+    return nullptr;
+  }
+  return rt;
 }
 
 }  // namespace mfv::test

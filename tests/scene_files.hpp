@@ -1,41 +1,17 @@
-// Files for the scene tests: a temporary folder, reading a file whole, and a
-// GLB container around a JSON chunk (and an optional BIN chunk).
+// Files for the scene tests: a GLB container around a JSON chunk (and an
+// optional BIN chunk), and a scene's material by name. Their temporary folder
+// is test_files.hpp's Scratch.
 #pragma once
 
 #include "scene/scene.hpp"
 #include "test_files.hpp"
 
-#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace mfv::test {
-
-// A temporary folder for files a test writes.
-struct TempDir {
-  std::filesystem::path dir;
-  TempDir() {
-    static int n = 0;
-    dir = std::filesystem::temp_directory_path() /
-          ("mfv_scene_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~TempDir() { std::filesystem::remove_all(dir); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir / name, std::ios::binary) << text;
-    return (dir / name).string();
-  }
-  // a copy of `src` here, alone (no .bin, no images beside it)
-  std::string copy(const std::string& src) const {
-    return write(std::filesystem::path(src).filename().string(), slurp(src));
-  }
-};
 
 // A GLB container (glTF 2.0 §4.4) holding `json` as its JSON chunk and `bin`, if any, as its BIN chunk.
 inline std::string glb_of(std::string json, std::string bin = "") {

@@ -1,4 +1,4 @@
-// Verdict look-ups in a SuiteReport, and the verdict with a defect planted in
+// Verdict look-ups in a SuiteReport, and the suite run with a defect planted in
 // a kernel, shared by the suite tests.
 #pragma once
 
@@ -24,16 +24,23 @@ inline Verdict verdict_of(const SuiteReport& rep, const std::string& check, cons
   return g->verdict;
 }
 
-// The verdict of `check` on `model` with one replacement planted in a kernel
-// file; gate_ok: whether the whole run still passed the gate.
-inline Verdict planted_verdict(const char* file, const char* from, const char* to, const SuiteOptions& opt,
-                               const char* check, const char* model, bool& gate_ok) {
-  PlantedKernelDir dir;
-  REQUIRE(dir.replace(file, from, to));
-  Runtime planted("", dir.path());
-  const SuiteReport bad = run_suite(planted, opt);
-  gate_ok = bad.gate_ok();
-  return verdict_of(bad, check, model);
+// The suite run with one defect planted in a kernel file: `from` replaced by
+// `to` in `file`.
+inline SuiteReport planted_suite(const std::string& file, const std::string& from, const std::string& to,
+                                 const SuiteOptions& opt) {
+  const PlantedKernelDir dir(file, from, to);
+  Runtime planted = dir.runtime();
+  return run_suite(planted, opt);
+}
+
+// Checks that a defect planted in a kernel file makes `check` FAIL on
+// `model` and the whole run fail the gate.
+inline void check_planted_fails(const std::string& file, const std::string& from, const std::string& to,
+                                const SuiteOptions& opt, const std::string& check, const std::string& model) {
+  CAPTURE(file, to, check, model);
+  const SuiteReport bad = planted_suite(file, from, to, opt);
+  CHECK(verdict_of(bad, check, model) == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
 }
 
 }  // namespace mfv::test

@@ -17,10 +17,13 @@ using namespace mfv;
 
 namespace {
 
-#define MFV_SPEC_FIELDS(X)                                                                                            \
-  X(check)                                                                                                            \
-  X(d) X(g) X(f) X(pd) X(pg) X(f0) X(f1) X(kd) X(width) X(cos_o) X(p5) X(stream) X(strata) X(model) X(channel) X(pd2) \
-      X(phi_o) X(estimator) X(pg2)
+#define MFV_SPEC_FIELDS(X)                                                                                      \
+  X(check)                                                                                                      \
+  X(d)                                                                                                          \
+  X(g)                                                                                                          \
+  X(f)                                                                                                          \
+  X(pd) X(pg) X(f0) X(f1) X(kd) X(width) X(cos_o) X(p5) X(stream) X(strata) X(model) X(channel) X(pd2) X(phi_o) \
+      X(estimator) X(pg2)
 
 struct Field {
   const char* name;
@@ -76,7 +79,7 @@ TEST_CASE("IntegralSpec has the same size and field offsets on the device as on 
 TEST_CASE("The shared layout header is read from --kernel-dir as the kernel files are", "[device][abi]") {
   if (!test::device_runtime()) return;
   test::PlantedKernelDir dir;
-  Runtime rt("", dir.path());
+  Runtime rt = dir.runtime();
   check_layout(device_offsets(rt));
   // a field moved in the folder's header moves on the device: the header is read from there
   REQUIRE(dir.replace("abi/integral.h", "  mfv_i32 check MFV_INIT(0);  /* MFV_CHECK_* */\n", ""));

@@ -1,3 +1,4 @@
+#include "agree_options.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/agree.hpp"
@@ -12,8 +13,7 @@ TEST_CASE("Every kernel term and every D x G x F BRDF agrees with the double ref
           "[device][agree]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  AgreeOptions opt;
-  opt.samples = 20000;
+  AgreeOptions opt = test::agree_options({}, 20000);
   opt.seed = 12345;
   AgreeReport rep = run_agree(*rt, opt);
   // From the catalog (checks/agree.cpp make_cases): every term; the G1 of
@@ -26,46 +26,29 @@ TEST_CASE("Every kernel term and every D x G x F BRDF agrees with the double ref
     for (auto* g : aniso_terms_of(Kind::G)) aniso_brdfs += g->fit_for(d->id) ? terms_of(Kind::F).size() : 0;
   const size_t grid = terms_of(Kind::D).size() * terms_of(Kind::G).size() * terms_of(Kind::F).size();
   CHECK(rep.results.size() == catalog().size() + g1s + grid + aniso_brdfs + models().size());
+  test::check_every_case_passes(rep);
   for (auto& r : rep.results) {
-    CAPTURE(r.name, r.max_ulps, r.worst);
-    CHECK(r.pass());
+    CAPTURE(r.name);
     CHECK(r.samples == opt.samples);
   }
 }
 
 TEST_CASE("float64 kernels agree with the reference to double-precision budgets", "[device][agree][fp64]") {
-  Runtime* rt = test::device_runtime();
+  Runtime* rt = test::fp64_runtime("float64 agreement");
   if (!rt) return;
-  if (!rt->device().fp64) {
-    WARN("device has no cl_khr_fp64; float64 agreement skipped");
-    return;
-  }
-  AgreeOptions opt;
-  opt.samples = 20000;
+  AgreeOptions opt = test::agree_options({}, 20000);
   opt.fp64 = true;
-  AgreeReport rep = run_agree(*rt, opt);
-  for (auto& r : rep.results) {
-    CAPTURE(r.name, r.max_ulps, r.worst);
-    CHECK(r.pass());
-  }
+  test::check_every_case_passes(run_agree(*rt, opt));
 }
 
 TEST_CASE("Agreement catches a kernel term that is off by one part in ten thousand", "[device][agree][planted]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
-  REQUIRE(
-      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.0001) / (MFV_PI * a2 * k * k);"));
-  Runtime rt("", dir.path());
-  AgreeOptions opt;
-  opt.samples = 5000;
-  opt.only = {"D ggx", "BRDF ggx/smith_ggx/none"};
-  AgreeReport rep = run_agree(rt, opt);
+  if (!test::device_runtime()) return;
+  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "return R(1.0001) / (MFV_PI * a2 * k * k);");
+  Runtime rt = dir.runtime();
+  AgreeReport rep = run_agree(rt, test::agree_options({"D ggx", "BRDF ggx/smith_ggx/none"}, 5000));
   REQUIRE(rep.results.size() == 2);
-  for (auto& r : rep.results) {
-    CAPTURE(r.name);
-    CHECK_FALSE(r.pass());
-  }
+  test::check_every_case_fails(rep);
 }
 
 TEST_CASE("Kernel G1 terms follow seed 000: (v.n) at or above 1 gives 1, at or below the horizon 0, never NaN",
@@ -91,15 +74,12 @@ TEST_CASE("Kernel G1 terms follow seed 000: (v.n) at or above 1 gives 1, at or b
 }
 
 TEST_CASE("A kernel that does not compile reports its build log with the real file name", "[device][errors]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "static inline real D_ggx(", "static inline real D_ggx(this is not C "));
-  Runtime rt("", dir.path());
-  AgreeOptions opt;
-  opt.samples = 10;
+  if (!test::device_runtime()) return;
+  const test::PlantedKernelDir dir("terms_d.cl", "static inline real D_ggx(",
+                                   "static inline real D_ggx(this is not C ");
+  Runtime rt = dir.runtime();
   try {
-    run_agree(rt, opt);
+    run_agree(rt, test::agree_options({}, 10));
     FAIL("the build should have failed");
   } catch (const Error& e) {
     std::string msg = e.what();
@@ -113,14 +93,9 @@ TEST_CASE("mfv agree covers the anisotropic terms: kernel and reference on ident
           "[device][aniso][agree]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  AgreeOptions opt;
-  opt.samples = 20000;
+  AgreeOptions opt = test::agree_options({"aniso_"}, 20000);
   opt.seed = 99;
-  opt.only = {"aniso_"};
   AgreeReport rep = run_agree(*rt, opt);
   CHECK(rep.results.size() == 4 + 2 * 4);  // 2 D, 2 G1, 2 matched pairs x 4 F
-  for (auto& r : rep.results) {
-    CAPTURE(r.name, r.max_ulps, r.worst);
-    CHECK(r.pass());
-  }
+  test::check_every_case_passes(rep);
 }

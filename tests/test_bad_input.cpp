@@ -23,10 +23,7 @@
 #include <sstream>
 #include <string>
 
-using mfv::test::Run;
-using mfv::test::run_mfv;
-using mfv::test::Scratch;
-using mfv::test::slurp;
+using namespace mfv::test;
 namespace fs = std::filesystem;
 
 namespace {

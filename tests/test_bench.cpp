@@ -1,11 +1,10 @@
 // mfv bench: one small run on the default device writes a complete JSON
 // record; bad options exit 2 with one line.
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,8 +14,8 @@ using mfv::test::run_mfv;
 
 TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cli]") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("mfv_bench_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const mfv::test::Scratch scratch("mfv_bench");
+  const fs::path dir = scratch.dir / "out";
   auto r =
       run_mfv("bench --integrals 8 --samples 4096 --ref-samples 128 --repeats 3 --threads 2 --out " + dir.string());
   INFO(r.out);
@@ -43,7 +42,6 @@ TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cl
   CHECK(engines.count("reference x1") == 1);
   CHECK(engines.count("reference x2") == 1);
   CHECK(engines.size() >= 3);  // at least one device
-  fs::remove_all(dir);
 }
 
 TEST_CASE("mfv bench rejects bad options with one line", "[bench][cli]") {
@@ -62,8 +60,8 @@ TEST_CASE("mfv bench rejects bad options with one line", "[bench][cli]") {
 
 TEST_CASE("mfv bench --case gives one integral's time to a standard error of 1e-4", "[bench][cli][mis]") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("mfv_bench_case_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const mfv::test::Scratch scratch("mfv_bench_case");
+  const fs::path dir = scratch.dir / "out";
   auto r = run_mfv("bench --case ggx/smith_ggx_correlated/none:0.5:0.5 --repeats 3 --out " + dir.string());
   INFO(r.out);
   REQUIRE(r.code == 0);
@@ -77,5 +75,4 @@ TEST_CASE("mfv bench --case gives one integral's time to a standard error of 1e-
   // estimate is the quadrature's 0.6982507 within 6 of its standard errors
   CHECK(j["rms_stderr"].get<double>() < 1.3e-4);
   CHECK(std::fabs(j["estimate"].get<double>() - 0.6982507) < 6 * j["stderr"].get<double>());
-  fs::remove_all(dir);
 }

@@ -8,32 +8,13 @@
 
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 
-using mfv::test::Run;
-using mfv::test::run_mfv;
-
-using mfv::test::slurp;
+using namespace mfv::test;
 
 namespace {
-
-const std::string kExamples = std::string(MFV_KERNEL_SOURCE_DIR) + "/../examples/brdf/";
-
-// A scratch file for one test.
-struct TempFile {
-  std::string path;
-  TempFile(const std::string& name, const std::string& text)
-      : path((std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string()) {
-    std::ofstream(path) << text;
-  }
-  ~TempFile() { std::filesystem::remove(path); }
-};
 
 bool has_line(const std::string& out, const std::string& verdict, const std::string& check) {
   return std::regex_search(out, std::regex("(^|\n)" + verdict + " +" + check + " "));
@@ -47,9 +28,10 @@ bool one_error_line(const Run& r) {
 }  // namespace
 
 TEST_CASE("mfv check passes the correct GGX example on every check and writes CI reports", "[check][cli]") {
-  auto out = std::filesystem::temp_directory_path() / ("mfv_check_" + std::to_string(::getpid()));
-  Run r = run_mfv("check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512 --out " +
-                  out.string());
+  const Scratch s("mfv_check");
+  const auto out = s.dir / "out";
+  Run r = run_mfv("check --brdf " + kBrdfExamples +
+                  "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512 --out " + out.string());
   INFO(r.out);
   CHECK(r.code == 0);
   for (auto* c : {"d_norm", "masking", "furnace", "energy", "reciprocity", "finite", "agree"})
@@ -58,12 +40,11 @@ TEST_CASE("mfv check passes the correct GGX example on every check and writes CI
   CHECK(junit.find("testsuite name=\"mfv check ") != std::string::npos);
   CHECK(junit.find("failures=\"0\"") != std::string::npos);
   CHECK(slurp((out / "results.json").string()).find("\"model\":\"ggx\"") != std::string::npos);
-  std::filesystem::remove_all(out);
 }
 
 // mfv check on an example: exit 1 with these (verdict, check) lines.
 Run expect_verdicts(const std::string& args, const std::vector<std::pair<const char*, const char*>>& lines) {
-  Run r = run_mfv("check --brdf " + kExamples + args);
+  Run r = run_mfv("check --brdf " + kBrdfExamples + args);
   INFO(r.out);
   CHECK(r.code == 1);
   for (auto& [verdict, check] : lines) CHECK(has_line(r.out, verdict, check));
@@ -86,14 +67,15 @@ TEST_CASE("mfv check fails each buggy example on the check its mistake breaks", 
 
 TEST_CASE("mfv check without a declared roughness uses the mixture of widths, which passes and fails as it should",
           "[check][cli]") {
+  const Scratch s("mfv_check");
   // The roughness tag removed: the estimators fall back to the mixture of widths.
-  std::string good = std::regex_replace(slurp(kExamples + "ggx.cl"), std::regex(" roughness\n"), "\n");
-  std::string bad = std::regex_replace(slurp(kExamples + "ggx_missing_pi.cl"), std::regex(" perceptual\n"), "\n");
-  TempFile g("ggx_nowidth.cl", good), b("pi_nowidth.cl", bad);
-  Run rg = run_mfv("check --brdf " + g.path + " --check d_norm furnace --samples 1024");
+  std::string good = std::regex_replace(slurp(kBrdfExamples + "ggx.cl"), std::regex(" roughness\n"), "\n");
+  std::string bad = std::regex_replace(slurp(kBrdfExamples + "ggx_missing_pi.cl"), std::regex(" perceptual\n"), "\n");
+  const std::string g = s.file("ggx_nowidth.cl", good), b = s.file("pi_nowidth.cl", bad);
+  Run rg = run_mfv("check --brdf " + g + " --check d_norm furnace --samples 1024");
   INFO(rg.out);
   CHECK(rg.code == 0);
-  Run rb = run_mfv("check --brdf " + b.path + " --check d_norm --samples 1024");
+  Run rb = run_mfv("check --brdf " + b + " --check d_norm --samples 1024");
   INFO(rb.out);
   CHECK(rb.code == 1);
 }
@@ -126,53 +108,58 @@ TEST_CASE("The mixture of widths is the same estimator in the kernel and the ref
 
 TEST_CASE("mfv check: a compile error points into the user's file; bad contracts get one line and exit 2",
           "[check][cli]") {
-  TempFile syntax("syntax.cl",
-                  "// mfv: param alpha 0.01 1 default 0.3 roughness\n"
-                  "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
-                  "  float x = params[0]\n"
-                  "  return (float3)(x);\n"
-                  "}\n");
-  Run r = run_mfv("check --brdf " + syntax.path);
+  const Scratch s("mfv_check");
+  const std::string syntax = s.file("syntax.cl",
+                                    "// mfv: param alpha 0.01 1 default 0.3 roughness\n"
+                                    "float3 brdf(float3 wi, float3 wo, const float* params) {\n"
+                                    "  float x = params[0]\n"
+                                    "  return (float3)(x);\n"
+                                    "}\n");
+  Run r = run_mfv("check --brdf " + syntax);
   CHECK(r.code == 2);
-  CHECK(r.out.find("mfv: error: " + syntax.path + ":3:") != std::string::npos);
+  CHECK(r.out.find("mfv: error: " + syntax + ":3:") != std::string::npos);
   CHECK(r.out.find("build log") != std::string::npos);
 
-  TempFile sig("sig.cl", "// mfv: param alpha 0.01 1 roughness\nfloat brdf(float3 wi, float3 wo) { return 1.0f; }\n");
-  Run rs = run_mfv("check --brdf " + sig.path);
+  const std::string sig =
+      s.file("sig.cl", "// mfv: param alpha 0.01 1 roughness\nfloat brdf(float3 wi, float3 wo) { return 1.0f; }\n");
+  Run rs = run_mfv("check --brdf " + sig);
   CHECK(one_error_line(rs));
-  CHECK(rs.out.find(sig.path + ":2: brdf must be 'float3 brdf(float3 wi, float3 wo, const float* params)'") !=
+  CHECK(rs.out.find(sig + ":2: brdf must be 'float3 brdf(float3 wi, float3 wo, const float* params)'") !=
         std::string::npos);
 
-  TempFile none("none.cl", "float3 shade(float3 wi, float3 wo, const float* p) { return (float3)(0.1f); }\n");
-  Run rn = run_mfv("check --brdf " + none.path);
+  const std::string none =
+      s.file("none.cl", "float3 shade(float3 wi, float3 wo, const float* p) { return (float3)(0.1f); }\n");
+  Run rn = run_mfv("check --brdf " + none);
   CHECK(one_error_line(rn));
   CHECK(rn.out.find("defines no 'float3 brdf(") != std::string::npos);
 
-  TempFile miss("miss.cl",
-                "// mfv: param alpha 0.01 1 roughness\n"
-                "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(p[1]); }\n");
-  Run rm = run_mfv("check --brdf " + miss.path);
+  const std::string miss = s.file("miss.cl",
+                                  "// mfv: param alpha 0.01 1 roughness\n"
+                                  "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(p[1]); }\n");
+  Run rm = run_mfv("check --brdf " + miss);
   CHECK(one_error_line(rm));
   CHECK(rm.out.find("reads p[1] but 1 parameter is declared (alpha)") != std::string::npos);
 
   for (const char* args : {"--param alpha=3", "--param alpha=nan", "--param alpha",
                            "--as ggx/smith_ggx/schlick --map beta=alpha", "--as ggx/smith_ggx",
                            "--check d_norm --param alpha=0.3 --check nonsense", "--channel x", "--map alpha=alpha"}) {
-    Run rb = run_mfv("check --brdf " + kExamples + "ggx.cl " + args);
+    Run rb = run_mfv("check --brdf " + kBrdfExamples + "ggx.cl " + args);
     INFO(args << ": " << rb.out);
     CHECK(one_error_line(rb));
   }
-  TempFile no_d("no_d.cl", "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(0.1f); }\n");
-  Run rd = run_mfv("check --brdf " + no_d.path + " --check d_norm");
+  const std::string no_d =
+      s.file("no_d.cl", "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(0.1f); }\n");
+  Run rd = run_mfv("check --brdf " + no_d + " --check d_norm");
   CHECK(one_error_line(rd));
   CHECK(rd.out.find("needs 'float D(float3 m, const float* params)'") != std::string::npos);
 }
 
 TEST_CASE("mfv check: a BRDF returning NaN is a check failure naming the input, not a crash", "[check][cli]") {
-  TempFile nan("nan.cl",
-               "// mfv: param alpha 0.01 1 roughness\n"
-               "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
-  Run r = run_mfv("check --brdf " + nan.path + " --check furnace finite --samples 256");
+  const Scratch s("mfv_check");
+  const std::string nan = s.file("nan.cl",
+                                 "// mfv: param alpha 0.01 1 roughness\n"
+                                 "float3 brdf(float3 wi, float3 wo, const float* p) { return (float3)(NAN); }\n");
+  Run r = run_mfv("check --brdf " + nan + " --check furnace finite --samples 256");
   INFO(r.out);
   CHECK(r.code == 1);
   CHECK(has_line(r.out, "FAIL", "furnace"));
@@ -182,16 +169,17 @@ TEST_CASE("mfv check: a BRDF returning NaN is a check failure naming the input, 
 
 TEST_CASE("mfv check passes a Lambert and fails one with 1 % more energy at default samples",
           "[device][check][cli][planted]") {
-  Run r = run_mfv("check --brdf " + kExamples + "lambert.cl --check furnace energy");
+  const Scratch s("mfv_check");
+  Run r = run_mfv("check --brdf " + kBrdfExamples + "lambert.cl --check furnace energy");
   INFO(r.out);
   CHECK(r.code == 0);
   // the per-integral tests cannot see 1 %; the pooled furnace test does (docs/statistics.md)
-  std::string text = slurp(kExamples + "lambert.cl");
+  std::string text = slurp(kBrdfExamples + "lambert.cl");
   const std::string from = "params[0] * M_1_PI_F";
   REQUIRE(text.find(from) != std::string::npos);
   text.replace(text.find(from), from.size(), "1.01f * params[0] * M_1_PI_F");
-  TempFile bright("lambert_bright.cl", text);
-  Run b = run_mfv("check --brdf " + bright.path + " --check furnace energy");
+  const std::string bright = s.file("lambert_bright.cl", text);
+  Run b = run_mfv("check --brdf " + bright + " --check furnace energy");
   INFO(b.out);
   CHECK(b.code == 1);
   CHECK(has_line(b.out, "FAIL", "furnace"));

@@ -8,7 +8,6 @@
 #include "test_files.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -17,9 +16,7 @@
 #include <string>
 
 namespace fs = std::filesystem;
-using mfv::test::run_mfv;
-using mfv::test::Scratch;
-using mfv::test::slurp;
+using namespace mfv::test;
 
 namespace {
 
@@ -111,9 +108,9 @@ TEST_CASE("mfv run --baseline passes an unchanged model under another seed and c
   // G scaled by 0.9: every albedo drops by 10 %, still <= 1; the baseline sees
   // each integral move by ~7 combined standard errors (and the furnace's
   // two-sided pool against the quadrature truth fails the gate as well)
-  mfv::test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_g.cl", "return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
-                      "return R(0.9) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));"));
+  const mfv::test::PlantedKernelDir dir("terms_g.cl",
+                                        "return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
+                                        "return R(0.9) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));");
   // the plant is in the kernel only: leave out the same-sample reference
   // comparison, which would catch it, to test the baseline alone
   auto moved = run_mfv("--kernel-dir " + dir.path() + " " + args + "--reference-samples 0" + base);
@@ -124,21 +121,18 @@ TEST_CASE("mfv run --baseline passes an unchanged model under another seed and c
 }
 
 TEST_CASE("mfv run --baseline rejects what is not a usable results.json with one line and exit 2", "[cli][ux]") {
-  const std::string d = (fs::temp_directory_path() / ("mfv_baseline_bad_" + std::to_string(::getpid()))).string();
   struct Case {
-    std::string args, says;
+    std::string baseline, more, says;  // the file given to --baseline, further options
   };
-  auto c = GENERATE_COPY(Case{"--baseline " + d + "/missing.json", "cannot read the file"},
-                         Case{"--baseline " + d + "/text.json", "--baseline is not JSON"},
-                         Case{"--baseline " + d + "/energy.json", "is not an mfv run results.json"},
-                         Case{"--baseline " + d + "/energy.json --baseline-alpha-fw 0", "--baseline-alpha-fw"},
-                         Case{"--baseline " + d + "/empty.json --check d_norm --model ggx",
-                              "--baseline shares no integral with this run"});
+  auto c = GENERATE(Case{"missing.json", "", "cannot read the file"}, Case{"text.json", "", "--baseline is not JSON"},
+                    Case{"energy.json", "", "is not an mfv run results.json"},
+                    Case{"energy.json", " --baseline-alpha-fw 0", "--baseline-alpha-fw"},
+                    Case{"empty.json", " --check d_norm --model ggx", "--baseline shares no integral with this run"});
   Scratch s("mfv_baseline_bad");  // after GENERATE: Catch2 runs the body once per case
   std::ofstream(s / "energy.json") << R"({"schema": "mfv-energy/1", "results": []})";
   std::ofstream(s / "text.json") << "not json";
   std::ofstream(s / "empty.json") << R"({"schema": "mfv-run/1", "results": []})";
-  auto r = run_mfv("run " + c.args);
+  auto r = run_mfv("run --baseline " + s / c.baseline + c.more);
   INFO(r.out);
   CHECK(r.code == 2);
   CHECK(r.out.find("mfv: error:") != std::string::npos);
@@ -153,8 +147,7 @@ TEST_CASE(
   Scratch s("mfv_sampler_plots");
   const std::string small = " samplers --samples 65536 --bins 16x32 --device-only --out ";
   // the Cauchy slopes' inverse CDF turned into GGX's (as tests/test_samplers.cpp)
-  mfv::test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("estimators.cl", "sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))"));
+  const mfv::test::PlantedKernelDir dir("estimators.cl", "sqrt(u_r * (R(2.0) - u_r))", "sqrt(u_r * (R(1.0) - u_r))");
   // the sizes of tests/test_samplers.cpp, where this plant is known to fail
   auto bad = run_mfv("--kernel-dir " + dir.path() + " samplers --samples 262144 --device-only --out " + s / "bad");
   INFO(bad.out);

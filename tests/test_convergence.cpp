@@ -7,11 +7,10 @@
 #include "kernel_dir.hpp"
 #include "numeric/hemisphere_quadrature.hpp"
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -134,11 +133,10 @@ TEST_CASE("RQMC converges faster than MC on a smooth albedo", "[convergence]") {
 }
 
 TEST_CASE("a planted wrong pdf makes its estimator inconsistent with the truth", "[convergence]") {
-  mfv::test::PlantedKernelDir dir;
   // uniform hemisphere weighted by π instead of 2π: the pdf of a unit disk, not of the hemisphere
-  REQUIRE(dir.replace("convergence.cl", "real inv_pdf = est == MFV_EST_UNIFORM ? R(2.0) * MFV_PI",
-                      "real inv_pdf = est == MFV_EST_UNIFORM ? MFV_PI"));
-  Runtime rt("", dir.path());
+  const mfv::test::PlantedKernelDir dir("convergence.cl", "real inv_pdf = est == MFV_EST_UNIFORM ? R(2.0) * MFV_PI",
+                                        "real inv_pdf = est == MFV_EST_UNIFORM ? MFV_PI");
+  Runtime rt = dir.runtime();
   ConvergenceOptions o;
   o.cases = {{"ggx", 0.5, 0.5}};
   o.checks = {"albedo"};
@@ -168,9 +166,8 @@ TEST_CASE("mfv convergence rejects bad input with one line and exit 2", "[conver
 
 TEST_CASE("mfv convergence writes its report", "[convergence][cli]") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("mfv_convergence_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const mfv::test::Scratch scratch("mfv_convergence");
+  const fs::path dir = scratch.dir;
   // --out without a folder writes results/convergence under the working directory
   auto r = mfv::test::run_mfv(
       "convergence --case ggx:0.01:0.05 --check albedo --estimator uniform --estimator rqmc "
@@ -190,5 +187,4 @@ TEST_CASE("mfv convergence writes its report", "[convergence][cli]") {
   CHECK(fs::exists(out / "convergence.md"));
   if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
     CHECK(fs::exists(out / "plots/albedo_ggx_a0.01_cos0.05.png"));
-  fs::remove_all(dir);
 }

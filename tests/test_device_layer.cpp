@@ -37,11 +37,10 @@ IntegralSpec ggx_albedo(uint32_t stream) {
 
 TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[device][device_layer]") {
   if (!test::device_runtime()) return;
-  test::PlantedKernelDir dir;
   // the microfacet kernel leaves f(a, b) of pair 0 unwritten
-  REQUIRE(dir.replace("reciprocity.cl", "  f[j * get_global_size(0) + k] = brdf_eval_c(",
-                      "  if (k > 0) f[j * get_global_size(0) + k] = brdf_eval_c("));
-  Runtime planted("", dir.path());
+  const test::PlantedKernelDir dir("reciprocity.cl", "  f[j * get_global_size(0) + k] = brdf_eval_c(",
+                                   "  if (k > 0) f[j * get_global_size(0) + k] = brdf_eval_c(");
+  Runtime planted = dir.runtime();
   Integrator bad(planted, ggx_selection());
   const WorstPairs w = bad.reciprocity({ggx_albedo(0)}, 64, 7);
   CHECK(std::isinf(w.worst[0]));
@@ -52,10 +51,9 @@ TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[
 
 TEST_CASE("An integral whose sums no kernel wrote is NaN, not zero", "[device][device_layer]") {
   if (!test::device_runtime()) return;
-  test::PlantedKernelDir dir;
   // the first work-group of every launch (here: each integral's only slice) leaves its sums unwritten
-  REQUIRE(dir.replace("integrate.cl", "  if (lid == 0) {", "  if (lid == 0 && group > 0) {"));
-  Runtime planted("", dir.path());
+  const test::PlantedKernelDir dir("integrate.cl", "  if (lid == 0) {", "  if (lid == 0 && group > 0) {");
+  Runtime planted = dir.runtime();
   for (bool plant : {true, false}) {
     Integrator in(plant ? planted : *test::device_runtime(), ggx_selection());
     in.set_albedo_fast_path(false);  // every integral through `integrate`

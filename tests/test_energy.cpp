@@ -10,11 +10,11 @@
 #include "runtime/dispatch.hpp"
 
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -178,10 +178,10 @@ TEST_CASE("the visible-normal proposal is unbiased for Ds of other shapes, and a
     return worst;
   };
   CHECK(worst_z(*rt) < 5);
-  test::PlantedKernelDir k;  // the proposal's pdf 3 % too high: E 3 % too low
-  REQUIRE(k.replace("estimators.cl", "return w2 / (MFV_PI * k * k) / (R(2.0)",
-                    "return R(1.03) * w2 / (MFV_PI * k * k) / (R(2.0)"));
-  Runtime planted("", k.path());
+  // the proposal's pdf 3 % too high: E 3 % too low
+  const test::PlantedKernelDir k("estimators.cl", "return w2 / (MFV_PI * k * k) / (R(2.0)",
+                                 "return R(1.03) * w2 / (MFV_PI * k * k) / (R(2.0)");
+  Runtime planted = k.runtime();
   CHECK(worst_z(planted) > 5);
 }
 
@@ -226,8 +226,8 @@ TEST_CASE("the baseline gate flags a D scaled by 1.02 and passes an unchanged re
           "[device][energy][cli][planted]") {
   if (!test::device_runtime()) return;
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("mfv_energy_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const test::Scratch scratch("mfv_energy_test");
+  const fs::path dir = scratch.dir;
   const std::string common = "energy --models ggx/smith_ggx_correlated --grid 4x3 --target 1e-3 --max-points 4096";
   Run first = run_mfv(common + " --seed 1 --out " + (dir / "a").string());
   INFO(first.out);
@@ -242,13 +242,12 @@ TEST_CASE("the baseline gate flags a D scaled by 1.02 and passes an unchanged re
   INFO(same.out);
   CHECK(same.code == 0);
   CHECK(same.out.find("0 moved") != std::string::npos);
-  test::PlantedKernelDir k;
-  REQUIRE(k.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.02) / (MFV_PI * a2 * k * k);"));
+  const test::PlantedKernelDir k("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                 "return R(1.02) / (MFV_PI * a2 * k * k);");
   Run planted = run_mfv("--kernel-dir " + k.path() + " " + common + " --seed 3" + base);
   INFO(planted.out);
   CHECK(planted.code == 1);
   CHECK(planted.out.find("MOVED") != std::string::npos);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("mfv energy rejects bad options with one line and exit 2", "[energy][cli]") {

@@ -5,6 +5,7 @@
 // subnormal before a division by a small number scales it back up to
 // ~1e-28, gives 0 there and fails, while on a device that keeps denormals it
 // passes: only a flush-to-zero build catches it.
+#include "agree_options.hpp"
 #include "checks/agree.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
@@ -25,13 +26,11 @@ AgreeReport beckmann_agree(const std::string& dir, bool ftz) {
   Runtime rt("", dir);
   ::unsetenv("MFV_CL_OPTIONS");
   CHECK(rt.device().fp32_denorms == !ftz);
-  AgreeOptions opt;
   // tan θ within ~10 α of the normal at α ~ 1e-7 .. 1e-5 is rare in agree's
   // draw: 1e5 samples reach it (measured: the planted form below fails 2 at
   // seed 1; 3e4 samples do not reach it)
-  opt.samples = 100000;
+  AgreeOptions opt = test::agree_options({"D aniso_beckmann"}, 100000);
   opt.seed = 1;
-  opt.only = {"D aniso_beckmann"};
   return run_agree(rt, opt);
 }
 
@@ -48,10 +47,10 @@ TEST_CASE("The Beckmann lobes agree with the reference in a flush-to-zero build"
 TEST_CASE("The old Beckmann form exp(-x)/s fails agreement in a flush-to-zero build and only there",
           "[device][agree][ftz][planted]") {
   if (!test::device_runtime()) return;
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "static inline real beckmann_exp_over(real x, real s) {\n",
-                      "static inline real beckmann_exp_over(real x, real s) {\n"
-                      "  { real e0 = exp(-x); if (e0 == R(0.0)) return R(0.0); return e0 / s; }  // planted\n"));
+  const test::PlantedKernelDir dir(
+      "terms_d.cl", "static inline real beckmann_exp_over(real x, real s) {\n",
+      "static inline real beckmann_exp_over(real x, real s) {\n"
+      "  { real e0 = exp(-x); if (e0 == R(0.0)) return R(0.0); return e0 / s; }  // planted\n");
   AgreeReport ftz = beckmann_agree(dir.path(), true);
   REQUIRE(ftz.results.size() == 1);
   CAPTURE(ftz.results[0].max_ulps, ftz.results[0].worst);

@@ -25,19 +25,9 @@ namespace fs = std::filesystem;
 
 using mfv::test::slurp;
 
-namespace {
-
-struct TempDir {
-  fs::path dir = fs::temp_directory_path() / ("mfv_model_reports_" + std::to_string(::getpid()));
-  TempDir() { fs::remove_all(dir); }
-  ~TempDir() { fs::remove_all(dir); }
-};
-
-}  // namespace
-
 TEST_CASE("mfv energy: seed 004's Phong (n = 1) gains energy and Lambert keeps E = 1 within its error",
           "[device][energy][models]") {
-  TempDir t;
+  const test::Scratch t("mfv_model_reports");
   auto r = run_mfv(
       "energy --models 'phong_004[n=1]' --models 'lambert[kd=1]' --grid 8x2 --target 1e-3 "
       "--max-points 4096 --out " +
@@ -129,8 +119,7 @@ TEST_CASE(
 // mfv stability --only 'MODEL <id>' with one replacement planted in models.cl
 // fails the gate on that model, and passes it with the kernels as shipped.
 static void expect_gate_fails(const std::string& id, const std::string& from, const std::string& to) {
-  test::PlantedKernelDir planted;
-  REQUIRE(planted.replace("models.cl", from, to));
+  const test::PlantedKernelDir planted("models.cl", from, to);
   auto bad = run_mfv("--kernel-dir " + planted.path() + " stability --only 'MODEL " + id + "'");
   INFO(bad.out);
   CHECK(bad.code == 1);

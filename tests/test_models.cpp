@@ -216,7 +216,7 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   // KHR_materials_anisotropy: the anisotropic D normalised by alpha_b² instead of alpha_t alpha_b (x2.9)
   REQUIRE(dir.replace("model_gltf.cl", "D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b) * G",
                       "D_ggx_aniso(h.z, h.x, h.y, alpha, alpha_b) * (alpha / alpha_b) * G"));
-  Runtime planted("", dir.path());
+  Runtime planted = dir.runtime();
   SuiteReport rep = run_suite(planted, opt);
   auto verdict = [&](const std::string& check, const std::string& model) {
     for (auto& g : rep.groups)

@@ -2,6 +2,7 @@
 // kernels/abi/pointwise.h and included by the kernels and the host; the
 // loader's include expansion (embedded and --kernel-dir); a layout changed on
 // one side only, or a value written to the wrong slot, fails.
+#include "agree_options.hpp"
 #include "checks/agree.hpp"
 #include "checks/pointwise.hpp"
 #include "checks/stability.hpp"
@@ -91,30 +92,20 @@ TEST_CASE("The pointwise record layout reads the same in OpenCL C and in C++", "
 }
 
 TEST_CASE("A record layout changed on the kernel side only fails agreement", "[device][pointwise][planted]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
+  if (!test::device_runtime()) return;
   // the kernels read the G's width from p5 (0 for a single term) while the host writes PW_PG = 7
-  REQUIRE(dir.replace("abi/pointwise.h", "PW_PG = 7,", "PW_PG = 11,"));
-  Runtime rt("", dir.path());
-  AgreeOptions opt;
-  opt.samples = 2000;
-  opt.only = {"G1 smith_ggx"};
-  AgreeReport rep = run_agree(rt, opt);
+  const test::PlantedKernelDir dir("abi/pointwise.h", "PW_PG = 7,", "PW_PG = 11,");
+  Runtime rt = dir.runtime();
+  AgreeReport rep = run_agree(rt, test::agree_options({"G1 smith_ggx"}, 2000));
   REQUIRE(!rep.results.empty());
-  for (auto& r : rep.results) {
-    CAPTURE(r.name, r.worst);
-    CHECK_FALSE(r.pass());
-  }
+  test::check_every_case_fails(rep);
 }
 
 TEST_CASE("A sweep value written to the wrong slot reads as the NaN sentinel and fails the gate",
           "[device][pointwise][stability][planted]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("stability.cl", "g_rec[PW_VALUE] =", "g_rec[PW_VALUE_LO] ="));
-  Runtime rt("", dir.path());
+  if (!test::device_runtime()) return;
+  const test::PlantedKernelDir dir("stability.cl", "g_rec[PW_VALUE] =", "g_rec[PW_VALUE_LO] =");
+  Runtime rt = dir.runtime();
   StabilityReport rep = run_stability(rt, test::one_term("F schlick"));
   REQUIRE(rep.cases.size() == 1);
   CHECK(rep.cases[0].count(&RegionResult::nan, true) == rep.cases[0].count(&RegionResult::points, true));

@@ -7,19 +7,16 @@
 // implementation's own ICD folder, so nothing is registered system-wide.
 #include "ocl_vendors.hpp"
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
 #include <string>
 
-using mfv::test::run_mfv;
-using mfv::test::vendor_dir;
-using mfv::test::vendor_env;
+using namespace mfv::test;
 
 namespace {
-
-const std::string kExamples = std::string(MFV_TEST_DATA_DIR) + "/../../examples/brdf/";
 
 // Small workloads of every command; each must exit 0 (verdicts as expected).
 // with_integrals = false leaves out run and check, whose large integrate
@@ -40,7 +37,7 @@ void conforms(const std::string& name, bool with_integrals) {
            std::string("agree --samples 2000"),
            std::string("samplers --samples 65536"),
            std::string("stability --terms-only --only 'D ggx' --only 'D beckmann' --only 'F dielectric'"),
-           "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512",
+           "check --brdf " + kBrdfExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 512",
        }) {
     if (!with_integrals && (args.rfind("run ", 0) == 0 || args.rfind("check ", 0) == 0)) continue;
     auto r = run_mfv(args, env);
@@ -83,11 +80,11 @@ TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kerne
   for (std::string args : {
            // integrate, albedo_values, sum_values, sample_values, reciprocity
            std::string("run --check energy --check reciprocity --scale 0.002 --model ggx/smith_ggx/schlick"),
-           std::string("agree --samples 64 --only 'D ggx' --only 'MODEL gltf'"),                       // agree_eval
-           std::string("eval ggx --NoH 0.9"),                                                          // eval_records
-           std::string("stability --terms-only --only 'D ggx'"),                                       // stability_eval
-           std::string("samplers --samples 4096 --device-only"),                                       // draw_samples
-           "check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64",  // user_eval
+           std::string("agree --samples 64 --only 'D ggx' --only 'MODEL gltf'"),  // agree_eval
+           std::string("eval ggx --NoH 0.9"),                                     // eval_records
+           std::string("stability --terms-only --only 'D ggx'"),                  // stability_eval
+           std::string("samplers --samples 4096 --device-only"),                  // draw_samples
+           "check --brdf " + kBrdfExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64",  // user_eval
        }) {
     auto r = run_mfv(args, env);
     CAPTURE(args, r.out);

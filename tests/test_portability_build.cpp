@@ -32,13 +32,9 @@
 #include <string>
 #include <vector>
 
-using mfv::test::run_mfv;
-using mfv::test::vendor_dir;
-using mfv::test::vendor_env;
+using namespace mfv::test;
 
 namespace {
-
-const std::string kExamples = std::string(MFV_TEST_DATA_DIR) + "/../../examples/brdf/";
 
 // One command per program variant mfv builds, each with the smallest
 // workload (the builds are the point; verdicts are the conformance tests').
@@ -57,9 +53,10 @@ const std::vector<Program>& programs() {
       {"samplers --samples 4096 --device-only", false},        // samplers.cl
       {"stability --terms-only --only 'D ggx'", false},        // stability.cl, float
       {"stability --fp64 --terms-only --only 'D ggx'", true},  // stability.cl, MFV_DOUBLE
-      {"check --brdf " + kExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64 --check reciprocity",
+      {"check --brdf " + kBrdfExamples +
+           "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64 --check reciprocity",
        false},  // user_brdf.cl with MFV_USER_HAS_D, MFV_USER_HAS_G1
-      {"check --brdf " + kExamples + "lambert.cl --samples 64 --check reciprocity", false},  // neither
+      {"check --brdf " + kBrdfExamples + "lambert.cl --samples 64 --check reciprocity", false},  // neither
   };
   return p;
 }

@@ -6,12 +6,12 @@
 #include "run_mfv.hpp"
 #include "runtime/opencl.hpp"
 #include "runtime/program_cache.hpp"
+#include "scoped_env.hpp"
 #include "test_files.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -19,18 +19,6 @@ using namespace mfv;
 namespace fs = std::filesystem;
 
 namespace {
-
-// Sets one environment variable for a scope (unset where `value` is null).
-struct EnvVar {
-  std::string name;
-  EnvVar(const char* n, const char* value) : name(n) {
-    if (value)
-      ::setenv(n, value, 1);
-    else
-      ::unsetenv(n);
-  }
-  ~EnvVar() { ::unsetenv(name.c_str()); }
-};
 
 std::vector<fs::path> entries(const std::string& dir) {
   std::vector<fs::path> out;
@@ -59,30 +47,40 @@ std::vector<cl_uint> philox_words(Runtime& rt, const cl::Program& prog) {
 
 const std::vector<std::string> kFiles = {"common.cl", "rng.cl"};
 
+// Philox words from `rt`'s build of kFiles.
+std::vector<cl_uint> built_words(Runtime& rt) { return philox_words(rt, rt.build(kFiles, {})); }
+
+// The program cache on (MFV_PROGRAM_CACHE=1) in a scratch folder, for one test.
+struct CacheOn {
+  test::Scratch dir;
+  test::ScopedEnv on, where;
+  explicit CacheOn(const std::string& name)
+      : dir(name), on("MFV_PROGRAM_CACHE", "1"), where("MFV_CACHE_DIR", dir.dir.c_str()) {}
+  std::vector<fs::path> entries() const { return ::entries(dir.dir.string()); }
+};
+
 }  // namespace
 
 TEST_CASE("A program comes from the cache on the second build and runs the same", "[device][program_cache]") {
   if (!test::device_runtime()) return;
-  test::Scratch dir("mfv_program_cache_hit");
-  EnvVar on("MFV_PROGRAM_CACHE", "1"), where("MFV_CACHE_DIR", dir.dir.c_str());
+  const CacheOn cache("mfv_program_cache_hit");
   Runtime rt("");
-  const std::vector<cl_uint> fresh = philox_words(rt, rt.build(kFiles, {}));
+  const std::vector<cl_uint> fresh = built_words(rt);
   CHECK(rt.build_stats().cached == 0);
-  REQUIRE(entries(dir.dir.string()).size() == 1);
+  REQUIRE(cache.entries().size() == 1);
   Runtime again("");  // another process would see the same: a new context
-  const std::vector<cl_uint> cached = philox_words(again, again.build(kFiles, {}));
+  const std::vector<cl_uint> cached = built_words(again);
   CHECK(again.build_stats().cached == 1);
   CHECK(cached == fresh);
 }
 
 TEST_CASE("A truncated, corrupt or foreign cache entry is rebuilt, never trusted", "[device][program_cache]") {
   if (!test::device_runtime()) return;
-  test::Scratch dir("mfv_program_cache_bad");
-  EnvVar on("MFV_PROGRAM_CACHE", "1"), where("MFV_CACHE_DIR", dir.dir.c_str());
+  const CacheOn cache("mfv_program_cache_bad");
   Runtime rt("");
-  const std::vector<cl_uint> fresh = philox_words(rt, rt.build(kFiles, {}));
-  REQUIRE(entries(dir.dir.string()).size() == 1);
-  const fs::path entry = entries(dir.dir.string())[0];
+  const std::vector<cl_uint> fresh = built_words(rt);
+  REQUIRE(cache.entries().size() == 1);
+  const fs::path entry = cache.entries()[0];
   const std::string good = test::slurp(entry);
   const size_t header = good.find('\n') + 1;
   REQUIRE(good.size() > header + 64);
@@ -103,7 +101,7 @@ TEST_CASE("A truncated, corrupt or foreign cache entry is rebuilt, never trusted
     INFO(what);
     std::ofstream(entry, std::ios::binary | std::ios::trunc) << text;
     Runtime r("");
-    const std::vector<cl_uint> words = philox_words(r, r.build(kFiles, {}));
+    const std::vector<cl_uint> words = built_words(r);
     CHECK(r.build_stats().cached == 0);  // built from source
     CHECK(words == fresh);
     CHECK(test::slurp(entry) == good);  // and the entry rewritten whole
@@ -112,16 +110,15 @@ TEST_CASE("A truncated, corrupt or foreign cache entry is rebuilt, never trusted
 
 TEST_CASE("A changed source or option is a new cache entry", "[device][program_cache]") {
   if (!test::device_runtime()) return;
-  test::Scratch dir("mfv_program_cache_new");
-  EnvVar on("MFV_PROGRAM_CACHE", "1"), where("MFV_CACHE_DIR", dir.dir.c_str());
+  const CacheOn cache("mfv_program_cache_new");
   Runtime rt("");
   rt.build(kFiles, {});
   rt.build(kFiles, {}, "// one more line\n");
   CHECK(rt.build_stats().cached == 0);
-  CHECK(entries(dir.dir.string()).size() == 2);
+  CHECK(cache.entries().size() == 2);
   rt.build(kFiles, {"MFV_SOMETHING"});
   CHECK(rt.build_stats().cached == 0);
-  CHECK(entries(dir.dir.string()).size() == 3);
+  CHECK(cache.entries().size() == 3);
   rt.build(kFiles, {}, "// one more line\n");
   CHECK(rt.build_stats().cached == 1);
 }
@@ -131,7 +128,7 @@ TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing; a bad value is an error"
   if (!test::device_runtime()) return;
   test::Scratch dir("mfv_program_cache_off");
   for (const char* value : {"0", static_cast<const char*>(nullptr)}) {
-    EnvVar off("MFV_PROGRAM_CACHE", value), where("MFV_CACHE_DIR", dir.dir.c_str());
+    const test::ScopedEnv off("MFV_PROGRAM_CACHE", value), where("MFV_CACHE_DIR", dir.dir.c_str());
     Runtime rt("");
     rt.build(kFiles, {});
     rt.build(kFiles, {});
@@ -139,7 +136,7 @@ TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing; a bad value is an error"
     CHECK(entries(dir.dir.string()).empty());
   }
   {
-    EnvVar bad("MFV_PROGRAM_CACHE", "yes");
+    const test::ScopedEnv bad("MFV_PROGRAM_CACHE", "yes");
     CHECK_THROWS_WITH(Runtime(""), Catch::Contains("MFV_PROGRAM_CACHE=yes"));
   }
   const test::Run r = test::run_mfv("eval ggx", "MFV_PROGRAM_CACHE=2");

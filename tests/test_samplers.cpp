@@ -83,8 +83,7 @@ std::string line_starting(const std::string& out, const std::string& prefix) {
 
 // mfv samplers on device draws only, with `from` replaced by `to` in estimators.cl (the proposals).
 mfv::test::Run planted_samplers(const std::string& from, const std::string& to) {
-  mfv::test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("estimators.cl", from, to));
+  const mfv::test::PlantedKernelDir dir("estimators.cl", from, to);
   return mfv::test::run_mfv("--kernel-dir " + dir.path() + " samplers --samples 262144 --device-only");
 }
 }  // namespace

@@ -18,11 +18,7 @@
 #include <string>
 
 using namespace mfv;
-using mfv::test::glb_of;
-using mfv::test::named;
-using mfv::test::run_mfv;
-using mfv::test::slurp;
-using mfv::test::TempDir;
+using namespace mfv::test;
 namespace fs = std::filesystem;
 
 namespace {
@@ -30,10 +26,10 @@ namespace {
 const std::string kData = std::string(MFV_TEST_DATA_DIR);
 
 // scene.gltf with `edit` applied to its JSON.
-std::string edited_gltf(const TempDir& t, const std::string& name, void (*edit)(nlohmann::json&)) {
+std::string edited_gltf(const Scratch& t, const std::string& name, void (*edit)(nlohmann::json&)) {
   nlohmann::json j = nlohmann::json::parse(slurp(kData + "/scene.gltf"));
   edit(j);
-  return t.write(name, j.dump());
+  return t.file(name, j.dump());
 }
 
 }  // namespace
@@ -115,10 +111,10 @@ TEST_CASE("KHR_materials_anisotropy maps to alpha_t = mix(alpha, 1, strength^2),
 }
 
 TEST_CASE("a .glb container reads as its .gltf does; roughness 0 is checked at the floor with a warning", "[scene]") {
-  TempDir t;
+  Scratch t;
   nlohmann::json j = nlohmann::json::parse(slurp(kData + "/scene.gltf"));
   j["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.0;
-  Scene s = load_scene(t.write("scene.glb", glb_of(j.dump())));
+  Scene s = load_scene(t.file("scene.glb", glb_of(j.dump())));
   CHECK(s.format == "glb");
   REQUIRE(s.materials.size() == 4);
   const SceneMaterial& plastic = named(s, "red plastic");
@@ -147,19 +143,19 @@ TEST_CASE("material files name D, G, F and native parameters", "[scene]") {
 }
 
 TEST_CASE("bad scenes: one line, exit 2, earlier results untouched", "[scene][cli]") {
-  TempDir t;
+  Scratch t;
   const std::string out = (t.dir / "out").string();
   fs::create_directories(out);
   const std::string before = "{\"earlier\": true}";
-  t.write("out/results.json", before);
+  t.file("out/results.json", before);
   struct Bad {
     std::string file, expect;
   };
   std::vector<Bad> bad = {
       {(t.dir / "missing.gltf").string(), "no such file"},
-      {t.write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"materials\": ["), "not a valid glTF JSON"},
-      {t.write("broken.glb", "glTF\x02\x00\x00\x00garbage"), "not a valid glTF binary"},
-      {t.write("scene.obj", "o cube"), "unknown format"},
+      {t.file("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"materials\": ["), "not a valid glTF JSON"},
+      {t.file("broken.glb", "glTF\x02\x00\x00\x00garbage"), "not a valid glTF binary"},
+      {t.file("scene.obj", "o cube"), "unknown format"},
       {edited_gltf(t, "required.gltf",
                    [](nlohmann::json& j) { j["extensionsRequired"].push_back("EXT_not_a_real_extension"); }),
        "requires extension EXT_not_a_real_extension"},
@@ -174,19 +170,19 @@ TEST_CASE("bad scenes: one line, exit 2, earlier results untouched", "[scene][cl
       {edited_gltf(t, "ior.gltf",
                    [](nlohmann::json& j) { j["materials"][3]["extensions"]["KHR_materials_ior"]["ior"] = 0.5; }),
        "ior = 0.5 is out of range"},
-      {t.write("m1.json",
-               "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith\", \"f\": \"none\", "
-               "\"alpha\": 0.1}]}"),
+      {t.file("m1.json",
+              "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith\", \"f\": \"none\", "
+              "\"alpha\": 0.1}]}"),
        "unknown G term 'smith'"},
-      {t.write("m2.json",
-               "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"schlick\", "
-               "\"alpha\": 0.1}]}"),
+      {t.file("m2.json",
+              "{\"materials\": [{\"name\": \"x\", \"d\": \"ggx\", \"g\": \"smith_ggx\", \"f\": \"schlick\", "
+              "\"alpha\": 0.1}]}"),
        "needs parameter f0"},
-      {t.write("m3.json", "{\"materials\": [{\"name\": \"x\", \"model\": \"gltf\", \"roughnes\": 0.1}]}"),
+      {t.file("m3.json", "{\"materials\": [{\"name\": \"x\", \"model\": \"gltf\", \"roughnes\": 0.1}]}"),
        "unknown key 'roughnes'"},
-      {t.write("m4.json", "{\"materials\": [{\"name\": \"x\", \"model\": \"gltf\", \"metallic\": -0.1}]}"),
+      {t.file("m4.json", "{\"materials\": [{\"name\": \"x\", \"model\": \"gltf\", \"metallic\": -0.1}]}"),
        "metallicFactor = -0.1 is out of range"},
-      {t.write("m5.json", "{\"materials\": [ {\"name\": "), "malformed JSON"},
+      {t.file("m5.json", "{\"materials\": [ {\"name\": "), "malformed JSON"},
   };
   for (auto& b : bad) {
     INFO(b.file);
@@ -210,8 +206,7 @@ TEST_CASE("the glTF model's kernel agrees with its reference and a planted Fresn
   CHECK(ok.code == 0);
   // mfv agree on the glTF model with `from` replaced by `to` in its kernel only
   auto planted_agree = [](const std::string& from, const std::string& to) {
-    test::PlantedKernelDir planted;
-    REQUIRE(planted.replace("model_gltf.cl", from, to));
+    const test::PlantedKernelDir planted("model_gltf.cl", from, to);
     auto bad = run_mfv("--kernel-dir " + planted.path() + " agree --only 'MODEL gltf' --samples 50000");
     INFO(bad.out);
     return bad.code;
@@ -223,7 +218,7 @@ TEST_CASE("the glTF model's kernel agrees with its reference and a planted Fresn
 }
 
 TEST_CASE("mfv run --scene runs only the scene's sets and reports per material", "[device][scene]") {
-  TempDir t;
+  Scratch t;
   const std::string out = (t.dir / "out").string();
   auto r = run_mfv("run --scene " + kData +
                    "/materials.json --check furnace --check energy --check energy_diffuse --check reciprocity "
@@ -261,11 +256,11 @@ TEST_CASE("mfv run --scene runs only the scene's sets and reports per material",
 }
 
 TEST_CASE("scene checks fail on a planted glTF model: energy gain and asymmetry", "[device][scene][planted]") {
-  test::PlantedKernelDir planted;
   // the specular lobe 30 % too bright, and f(i, o) != f(o, i)
-  REQUIRE(planted.replace("model_gltf.cl", "    spec = over_4_cosines(D_ggx(h.z, s2, alpha)",
-                          "    spec = R(1.3) * (R(1.0) + R(0.05) * NoL) * over_4_cosines(D_ggx(h.z, s2, alpha)"));
-  TempDir t;
+  const test::PlantedKernelDir planted(
+      "model_gltf.cl", "    spec = over_4_cosines(D_ggx(h.z, s2, alpha)",
+      "    spec = R(1.3) * (R(1.0) + R(0.05) * NoL) * over_4_cosines(D_ggx(h.z, s2, alpha)");
+  Scratch t;
   auto r = run_mfv("--kernel-dir " + planted.path() + " run --scene " + kData +
                    "/materials.json --check furnace --check reciprocity --seed 3 --out " + (t.dir / "o").string());
   INFO(r.out);

@@ -24,11 +24,7 @@
 #include <vector>
 
 using namespace mfv;
-using mfv::test::glb_of;
-using mfv::test::named;
-using mfv::test::run_mfv;
-using mfv::test::slurp;
-using mfv::test::TempDir;
+using namespace mfv::test;
 
 namespace {
 
@@ -49,7 +45,7 @@ bool has_point(const SceneMaterial& m, double metallic, double alpha) {
 
 TEST_CASE("every corpus scene loads with no .bin and no images beside it", "[scene][corpus]") {
   for (auto& name : kScenes) {
-    TempDir t;
+    Scratch t;
     const std::string alone = t.copy(kCorpus + "/" + name + ".gltf");
     INFO(name);
     Scene s = load_scene(alone);  // buffers are never read: absent.bin is not needed
@@ -84,7 +80,7 @@ TEST_CASE("every corpus scene loads with no .bin and no images beside it", "[sce
 }
 
 TEST_CASE("textured roughness is checked down to 0 and textured metallic at 0 and 1", "[scene][corpus]") {
-  TempDir t;
+  Scratch t;
   Scene s = load_scene(t.copy(kCorpus + "/helmet.gltf"));
   const SceneMaterial& h = named(s, "helmet");
   // no image: the whole range [0, factor] of each textured parameter
@@ -137,10 +133,10 @@ TEST_CASE("a .glb reads images from its BIN chunk and names them where the chunk
       {"images", {{{"bufferView", 0}, {"mimeType", "image/png"}}}},
       {"bufferViews", {{{"buffer", 0}, {"byteLength", png.size()}}}},
       {"buffers", {{{"byteLength", png.size()}}}}};
-  TempDir t;
-  Scene with = load_scene(t.write("with.glb", glb_of(j.dump(), png)));
+  Scratch t;
+  Scene with = load_scene(t.file("with.glb", glb_of(j.dump(), png)));
   CHECK(named(with, "m").roughness.lo == Approx(51 / 255.0));
-  Scene without = load_scene(t.write("without.glb", glb_of(j.dump())));
+  Scene without = load_scene(t.file("without.glb", glb_of(j.dump())));
   CHECK(named(without, "m").roughness.lo == 0.0);
   REQUIRE(without.warnings.size() == 1);
   CHECK(without.warnings[0].find("image 0 'embedded' sits in buffer 0, which is absent") != std::string::npos);
@@ -184,12 +180,12 @@ TEST_CASE("each KHR material extension is accounted for per material", "[scene][
   CHECK(any_has(named(ior, "ior 2.0 rough 0.1").account, "exact dielectric Fresnel at eta = 2"));
   CHECK_FALSE(named(sp, "tinted").ior_exact);  // no KHR_materials_ior: Schlick at f0 0.04 only
 
-  TempDir t;
+  Scratch t;
   nlohmann::json j = nlohmann::json::parse(slurp(kCorpus + "/ior_grid.gltf"));
   j["materials"][0]["extensions"]["KHR_materials_unlit"] = nlohmann::json::object();
   j["materials"][1]["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", 5}};
   j["materials"][2]["extensions"]["KHR_materials_iridescence"] = {{"iridescenceFactor", 1}};
-  Scene e = load_scene(t.write("ext.gltf", j.dump()));
+  Scene e = load_scene(t.file("ext.gltf", j.dump()));
   CHECK(e.materials[0].not_checked.find("nothing to check on a surface BSDF") != std::string::npos);
   CHECK(any_has(e.materials[1].account, "KHR_materials_emissive_strength: emission"));
   CHECK(e.materials[2].not_checked.find("KHR_materials_iridescence changes the BSDF") != std::string::npos);
@@ -212,15 +208,15 @@ TEST_CASE("ranges are deduplicated across materials and stability sweeps each sc
 
 TEST_CASE("bad numbers in scenes and material files: one line naming file, material and field, exit 2",
           "[scene][cli]") {
-  TempDir t;
+  Scratch t;
   auto gltf = [&](const std::string& name, const std::string& pbr, const std::string& ext = "") {
-    return t.write(name,
-                   "{\"asset\": {\"version\": \"2.0\"}, \"materials\": [{\"name\": \"m\", "
-                   "\"pbrMetallicRoughness\": {" +
-                       pbr + "}" + (ext.empty() ? "" : ", \"extensions\": {" + ext + "}") + "}]}");
+    return t.file(name,
+                  "{\"asset\": {\"version\": \"2.0\"}, \"materials\": [{\"name\": \"m\", "
+                  "\"pbrMetallicRoughness\": {" +
+                      pbr + "}" + (ext.empty() ? "" : ", \"extensions\": {" + ext + "}") + "}]}");
   };
   auto file = [&](const std::string& name, const std::string& mat) {
-    return t.write(name, "{\"materials\": [{\"name\": \"m\", " + mat + "}]}");
+    return t.file(name, "{\"materials\": [{\"name\": \"m\", " + mat + "}]}");
   };
   struct Bad {
     std::string path, expect;
@@ -272,7 +268,7 @@ TEST_CASE("bad numbers in scenes and material files: one line naming file, mater
 
 namespace {
 
-nlohmann::json results_of(const TempDir& t) { return nlohmann::json::parse(slurp(t.dir / "out" / "results.json")); }
+nlohmann::json results_of(const Scratch& t) { return nlohmann::json::parse(slurp(t.dir / "out" / "results.json")); }
 
 std::vector<std::string> verdicts_of(const nlohmann::json& material, const std::string& check) {
   std::vector<std::string> out;
@@ -285,7 +281,7 @@ std::vector<std::string> verdicts_of(const nlohmann::json& material, const std::
 
 TEST_CASE("a multi-material scene without .bin or images: per-material account, transmission skipped in JUnit",
           "[device][scene][corpus]") {
-  TempDir t;
+  Scratch t;
   const std::string scene = t.copy(kCorpus + "/flight.gltf");
   auto r = run_mfv("run --scene " + scene + " --check reciprocity --seed 5 --out " + (t.dir / "out").string());
   INFO(r.out);
@@ -311,15 +307,15 @@ TEST_CASE("a multi-material scene without .bin or images: per-material account, 
 
 TEST_CASE("textured roughness down to 0 catches a defect only narrow lobes show, the factor alone does not",
           "[device][scene][corpus][planted]") {
-  test::PlantedKernelDir planted;
   // the specular lobe 50 % too bright below alpha 0.002 only
-  REQUIRE(planted.replace("model_gltf.cl", "    spec = over_4_cosines(D_ggx(h.z, s2, alpha)",
-                          "    spec = (alpha < R(0.002) ? R(1.5) : R(1.0)) * over_4_cosines(D_ggx(h.z, s2, alpha)"));
-  TempDir t;
+  const test::PlantedKernelDir planted(
+      "model_gltf.cl", "    spec = over_4_cosines(D_ggx(h.z, s2, alpha)",
+      "    spec = (alpha < R(0.002) ? R(1.5) : R(1.0)) * over_4_cosines(D_ggx(h.z, s2, alpha)");
+  Scratch t;
   const std::string textured = t.copy(kCorpus + "/helmet.gltf");  // roughness texture absent: [0, 1]
   nlohmann::json j = nlohmann::json::parse(slurp(textured));
   j["materials"][0]["pbrMetallicRoughness"].erase("metallicRoughnessTexture");  // the factors alone: roughness 1
-  const std::string factor = t.write("factor.gltf", j.dump());
+  const std::string factor = t.file("factor.gltf", j.dump());
   auto run = [&](const std::string& scene) {
     return run_mfv("--kernel-dir " + planted.path() + " run --scene " + scene +
                    " --check energy --seed 5 --scale 0.5 --out " + (t.dir / "out").string());
@@ -350,7 +346,7 @@ TEST_CASE("stability --scene differs between scenes with different materials", "
 
 TEST_CASE("energy --scene: rounding is no gain, anisotropy is sampled and kept at F = 1, only written files are listed",
           "[device][scene][energy]") {
-  TempDir t;
+  Scratch t;
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
       {"materials",
@@ -364,7 +360,7 @@ TEST_CASE("energy --scene: rounding is no gain, anisotropy is sampled and kept a
          {"extensions", {{"KHR_materials_anisotropy", {{"anisotropyStrength", 1.0}}}}}},
         // a white dielectric gains through fresnel_mix: energy --scene and run --scene must agree on it
         {{"name", "white plastic"}, {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.2}}}}}}};
-  const std::string scene = t.write("energy.gltf", j.dump());
+  const std::string scene = t.file("energy.gltf", j.dump());
   auto r = run_mfv("energy --scene " + scene + " --grid 16x2 --out " + (t.dir / "e").string());
   INFO(r.out);
   CHECK(r.code == 0);
@@ -418,10 +414,9 @@ TEST_CASE("the clearcoat model's kernel agrees with its reference and a planted 
   auto ok = run_mfv("agree --only 'MODEL gltf_clearcoat' --samples 50000");
   INFO(ok.out);
   CHECK(ok.code == 0);
-  test::PlantedKernelDir planted;
   // the base not darkened by the coat's share: (1 - weight) dropped
-  REQUIRE(planted.replace("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
-                          "return material + weight * layer;"));
+  const test::PlantedKernelDir planted("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
+                                       "return material + weight * layer;");
   auto bad = run_mfv("--kernel-dir " + planted.path() + " agree --only 'MODEL gltf_clearcoat' --samples 50000");
   INFO(bad.out);
   CHECK(bad.code == 1);
@@ -433,22 +428,21 @@ TEST_CASE("the clearcoat model's kernel agrees with its reference and a planted 
 // errors 0.2-0.3 there: one proposal width for two lobes), reported in docs/scenes.md.
 TEST_CASE("coated materials are checked with their coat lobe, and a planted coat fails the run",
           "[device][scene][corpus][planted]") {
-  TempDir t;
+  Scratch t;
   nlohmann::json j = nlohmann::json::parse(slurp(kCorpus + "/clearcoat.gltf"));
   j["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 1.0;  // a coated metal: E <= 1 must hold
   // coat roughness 0.1, not 0: at the float32 floor alpha 1e-4 the kernel and the reference disagree at grazing
   // light (2.8e-2 > 5e-3), as for the glTF model's own lobe (reported, not this test's subject)
   j["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"] = 0.1;
-  const std::string scene = t.write("coat.gltf", j.dump());
+  const std::string scene = t.file("coat.gltf", j.dump());
   auto ok =
       run_mfv("run --scene " + scene + " --check energy --check d_norm --seed 5 --out " + (t.dir / "out").string());
   INFO(ok.out);
   CHECK(ok.code == 0);
   CHECK(ok.out.find("gltf_clearcoat alpha=") != std::string::npos);
   CHECK(ok.out.find("set: ggx alpha=0.09") != std::string::npos);  // the 0.5 coat's roughness 0.3: its own D
-  test::PlantedKernelDir planted;
-  REQUIRE(planted.replace("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
-                          "return material + weight * layer;"));
+  const test::PlantedKernelDir planted("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
+                                       "return material + weight * layer;");
   auto bad = run_mfv("--kernel-dir " + planted.path() + " run --scene " + scene + " --check energy --seed 5 --out " +
                      (t.dir / "out").string());
   INFO(bad.out);
@@ -457,7 +451,7 @@ TEST_CASE("coated materials are checked with their coat lobe, and a planted coat
 }
 
 TEST_CASE("KHR_materials_ior is checked through the exact dielectric Fresnel as well", "[device][scene][corpus]") {
-  TempDir t;
+  Scratch t;
   auto r = run_mfv("run --scene " + kCorpus + "/ior_grid.gltf --check energy --seed 5 --scale 0.5 --out " +
                    (t.dir / "out").string());
   INFO(r.out);

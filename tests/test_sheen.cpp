@@ -4,16 +4,17 @@
 #include "catalog/models.hpp"
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
-#include "kernel_dir.hpp"
 #include "numeric/hemisphere_quadrature.hpp"
 #include "reference/model_gltf.hpp"
 #include "reference/reference.hpp"
+#include "suite_verdicts.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
 using namespace mfv;
+using mfv::test::verdict_of;
 
 namespace {
 
@@ -29,24 +30,14 @@ double sheen_albedo_quadrature(double mu, double alpha) {
   return integrate_reflected(f, v, ProductRule{12, 4, 8, 1e-9}).value;
 }
 
-Verdict verdict_of(const SuiteReport& rep, const std::string& check, const std::string& model) {
-  for (auto& g : rep.groups)
-    if (g.check == check && g.model == model) return g.verdict;
-  FAIL("no group " << check << " " << model);
-  return Verdict::Pass;
-}
-
 // The verdict of `check` on `model` with one line of a kernel file replaced.
 Verdict planted_verdict(const std::string& file, const std::string& from, const std::string& to,
                         const std::string& check, const std::string& model) {
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace(file, from, to));
-  Runtime planted("", dir.path());
   SuiteOptions o;
   o.checks = {check};
   o.models = {model};
   o.reference_samples = 0;  // the plant is in the kernel only: test the statistics alone
-  return verdict_of(run_suite(planted, o), check, model);
+  return verdict_of(test::planted_suite(file, from, to, o), check, model);
 }
 
 }  // namespace

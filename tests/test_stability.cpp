@@ -7,12 +7,12 @@
 #include "reference/reference.hpp"
 
 #include "run_mfv.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -35,12 +35,8 @@ bool no_platform(const Run& r) { return r.code == 2 && r.out.find("no OpenCL pla
 // One sweep per precision, shared by the tests that read it.
 const StabilityReport* sweep(bool fp64) {
   static std::unique_ptr<StabilityReport> rep[2];
-  Runtime* rt = test::device_runtime();
+  Runtime* rt = fp64 ? test::fp64_runtime("float64 sweep") : test::device_runtime();
   if (!rt) return nullptr;
-  if (fp64 && !rt->device().fp64) {
-    WARN("device has no cl_khr_fp64; float64 sweep skipped");
-    return nullptr;
-  }
   if (!rep[fp64]) {
     StabilityOptions opt;
     opt.fp64 = fp64;
@@ -160,14 +156,12 @@ TEST_CASE("The kernel defaults are the stable formulations and every alternative
 }
 
 TEST_CASE("The stability gate fails on a planted GGX D without the sin2 form", "[device][stability][planted]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
+  if (!test::device_runtime()) return;
   // seed 000's second GGX form: at n.h = 1 and alpha^2 below half an ulp of 1
   // the bracket is 0 and D = inf.
-  REQUIRE(dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                      "return a2 / (MFV_PI * sqr(c * c * (a2 - R(1.0)) + R(1.0)));"));
-  Runtime rt("", dir.path());
+  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "return a2 / (MFV_PI * sqr(c * c * (a2 - R(1.0)) + R(1.0)));");
+  Runtime rt = dir.runtime();
   StabilityOptions opt;
   opt.combinations = false;
   opt.only = {"D ggx"};
@@ -186,8 +180,8 @@ TEST_CASE("The stability gate fails on a planted GGX D without the sin2 form", "
 TEST_CASE("mfv stability --out writes JSON and Markdown whole and says in one line when gnuplot is missing",
           "[device][stability][cli]") {
   namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / ("mfv_stability_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const test::Scratch scratch("mfv_stability");
+  const fs::path dir = scratch.dir / "out";
   Run r = run_mfv("stability --terms-only --only 'D ggx' --only 'variant' --out " + dir.string(),
                   "MFV_GNUPLOT=/nonexistent/gnuplot");
   if (no_platform(r)) {
@@ -210,7 +204,6 @@ TEST_CASE("mfv stability --out writes JSON and Markdown whole and says in one li
     CAPTURE(e.path());
     CHECK(e.path().string().find(".tmp-mfv") == std::string::npos);
   }
-  fs::remove_all(dir);
 }
 
 TEST_CASE("mfv stability rejects bad options with a one-line error and exit code 2", "[cli][errors][stability]") {

@@ -23,16 +23,9 @@
 #include <string>
 
 using namespace mfv;
-
-using mfv::test::slurp;
+using namespace mfv::test;
 
 namespace {
-
-using mfv::test::Run;
-using mfv::test::run_mfv;
-
-using mfv::test::group;
-using mfv::test::verdict_of;
 
 SuiteOptions only(std::vector<std::string> checks, std::vector<std::string> models) {
   SuiteOptions o;
@@ -52,11 +45,8 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
   CHECK(verdict_of(good, "d_norm", "ggx") == Verdict::Pass);
   CHECK(good.gate_ok());
 
-  test::PlantedKernelDir dir;
-  REQUIRE(
-      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
-  Runtime planted("", dir.path());
-  SuiteReport bad = run_suite(planted, opt);
+  SuiteReport bad = test::planted_suite("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                        "return R(1.01) / (MFV_PI * a2 * k * k);", opt);
   CHECK(verdict_of(bad, "d_norm", "ggx") == Verdict::Fail);
   CHECK_FALSE(bad.gate_ok());
   // the reference still evaluates the true D, so the same-sample comparison
@@ -64,13 +54,11 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
   CHECK_FALSE(bad.reference_ok());
 
   // the stratified d_norm integrals resolve far smaller errors: 1e-4 fails too
-  test::PlantedKernelDir dir2;
-  REQUIRE(dir2.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                       "return R(1.0001) / (MFV_PI * a2 * k * k);"));
-  Runtime planted2("", dir2.path());
   auto opt2 = opt;
   opt2.reference_samples = 0;
-  CHECK(verdict_of(run_suite(planted2, opt2), "d_norm", "ggx") == Verdict::Fail);
+  CHECK(verdict_of(test::planted_suite("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                       "return R(1.0001) / (MFV_PI * a2 * k * k);", opt2),
+                   "d_norm", "ggx") == Verdict::Fail);
 }
 
 TEST_CASE("masking fails on a G1 that does not belong to its D and passes on the correct one",
@@ -82,11 +70,9 @@ TEST_CASE("masking fails on a G1 that does not belong to its D and passes on the
   SuiteReport good = run_suite(*rt, opt);
   CHECK(verdict_of(good, "masking", "ggx/smith_ggx") == Verdict::Pass);
 
-  bool gate_ok = true;  // GGX's G1 built on Beckmann's Lambda
-  CHECK(test::planted_verdict("terms_g.cl", "return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));",
-                              "return R(1.0) / (R(1.0) + Lambda_beckmann(NoV, alpha));", opt, "masking",
-                              "ggx/smith_ggx", gate_ok) == Verdict::Fail);
-  CHECK_FALSE(gate_ok);
+  // GGX's G1 built on Beckmann's Lambda
+  test::check_planted_fails("terms_g.cl", "return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));",
+                            "return R(1.0) / (R(1.0) + Lambda_beckmann(NoV, alpha));", opt, "masking", "ggx/smith_ggx");
 }
 
 TEST_CASE("furnace and energy fail on a BRDF that adds energy and pass on the correct one",
@@ -100,11 +86,9 @@ TEST_CASE("furnace and energy fail on a BRDF that adds energy and pass on the co
   CHECK(verdict_of(good, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Pass);
   CHECK(verdict_of(good, "energy", "ggx/smith_ggx_correlated/schlick") == Verdict::Pass);
 
-  test::PlantedKernelDir dir;  // 10 % more specular than the model
-  REQUIRE(dir.replace("brdf.cl", "return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;",
-                      "return kd * MFV_INV_PI + R(1.1) * spec / (R(4.0) * NoL) / NoV;"));
-  Runtime planted("", dir.path());
-  SuiteReport bad = run_suite(planted, opt);
+  // 10 % more specular than the model
+  SuiteReport bad = test::planted_suite("brdf.cl", "return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;",
+                                        "return kd * MFV_INV_PI + R(1.1) * spec / (R(4.0) * NoL) / NoV;", opt);
   CHECK(verdict_of(bad, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Fail);
   CHECK(verdict_of(bad, "energy", "ggx/smith_ggx_correlated/schlick") == Verdict::Fail);
   CHECK_FALSE(bad.gate_ok());
@@ -118,10 +102,8 @@ TEST_CASE("reciprocity fails on a BRDF that evaluates F at n.l and passes on the
   SuiteReport good = run_suite(*rt, opt);
   CHECK(verdict_of(good, "reciprocity", "ggx/smith_ggx/schlick") == Verdict::Pass);
 
-  bool gate_ok = true;
-  CHECK(test::planted_verdict("brdf.cl", "eval_F(f, VoH, f0, f1)", "eval_F(f, NoL, f0, f1)", opt, "reciprocity",
-                              "ggx/smith_ggx/schlick", gate_ok) == Verdict::Fail);
-  CHECK_FALSE(gate_ok);
+  test::check_planted_fails("brdf.cl", "eval_F(f, VoH, f0, f1)", "eval_F(f, NoL, f0, f1)", opt, "reciprocity",
+                            "ggx/smith_ggx/schlick");
 }
 
 TEST_CASE("The catalog's known failures show as xfail with their reason", "[device][suite]") {
@@ -172,8 +154,8 @@ TEST_CASE("mfv run exits 1 on a planted failure, 0 on the correct model, and wri
           "[device][suite][cli]") {
   if (!test::device_runtime()) return;
   namespace fs = std::filesystem;
-  fs::path out = fs::temp_directory_path() / ("mfv_run_out_" + std::to_string(::getpid()));
-  fs::remove_all(out);
+  const Scratch scratch("mfv_run_out");
+  const fs::path out = scratch.dir / "out";
   Run good = run_mfv("run --check d_norm reciprocity --model ggx/smith_ggx/schlick ggx --out " + out.string());
   CAPTURE(good.out);
   CHECK(good.code == 0);
@@ -193,15 +175,13 @@ TEST_CASE("mfv run exits 1 on a planted failure, 0 on the correct model, and wri
   CHECK(junit.find("</testsuites>") != std::string::npos);
   CHECK(slurp(out / "report.md").find("Gate: **ok**") != std::string::npos);
 
-  test::PlantedKernelDir dir;
-  REQUIRE(
-      dir.replace("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);", "return R(1.01) / (MFV_PI * a2 * k * k);"));
+  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "return R(1.01) / (MFV_PI * a2 * k * k);");
   Run bad = run_mfv("--kernel-dir " + dir.path() + " run --check d_norm --model ggx --out " + out.string());
   CAPTURE(bad.out);
   CHECK(bad.code == 1);
   CHECK(bad.out.find("gate: FAILED") != std::string::npos);
   CHECK(slurp(out / "junit.xml").find("<failure") != std::string::npos);
-  fs::remove_all(out);
 }
 
 TEST_CASE("mfv run rejects bad options with one clear line and exit code 2", "[suite][cli]") {
@@ -225,14 +205,13 @@ TEST_CASE("mfv run rejects bad options with one clear line and exit code 2", "[s
 
 TEST_CASE("mfv run --out onto a regular file fails cleanly and leaves the file as it was", "[suite][cli]") {
   namespace fs = std::filesystem;
-  fs::path f = fs::temp_directory_path() / ("mfv_not_a_dir_" + std::to_string(::getpid()));
-  std::ofstream(f) << "earlier results\n";
+  const Scratch scratch("mfv_not_a_dir");
+  const fs::path f = scratch.file("results", "earlier results\n");
   Run r = run_mfv("run --check d_norm --model ggx --out " + f.string());
   CAPTURE(r.out);
   CHECK(r.code == 2);
   CHECK(r.out.find("mfv: error:") != std::string::npos);
   CHECK(slurp(f) == "earlier results\n");
-  fs::remove(f);
 }
 
 TEST_CASE("The integrals stay finite and accurate at the extremes: alpha = 1e-4 and a view 1e-4 above the horizon",

@@ -13,6 +13,7 @@
 #include "scene/scene.hpp"
 #include "scene/scene_checks.hpp"
 #include "suite_verdicts.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -42,15 +43,9 @@ bool any_line_has(const std::vector<std::string>& lines, const std::string& what
 // of `check` x `model`, with the reason on its own line.
 void expect_reference_failure(const std::string& file, const std::string& from, const std::string& to,
                               const std::string& filter, const std::string& check, const std::string& model) {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  if (!probe->device().fp64) {
-    WARN("device without cl_khr_fp64: no double twin, test skipped");
-    return;
-  }
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace(file, from, to));
-  Runtime planted("", dir.path());
+  if (!test::fp64_runtime("the comparison with the double twin")) return;
+  const test::PlantedKernelDir dir(file, from, to);
+  Runtime planted = dir.runtime();
   SuiteReport rep = run_suite(planted, default_for({filter}));
   CHECK(test::verdict_of(rep, check, model) == Verdict::Fail);
   CHECK_FALSE(rep.gate_ok());
@@ -139,8 +134,8 @@ TEST_CASE("Planted: the double reference's GGX D scaled by 1.002 fails the defau
 TEST_CASE("Near-mirror and grazing materials pass the gate on several seeds", "[device][suite][scene][nearmirror]") {
   Runtime* rt = test::device_runtime();
   if (!rt) return;
-  const auto path = std::filesystem::temp_directory_path() / "mfv_near_mirror.json";
-  std::ofstream(path) << R"({"materials": [
+  const test::Scratch s("mfv_near_mirror");
+  const std::string path = s.file("near_mirror.json", R"({"materials": [
     {"name": "metal r0", "model": "gltf", "baseColor": [0.9, 0.6, 0.3], "metallic": 1.0, "roughness": 0.0},
     {"name": "metal r0.01", "model": "gltf", "baseColor": 1.0, "metallic": 1.0, "roughness": 0.01},
     {"name": "metal r0.02", "model": "gltf", "baseColor": 0.8, "metallic": 1.0, "roughness": 0.02},
@@ -149,8 +144,8 @@ TEST_CASE("Near-mirror and grazing materials pass the gate on several seeds", "[
     {"name": "plastic r0.02", "model": "gltf", "baseColor": 0.5, "metallic": 0.0, "roughness": 0.02},
     {"name": "ggx 1e-4", "d": "ggx", "g": "smith_ggx_correlated", "f": "conductor", "alpha": 1e-4, "params": {"n": 0.43, "k": 2.45}},
     {"name": "beckmann 1e-4", "d": "beckmann", "g": "smith_beckmann", "f": "dielectric", "alpha": 1e-4, "params": {"eta": 1.5}}
-  ]})";
-  Scene scene = load_scene(path.string());
+  ]})");
+  Scene scene = load_scene(path);
   for (uint64_t seed : {1, 2, 3}) {
     SuiteOptions opt;
     opt.seed = seed;
@@ -163,5 +158,4 @@ TEST_CASE("Near-mirror and grazing materials pass the gate on several seeds", "[
     }
     CHECK(run.rep.gate_ok());
   }
-  std::filesystem::remove(path);
 }

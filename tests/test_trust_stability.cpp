@@ -1,6 +1,7 @@
 // Issue 16: the stability gate counts values outside their domain (a term
 // marked stable that is non-zero below the horizon fails), and mfv agree
 // sends half vectors below the horizon.
+#include "agree_options.hpp"
 #include "checks/agree.hpp"
 #include "checks/stability.hpp"
 #include "device_fixture.hpp"
@@ -23,20 +24,17 @@ bool any_line_has(const std::vector<std::string>& lines, const std::string& what
 
 TEST_CASE("Planted: GGX D without its horizon test fails the stability gate and mfv agree",
           "[device][stability][agree][planted]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
-  test::PlantedKernelDir dir;
-  REQUIRE(dir.replace("terms_d.cl", "  if (NoH <= R(0.0)) return R(0.0);\n  real c = min(NoH, R(1.0));\n  // divide",
-                      "  real c = min(NoH, R(1.0));\n  // divide"));
-  Runtime rt("", dir.path());
+  if (!test::device_runtime()) return;
+  const test::PlantedKernelDir dir("terms_d.cl",
+                                   "  if (NoH <= R(0.0)) return R(0.0);\n  real c = min(NoH, R(1.0));\n  // divide",
+                                   "  real c = min(NoH, R(1.0));\n  // divide");
+  Runtime rt = dir.runtime();
   StabilityReport rep = run_stability(rt, test::one_term("D ggx"));
   CHECK_FALSE(rep.gate_pass());
   CHECK(any_line_has(rep.gate_failures, "outside the domain in region 'below_horizon'"));
 
-  AgreeOptions aopt;
-  aopt.only = {"D ggx"};
-  aopt.samples = 20000;  // one record in eight below the horizon
-  AgreeReport agree = run_agree(rt, aopt);
+  // 20000 samples: one record in eight below the horizon
+  AgreeReport agree = run_agree(rt, test::agree_options({"D ggx"}, 20000));
   bool failed = false;
   for (auto& r : agree.results) failed = failed || (r.name == "D ggx" && !r.pass());
   CHECK(failed);

@@ -8,21 +8,14 @@
 #include "run_mfv.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/work_group.hpp"
+#include "scoped_env.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <cstdlib>
-
 using namespace mfv;
 
 namespace {
-// Sets MFV_MAX_LOCAL_SIZE for the scope of one test.
-struct LocalSizeCap {
-  explicit LocalSizeCap(const char* v) { ::setenv("MFV_MAX_LOCAL_SIZE", v, 1); }
-  ~LocalSizeCap() { ::unsetenv("MFV_MAX_LOCAL_SIZE"); }
-};
-
 IntegralSpec ggx_spec(uint32_t stream) {
   IntegralSpec s{};
   const Term* d = &find_term("ggx");
@@ -45,7 +38,7 @@ TEST_CASE("The local size is the largest power of two within the preference, dev
   CHECK(free <= 64);
   CHECK(free <= kernel_max);
   CHECK((free & (free - 1)) == 0);
-  LocalSizeCap cap("24");
+  const test::ScopedEnv cap("MFV_MAX_LOCAL_SIZE", "24");
   CHECK(fit_local_size(k, rt->device().device, 64) == std::min<size_t>(16, free));
   CHECK(fit_local_size(k, rt->device().device, 1024) == std::min<size_t>(16, kernel_max));
 }
@@ -57,7 +50,7 @@ TEST_CASE("Reciprocity takes the same pairs whatever the work-group size", "[dev
   std::vector<IntegralSpec> specs{ggx_spec(0), ggx_spec(1), ggx_spec(2)};
   const WorstPairs free = in.reciprocity(specs, 64 * 8, 7);
   for (const char* cap : {"32", "8", "1"}) {
-    LocalSizeCap c(cap);
+    const test::ScopedEnv c("MFV_MAX_LOCAL_SIZE", cap);
     const WorstPairs capped = in.reciprocity(specs, 64 * 8, 7);
     CAPTURE(cap);
     CHECK(capped.worst == free.worst);
@@ -66,8 +59,7 @@ TEST_CASE("Reciprocity takes the same pairs whatever the work-group size", "[dev
 }
 
 TEST_CASE("Integrals and stability pass under a work-group limit of 32", "[device][work_group]") {
-  Runtime* probe = test::device_runtime();
-  if (!probe) return;
+  if (!test::device_runtime()) return;
   auto r = test::run_mfv("run --check energy --check reciprocity --model ggx --scale 0.05", "MFV_MAX_LOCAL_SIZE=32");
   CAPTURE(r.out);
   CHECK(r.code == 0);
