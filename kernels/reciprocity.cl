@@ -40,7 +40,7 @@ static inline float reciprocity_asym(real f1, real f2) {
   real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
   real d = max(f1 - f2, f2 - f1);           // |f1 - f2|
   float a = m > R(0.0) ? (float)(d / max(m, R(1e-4))) : 0.0f;
-  return isfinite(f1) && isfinite(f2) ? a : INFINITY;
+  return f1 - f1 == R(0.0) && f2 - f2 == R(0.0) ? a : INFINITY;  // x - x is 0 exactly where x is finite
 }
 
 // One pair per work-item: work-item (k, j) writes the asymmetry of pair k of
