@@ -43,7 +43,8 @@ std::vector<float> run_fast_math(Runtime& rt, const std::vector<float>& x) {
 
 // |got - want| in units of the float spacing at want (subnormal spacing below FLT_MIN).
 double ulps(float got, double want) {
-  if (std::isinf(want) || std::isnan(want)) return (got == want || (std::isnan(got) && std::isnan(want))) ? 0 : INFINITY;
+  if (std::isinf(want) || std::isnan(want))
+    return (got == want || (std::isnan(got) && std::isnan(want))) ? 0 : INFINITY;
   double a = std::max(std::fabs(want), double(std::numeric_limits<float>::min()));
   int e;
   std::frexp(a, &e);
@@ -89,7 +90,9 @@ Worst worst_ulps(Runtime& rt) {
     if (v > -1) w.log1p = std::max(w.log1p, ulps(r[5 * i + 2], std::log1p(v)));
     // erfc and pow: the error beyond the part that grows with |x| (see the bounds)
     if (v >= -10 && v <= 10) w.erfc = std::max(w.erfc, ulps(r[5 * i + 3], std::erfc(v)) - v * v);
-    if (v != 0) w.pow = std::max(w.pow, ulps(r[5 * i + 4], std::pow(std::fabs(v), double(0.2f))) - std::fabs(std::log(std::fabs(v))));
+    if (v != 0)
+      w.pow =
+          std::max(w.pow, ulps(r[5 * i + 4], std::pow(std::fabs(v), double(0.2f))) - std::fabs(std::log(std::fabs(v))));
   }
   return w;
 }
@@ -157,7 +160,7 @@ TEST_CASE("mfv_exp, mfv_log, mfv_log1p, mfv_erfc and mfv_pow are within their de
 TEST_CASE("A wrong constant planted in mfv_exp fails the fast-math sweep", "[device][fast_math][planted]") {
   if (!test::device_runtime()) return;
   const std::pair<const char*, const char*> plants[] = {
-      {"r * (1.6666667e-1f", "r * (1.6666e-1f"},  // the 1/3! Taylor coefficient cut to 5 digits
+      {"r * (1.6666667e-1f", "r * (1.6666e-1f"},            // the 1/3! Taylor coefficient cut to 5 digits
       {"xc - n * 0.693145751953125f", "xc - n * 0.6931f"},  // ln2_hi of Cody-Waite's reduction
   };
   for (const auto& [from, to] : plants) {

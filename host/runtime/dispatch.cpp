@@ -45,9 +45,7 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
 
 // Anisotropic terms (Term::aniso) seen through the one-width functions:
 // their isotropic slice, the direction in the xz-plane and alpha_y = alpha_x.
-std::string slice_dir(const char* cos) {
-  return fmt::format("(real3)(sqrt(sin2_from_cos({0})), R(0.0), {0})", cos);
-}
+std::string slice_dir(const char* cos) { return fmt::format("(real3)(sqrt(sin2_from_cos({0})), R(0.0), {0})", cos); }
 
 }  // namespace
 
@@ -55,14 +53,21 @@ std::string generate_dispatch(const TermSelection& s) {
   std::string out;
   // A kind left out still gets a function (returning NaN, so a stray call
   // cannot pass silently): shared code such as brdf_eval must compile.
-  out += switch_fn("eval_D", "real NoH, real sin2H, real p", s.d, [](const Term& t) {
-    return t.aniso ? t.kernel_fn + "(NoH, sqrt(sin2H), R(0.0), p, p)" : t.kernel_fn + "(NoH, sin2H, p)";
-  }, true);
-  out += switch_fn("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", s.g, [](const Term& t) {
-    return t.aniso ? fmt::format("{}({}, {}, VoH, p, p)", t.kernel_fn, slice_dir("NoL"), slice_dir("NoV"))
-                   : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
-  }, true);
-  out += switch_fn("eval_F", "real VoH, real p0, real p1", s.f, [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; }, true);
+  out += switch_fn(
+      "eval_D", "real NoH, real sin2H, real p", s.d,
+      [](const Term& t) {
+        return t.aniso ? t.kernel_fn + "(NoH, sqrt(sin2H), R(0.0), p, p)" : t.kernel_fn + "(NoH, sin2H, p)";
+      },
+      true);
+  out += switch_fn(
+      "eval_G", "real NoL, real NoV, real NoH, real VoH, real p", s.g,
+      [](const Term& t) {
+        return t.aniso ? fmt::format("{}({}, {}, VoH, p, p)", t.kernel_fn, slice_dir("NoL"), slice_dir("NoV"))
+                       : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
+      },
+      true);
+  out += switch_fn(
+      "eval_F", "real VoH, real p0, real p1", s.f, [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; }, true);
   // Two widths and the tangent components (kernels/integrate.cl, agree.cl):
   // isotropic terms ignore hx, hy and p2 and see exactly what eval_D gives them.
   out += switch_fn("eval_D_aniso", "real NoH, real sin2H, real hx, real hy, real p, real p2", s.d, [](const Term& t) {
