@@ -45,8 +45,10 @@ static inline real eavg_cos(uint4 shift, uint k, uint strata) {
 // albedo_rqmc_values vectorizes (see albedo_value_microfacet below): the same
 // operations in the same order as energy_weight with brdf_eval, so both give
 // the same value to the bit.
-static inline real2 albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
-                                           real co, uint4 shift, uint k) {
+// Returns E and sets *b to B (scalars: a 2-lane real2 select would keep
+// PoCL from vectorizing across work-items).
+static inline real albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                          real co, uint4 shift, uint k, real* b) {
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real so2 = sin2_from_cos(co), ox = sqrt(so2);
   real mx, my, mz;
@@ -59,8 +61,8 @@ static inline real2 albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg
   real c = R(1.0) - min(R(0.5) * len, R(1.0));
   real e = brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), co, pd, pg, f0, f1, kd) * iz /
            vis_pdf_i(hz, hx * hx + hy * hy, co, so2, w);
-  real b = e * (c * c * c * c * c);
-  return live ? (real2)(e, b) : (real2)(R(0.0), R(0.0));
+  *b = live ? e * (c * c * c * c * c) : R(0.0);
+  return live ? e : R(0.0);
 }
 
 // One point of MFV_CHECK_ALBEDO_RQMC / MFV_CHECK_EAVG_RQMC: the albedo integrand and,
@@ -72,8 +74,11 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
   uint k = (uint)index;
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, k, s->strata) : s->cos_o;
-  if (spec_is_microfacet(s))
-    return albedo_rqmc_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, k);
+  if (spec_is_microfacet(s)) {
+    real b;
+    real e = albedo_rqmc_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, k, &b);
+    return (real2)(e, b);
+  }
   real so2 = sin2_from_cos(co);
   real3 o = (real3)(sqrt(so2), R(0.0), co);
   real3 m = sample_vis(o, u_phi, u_r, s->width);

@@ -145,7 +145,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
   // stratified d_norm: neighbouring strata's squared differences, as `integrate`
   const bool pairs = std::string(kernel) == "d_norm_values";
-  // RQMC: an (E, B) pair per point, reduced by sum_rqmc
+  // RQMC: an E and a B plane, reduced by sum_rqmc
   const bool rqmc = std::string(kernel) == "albedo_rqmc_values";
   cl::Kernel values_k(program_, kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
@@ -170,9 +170,10 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
       sum_k.setArg(0, values);
       sum_k.setArg(1, static_cast<cl_uint>(per_slice));
       if (rqmc) {
-        sum_k.setArg(2, spec_buf);  // stratified (E_avg) or not, per integral
-        sum_k.setArg(3, static_cast<cl_uint>(ns));
-        sum_k.setArg(4, sums);
+        sum_k.setArg(2, static_cast<cl_ulong>(count * m));  // the B plane follows the E plane
+        sum_k.setArg(3, spec_buf);                          // stratified (E_avg) or not, per integral
+        sum_k.setArg(4, static_cast<cl_uint>(ns));
+        sum_k.setArg(5, sums);
       } else {
         sum_k.setArg(2, sums);
       }
