@@ -22,6 +22,49 @@ static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 
 
 static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, 2, 0); }
 
+// The isotropic microfacet integrals that the component-wise fast paths take
+// (see albedo_value_microfacet below).
+static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
+#ifdef MFV_USER_BRDF
+  return false;
+#else
+  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
+#endif
+}
+
+// The view cosine of point k of MFV_CHECK_EAVG_RQMC: density 2μ, μ²
+// stratified over the integral's `strata` points with one random shift (a
+// rank-1 lattice with the 2D sequence), N^-1 like the rest.
+static inline real eavg_cos(uint4 shift, uint k, uint strata) {
+  real u = u01_open(shift.z) + (real)k / (real)strata;
+  return sqrt(u - floor(u));
+}
+
+// albedo_rqmc_value of an isotropic microfacet integral (spec_is_microfacet)
+// by components, in straight-line code over plain arguments, so that
+// albedo_rqmc_values vectorizes (see albedo_value_microfacet below): the same
+// operations in the same order as energy_weight with brdf_eval, so both give
+// the same value to the bit.
+// Returns E and sets *b to B (scalars: a 2-lane real2 select would keep
+// PoCL from vectorizing across work-items).
+static inline real albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                          real co, uint4 shift, uint k, real* b) {
+  real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
+  real so2 = sin2_from_cos(co), ox = sqrt(so2);
+  real mx, my, mz;
+  sample_vis_c(ox, R(0.0), co, u_phi, u_r, w, &mx, &my, &mz);
+  real om2 = R(2.0) * (ox * mx + R(0.0) * my + co * mz);
+  real ix = om2 * mx - ox, iy = om2 * my - R(0.0), iz = om2 * mz - co;
+  bool live = mz > R(0.0) && iz > R(0.0);
+  real hx, hy, hz;
+  real len = normalize_sum(ix + ox, iy + R(0.0), iz + co, &hx, &hy, &hz);
+  real c = R(1.0) - min(R(0.5) * len, R(1.0));
+  real e = brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), co, pd, pg, f0, f1, kd) * iz /
+           vis_pdf_i(hz, hx * hx + hy * hy, co, so2, w);
+  *b = live ? e * (c * c * c * c * c) : R(0.0);
+  return live ? e : R(0.0);
+}
+
 // One point of MFV_CHECK_ALBEDO_RQMC / MFV_CHECK_EAVG_RQMC: the albedo integrand and,
 // on the same direction, that of the split sum's B (the same BRDF with F
 // multiplied by (1 - o·h)^5: B is defined with F = none, kd = 0).
@@ -30,12 +73,11 @@ static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { ret
 static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shift, ulong index) {
   uint k = (uint)index;
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
-  real co = s->cos_o;
-  if (s->check == MFV_CHECK_EAVG_RQMC) {
-    // density 2μ: μ² stratified over the integral's `strata` points with one
-    // random shift (a rank-1 lattice with the 2D sequence), N^-1 like the rest
-    real u = u01_open(shift.z) + (real)k / (real)s->strata;
-    co = sqrt(u - floor(u));
+  real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, k, s->strata) : s->cos_o;
+  if (spec_is_microfacet(s)) {
+    real b;
+    real e = albedo_rqmc_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, k, &b);
+    return (real2)(e, b);
   }
   real so2 = sin2_from_cos(co);
   real3 o = (real3)(sqrt(so2), R(0.0), co);
@@ -58,13 +100,6 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
 // loop, no library call: see sincos_2pi), so that PoCL's work-group
 // vectorizer runs eight work-items per AVX2 instruction in albedo_values.
 // The general path below takes the other albedo integrals.
-static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
-#ifdef MFV_USER_BRDF
-  return false;
-#else
-  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
-#endif
-}
 
 static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
                                            real co, real u_branch, real u_pick, real u_phi, real u_r) {

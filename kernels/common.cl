@@ -33,6 +33,88 @@ static inline real saturate(real x) { return clamp(x, R(0.0), R(1.0)); }
 static inline real safe_sqrt(real x) { return sqrt(max(x, R(0.0))); }
 static inline real sqr(real x) { return x * x; }
 
+// exp, log, log1p and erfc without a library call in float programs (the
+// terms call these). PoCL's are out-of-line calls (SLEEF, cost above LLVM's
+// inline threshold), and one call in a kernel stops PoCL running its
+// work-items in SIMD lanes. Branch-free (selects), no table; double programs
+// (the reference twin) take the library's. Errors, measured against the
+// double library over every float in [-104, 89] (exp) and [2^-149, 2^128)
+// (log) by tests/test_fast_math.cpp: see there.
+#ifdef MFV_DOUBLE
+static inline real mfv_exp(real x) { return exp(x); }
+static inline real mfv_log(real x) { return log(x); }
+static inline real mfv_log1p(real x) { return log1p(x); }
+static inline real mfv_erfc(real x) { return erfc(x); }
+static inline real mfv_pow(real x, real y) { return pow(x, y); }
+#else
+// 2^k for an integer k in [-126, 127], from its bits.
+static inline float mfv_pow2i(int k) { return as_float((k + 127) << 23); }
+
+// exp(x) = 2^n e^r: n = round(x / ln 2), r = x - n ln 2 with ln 2 in two
+// parts (Cody and Waite 1980: n·ln2_hi is exact for |n| < 2^9, as ln2_hi has
+// 16 significant bits), e^r on |r| <= ln2/2 by its Taylor polynomial to r^7
+// (truncation below 0.347^8/8! = 5e-9 relative). 2^n in two factors, so
+// that results down to the subnormals scale exactly once. Below -104 the
+// result is under half the smallest subnormal: 0; above 89: inf.
+static inline float mfv_exp(float x) {
+  float xc = clamp(x, -104.0f, 89.0f);
+  float n = floor(xc * 1.44269504088896341f + 0.5f);
+  float r = (xc - n * 0.693145751953125f) - n * 1.428606765330187e-6f;
+  float p = 1.0f + r * (1.0f + r * (0.5f + r * (1.6666667e-1f + r * (4.1666668e-2f + r * (8.3333338e-3f +
+                                                                  r * (1.3888889e-3f + r * 1.9841270e-4f))))));
+  int ni = (int)n, n1 = ni / 2;
+  float y = p * mfv_pow2i(n1) * mfv_pow2i(ni - n1);
+  return x != x ? x : y;  // NaN stays NaN (clamp may drop it)
+}
+
+// log(x) = e ln 2 + log(m), m in [√½, √2): log(m) = log(1+f) = 2 atanh(s),
+// s = f/(2+f), |s| <= 0.172, written f - s(f - s²P(s²)) (2s = f - s·f), the
+// series to s^9 (truncation below 2·0.172^11/11 = 7e-10). Subnormal x is
+// scaled by 2^23 first; 0 gives -inf, inf inf, negative or NaN NaN.
+static inline float mfv_log(float x) {
+  bool sub = x < 0x1p-126f;
+  int bits = as_int(sub ? x * 0x1p23f : x);
+  int e = ((bits >> 23) & 0xff) - 127 - (sub ? 23 : 0);
+  float m = as_float((bits & 0x007fffff) | 0x3f800000);  // [1, 2)
+  bool big = m > 1.41421356f;
+  m = big ? 0.5f * m : m;
+  e = big ? e + 1 : e;
+  float f = m - 1.0f;  // exact (Sterbenz)
+  float s = f / (2.0f + f), s2 = s * s;
+  float l = f - s * (f - s2 * (6.6666669e-1f + s2 * (4.0000001e-1f + s2 * (2.8571430e-1f + s2 * 2.2222222e-1f))));
+  float fe = (float)e;
+  float y = fe * 0.693145751953125f + (l + fe * 1.428606765330187e-6f);
+  y = x == INFINITY ? x : y;
+  y = x == 0.0f ? -INFINITY : y;
+  return x < 0.0f || x != x ? NAN : y;
+}
+
+// log1p(x) = log(u) · x / (u - 1), u = 1 + x rounded (Goldberg 1991, "What
+// every computer scientist should know about floating-point arithmetic",
+// Theorem 4): the factor corrects the rounding of u.
+static inline float mfv_log1p(float x) {
+  float u = 1.0f + x, d = u - 1.0f;
+  return d == 0.0f ? x : mfv_log(u) * (x / d);
+}
+
+// erfc(x) = exp(-x²) erfcx(x) for x >= 0, erfcx by the Chebyshev fit of
+// Press et al., Numerical Recipes in C (2nd ed., §6.2, erfcc: fractional
+// error below 1.2e-7 everywhere), t = 1/(1 + x/2); erfc(-x) = 2 - erfc(x).
+static inline float mfv_erfc(float x) {
+  float z = fabs(x), t = 1.0f / (1.0f + 0.5f * z);
+  float p = -1.26551223f + t * (1.00002368f + t * (0.37409196f + t * (0.09678418f + t * (-0.18628806f +
+            t * (0.27886807f + t * (-1.13520398f + t * (1.48851587f + t * (-0.82215223f + t * 0.17087277f))))))));
+  float y = mfv_exp(-z * z) * (t * mfv_exp(p));
+  return x < 0.0f ? 2.0f - y : y;
+}
+
+// x^y for x >= 0 and finite y (the Charlie Λ fit's x^c, c in (0, 1)):
+// exp(y log x). 0^y for y > 0 is exp(-inf) = 0, x^0 = exp(0) = 1. The
+// relative error is |y log x| times log's plus exp's own: y log x carries
+// log's relative error into an absolute one in the exponent.
+static inline float mfv_pow(float x, float y) { return mfv_exp(y * mfv_log(x)); }
+#endif
+
 // sin^2 from cos without cancellation: (1-c)(1+c); 1-c is exact for
 // c in [0.5, 1] (Sterbenz), where 1-c*c would lose every digit near c = 1.
 // Dot products that round above 1 give 0, never a negative square.
@@ -86,5 +168,5 @@ static inline real normalize_sum(real sx, real sy, real sz, real* hx, real* hy, 
 // log(cos θ) from both cos and sin²: ½ log1p(-sin²) near the normal, where
 // cos has lost the small angle, and log(cos) elsewhere, where 1 - sin² cancels.
 static inline real log_cos(real c, real sin2) {
-  return sin2 < R(0.5) ? R(0.5) * log1p(-sin2) : log(c);
+  return sin2 < R(0.5) ? R(0.5) * mfv_log1p(-sin2) : mfv_log(c);
 }

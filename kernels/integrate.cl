@@ -217,6 +217,51 @@ __kernel void masking_values(__global const IntegralSpec* restrict specs, ulong 
 }
 #endif
 
+#ifndef MFV_USER_BRDF
+// mfv energy's RQMC integrals of isotropic microfacet BRDFs
+// (MFV_CHECK_ALBEDO_RQMC, and MFV_CHECK_EAVG_RQMC, stratified) with one point
+// per work-item, as albedo_values: work-item (k, j) takes point first + k of
+// integral j and stores E at j N + k and B one plane (N x integrals) later
+// (two planes, not (E, B) pairs: SLP would pair those two stores into a
+// 2-lane vector, which keeps PoCL from vectorizing across work-items);
+// sum_rqmc reduces. The points and values are those `integrate` takes
+// (albedo_rqmc_value).
+__kernel void albedo_rqmc_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
+                                 __global float* restrict values) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  uint4 shift = rqmc_shift(s, seed);
+  uint i = (uint)(first + k);
+  real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, i, s->strata) : s->cos_o;
+  real b;
+  real e = albedo_rqmc_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, i, &b);
+  size_t at = j * get_global_size(0) + k;
+  values[at] = (float)e;
+  values[get_global_size(0) * get_global_size(1) + at] = (float)b;
+}
+#endif
+
+// The sums `integrate` leaves for the RQMC integrals from the E and B planes
+// of albedo_rqmc_values (B `plane` values after E), per run of `per_group`
+// values (a multiple of 2; run g belongs to integral g / slices): the sum of
+// E and, in the second slot, the sum of B (MFV_CHECK_ALBEDO_RQMC) or the
+// squared differences of neighbouring strata's E (stratified: E_avg).
+__kernel void sum_rqmc(__global const float* restrict values, uint per_group, ulong plane,
+                       __global const IntegralSpec* restrict specs, uint slices, __global acc_t* restrict sums) {
+  size_t g = get_global_id(0);
+  __global const float* v = values + g * per_group;
+  __global const float* b = v + plane;
+  bool stratified = specs[g / slices].strata > 0u;
+  acc_t s = 0, q = 0;
+  for (uint k = 0; k < per_group; k += 2) {
+    acc_t e0 = (acc_t)v[k], e1 = (acc_t)v[k + 1];
+    s += e0 + e1;
+    q += stratified ? (e0 - e1) * (e0 - e1) : (acc_t)b[k] + (acc_t)b[k + 1];
+  }
+  sums[MFV_SUM_SLOTS * g + MFV_SLOT_SUM] = s;
+  sums[MFV_SUM_SLOTS * g + MFV_SLOT_SUMSQ] = q;
+}
+
 // Sum and the sum of squared differences of neighbouring samples (pairs
 // 2i, 2i + 1: neighbouring strata) of each run of `per_group` values (a
 // multiple of 4), as `integrate` leaves a stratified integral's work-groups.

@@ -7,11 +7,21 @@
 // Every term returns 0 below the horizon and treats NoH above 1 as 1.
 // Reference twin: host/reference/terms_d.cpp.
 
+// Every function here is inlined where it is called (PoCL vectorizes a
+// kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
+
 static inline real D_phong(real NoH, real sin2H, real alpha_p) {
   // seed 000 "Phong" and seed 003 "Blinn microfacet distribution": (ap+2)/(2π) (n·h)^ap
   if (NoH <= R(0.0)) return R(0.0);
   // (n·h)^ap = exp(ap log cos): log_cos keeps the tiny sin² of a sharp lobe
-  return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
+  return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * mfv_exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
 }
 
 // exp(-x) / s for the Beckmann lobes, without a subnormal intermediate: for
@@ -24,11 +34,11 @@ static inline real beckmann_exp_over(real x, real s) {
   // θ -> π/2: the exponential vanishes faster than cos⁴θ, so D -> 0; returning
   // here avoids 0/0 once cos⁴θ underflows (n·h below ~1e-10 in float).
   if (x > R(64.0)) {
-    real e = exp(R(64.0) - x);
+    real e = mfv_exp(R(64.0) - x);
     if (e == R(0.0)) return R(0.0);
     return e * (R(1.603810890548638e-28) / s);  // exp(-64), rounded
   }
-  real e = exp(-x);
+  real e = mfv_exp(-x);
   if (e == R(0.0)) return R(0.0);
   return e / s;
 }
@@ -57,7 +67,7 @@ static inline real D_blinn_rho(real NoH, real sin2H, real rho) {
   if (NoH <= R(0.0)) return R(0.0);
   real r2 = rho * rho;
   // (h·n)^e = exp(e log cos), e = 2/ρ² - 2, as in D_phong
-  return exp((R(2.0) / r2 - R(2.0)) * log_cos(min(NoH, R(1.0)), sin2H)) / (MFV_PI * r2);
+  return mfv_exp((R(2.0) / r2 - R(2.0)) * log_cos(min(NoH, R(1.0)), sin2H)) / (MFV_PI * r2);
 }
 
 static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
@@ -66,7 +76,7 @@ static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
   if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real m2 = m * m;
-  real e = exp(-sin2H / (c2 * m2));
+  real e = mfv_exp(-sin2H / (c2 * m2));
   if (e == R(0.0)) return R(0.0);               // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
   return e / (R(4.0) * m2 * c2 * c2);
 }
@@ -109,6 +119,10 @@ static inline real D_charlie(real NoH, real sin2H, real alpha) {
   // exponent up to 1/(2α) = 500 does not amplify a rounded sin²θ.
   if (NoH <= R(0.0)) return R(0.0);
   real c = min(NoH, R(1.0));
-  real log_s2 = sin2H > R(0.5) ? log1p(-c * c) : log(sin2H);
-  return (R(2.0) + R(1.0) / alpha) * (R(0.5) * MFV_INV_PI) * exp(R(0.5) / alpha * log_s2);
+  real log_s2 = sin2H > R(0.5) ? mfv_log1p(-c * c) : mfv_log(sin2H);
+  return (R(2.0) + R(1.0) / alpha) * (R(0.5) * MFV_INV_PI) * mfv_exp(R(0.5) / alpha * log_s2);
 }
+
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute pop
+#endif

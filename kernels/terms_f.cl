@@ -2,6 +2,16 @@
 // argument VoH = cos of the angle of incidence on the facet. An RGB material
 // is three channels. Reference twin: host/reference/terms_f.cpp.
 
+// Every function here is inlined where it is called (PoCL vectorizes a
+// kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
+
 static inline real F_none(real VoH, real unused0, real unused1) {
   // F = 1: the white furnace's perfect reflector
   return R(1.0);
@@ -73,3 +83,7 @@ static inline real F_conductor(real VoH, real n, real k) {
   real rp = rs * (sqr(a * c - s2) + b2 * c2) / (sqr(a * c + s2) + b2 * c2);
   return R(0.5) * (rp + rs);
 }
+
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute pop
+#endif

@@ -3,6 +3,16 @@
 // G2 functions return G itself, not the visibility G/(4 NoL NoV).
 // Reference twin: host/reference/terms_g.cpp.
 
+// Every function here is inlined where it is called (PoCL vectorizes a
+// kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
+
 // ---- Lambda and G1 ------------------------------------------------------
 
 static inline real Lambda_ggx(real NoV, real alpha) {
@@ -26,7 +36,7 @@ static inline real Lambda_beckmann(real NoV, real alpha) {
   real s2 = sin2_from_cos(NoV);
   if (s2 <= R(0.0)) return R(0.0);              // seed 000: tanθ = 0, do not divide by it
   real a = NoV / (alpha * sqrt(s2));
-  return R(0.5) * (exp(-a * a) / (a * MFV_SQRT_PI) - erfc(a));
+  return R(0.5) * (mfv_exp(-a * a) / (a * MFV_SQRT_PI) - mfv_erfc(a));
 }
 
 static inline real G1_smith_ggx(real NoV, real alpha) {
@@ -149,7 +159,7 @@ static inline real Lambda_beckmann_aniso(real NoV, real vx, real vy, real ax, re
   real q = sqr(ax * vx) + sqr(ay * vy);
   if (q <= R(0.0)) return R(0.0);               // tanθ = 0: do not divide by it (seed 000)
   real a = NoV / sqrt(q);                       // 1 / (α_o tanθ_o)
-  return R(0.5) * (exp(-a * a) / (a * MFV_SQRT_PI) - erfc(a));
+  return R(0.5) * (mfv_exp(-a * a) / (a * MFV_SQRT_PI) - mfv_erfc(a));
 }
 
 static inline real G1_smith_ggx_aniso(real NoV, real vx, real vy, real ax, real ay) {
@@ -181,14 +191,15 @@ static inline real charlie_L(real x, real alpha) {
   real a = mix(R(21.5473), R(25.3245), t), b = mix(R(3.82987), R(3.32435), t);
   real c = mix(R(0.19823), R(0.16801), t), d = mix(R(-1.97760), R(-1.27393), t);
   real e = mix(R(-4.32054), R(-4.85967), t);
-  return a / (R(1.0) + b * pow(x, c)) + d * x + e;
+  return a / (R(1.0) + b * mfv_pow(x, c)) + d * x + e;
 }
 
 static inline real Lambda_charlie(real NoV, real alpha) {
   // exp(L(cosθ)) below cosθ = 0.5, exp(2 L(0.5) − L(1 − cosθ)) above
   if (NoV <= R(0.0)) return INFINITY;
   real c = min(NoV, R(1.0));
-  return c < R(0.5) ? exp(charlie_L(c, alpha)) : exp(R(2.0) * charlie_L(R(0.5), alpha) - charlie_L(R(1.0) - c, alpha));
+  return c < R(0.5) ? mfv_exp(charlie_L(c, alpha))
+                    : mfv_exp(R(2.0) * charlie_L(R(0.5), alpha) - charlie_L(R(1.0) - c, alpha));
 }
 
 static inline real G1_charlie(real NoV, real alpha) {
@@ -202,3 +213,7 @@ static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real 
   if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
   return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
 }
+
+#ifdef MFV_INLINE_TERMS
+#pragma clang attribute pop
+#endif

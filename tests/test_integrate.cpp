@@ -2,7 +2,8 @@
 // (kernels/integrate.cl albedo_values + sum_values) takes the samples the
 // general `integrate` kernel takes and gives the same estimates: over
 // several D x G x F, grazing and normal views, tiny widths, diffuse kd,
-// launches split along the sample axis, and later passes (first_index > 0).
+// launches split along the sample axis, and later passes (first_index > 0);
+// likewise d_norm, masking and mfv energy's RQMC albedo and E_avg.
 #include "albedo_spec.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"
@@ -82,6 +83,31 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
     in.set_albedo_fast_path(false);
     const auto general = in.run(norms, 1 << 18, 5);
     require_same(fast, general);
+  }
+  SECTION("mfv energy's RQMC albedo and E_avg (albedo_rqmc_values + sum_rqmc)") {
+    std::vector<IntegralSpec> rqmc;
+    for (size_t i = 0; i < 5; ++i) {
+      IntegralSpec a = specs[i], e = specs[i];
+      a.check = static_cast<int32_t>(IntegralKind::AlbedoRqmc);
+      e.check = static_cast<int32_t>(IntegralKind::EavgRqmc);  // stratified: pairs of strata
+      rqmc.push_back(a);
+      rqmc.push_back(e);
+    }
+    in.set_albedo_fast_path(true);
+    const auto fast = in.run(rqmc, 40000, 9);
+    in.set_albedo_fast_path(false);
+    const auto general = in.run(rqmc, 40000, 9);
+    REQUIRE(fast.size() == general.size());
+    for (size_t i = 0; i < fast.size(); ++i) {
+      INFO("integral " << i << ": fast " << fast[i].mean << " B " << fast[i].b_mean << ", general " << general[i].mean
+                       << " B " << general[i].b_mean);
+      CHECK(fast[i].samples == general[i].samples);
+      CHECK(std::fabs(fast[i].mean - general[i].mean) <= 1e-12 * std::max(1.0, std::fabs(general[i].mean)));
+      if (i % 2 == 0)  // the split sum's B (albedo), or the strata pairs' standard error (E_avg)
+        CHECK(std::fabs(fast[i].b_mean - general[i].b_mean) <= 1e-12 * std::max(1.0, std::fabs(general[i].b_mean)));
+      else
+        CHECK(std::fabs(fast[i].stderr_ - general[i].stderr_) <= 1e-9 * std::max(1e-6, general[i].stderr_));
+    }
   }
   SECTION("an integral larger than one launch (split along its samples)") {
     const std::vector<IntegralSpec> big = {specs[1]};

@@ -19,13 +19,26 @@ int term_index(const Term& t) { return static_cast<int>(&t - catalog().data()); 
 namespace {
 
 // One function `name(int id, params)` switching over `terms`; `call(t)` is
-// the expression that evaluates term t from the parameters.
+// the expression that evaluates term t from the parameters. With `select`,
+// a program of several terms evaluates every one and selects the id's value
+// (always inlined, as the terms are): a switch, or a call left in the body,
+// keeps PoCL from running work-items in SIMD lanes, and the fast paths of
+// kernels/integrate.cl spend less on the extra terms than they gain from 8
+// lanes (measured: docs/performance.md, "Full-catalog programs,
+// vectorized"). Without it (the anisotropic and G1 variants, run by scalar
+// kernels), a switch.
 template <class Call>
 std::string switch_fn(const std::string& name, const std::string& params, const std::vector<const Term*>& terms,
-                      Call call) {
-  std::string s = fmt::format("static inline real {}(int id, {}) {{\n", name, params);
+                      Call call, bool select = false) {
+  const char* attr = select ? "static inline __attribute__((always_inline)) real" : "static inline real";
+  std::string s = fmt::format("{} {}(int id, {}) {{\n", attr, name, params);
   if (terms.empty()) return fmt::format("static inline real {}(int id, {}) {{ return NAN; }}\n", name, params);
   if (terms.size() == 1) return s + fmt::format("  return {};\n}}\n", call(*terms[0]));
+  if (select) {
+    s += "  real r = NAN;\n";
+    for (auto* t : terms) s += fmt::format("  r = id == {} ? {} : r;\n", term_index(*t), call(*t));
+    return s + "  return r;\n}\n";
+  }
   s += "  switch (id) {\n";
   for (auto* t : terms) s += fmt::format("    case {}: return {};\n", term_index(*t), call(*t));
   return s + "  }\n  return NAN;\n}\n";
@@ -41,15 +54,21 @@ std::string generate_dispatch(const TermSelection& s) {
   std::string out;
   // A kind left out still gets a function (returning NaN, so a stray call
   // cannot pass silently): shared code such as brdf_eval must compile.
-  out += switch_fn("eval_D", "real NoH, real sin2H, real p", s.d, [](const Term& t) {
-    return t.aniso ? t.kernel_fn + "(NoH, sqrt(sin2H), R(0.0), p, p)" : t.kernel_fn + "(NoH, sin2H, p)";
-  });
-  out += switch_fn("eval_G", "real NoL, real NoV, real NoH, real VoH, real p", s.g, [](const Term& t) {
-    return t.aniso ? fmt::format("{}({}, {}, VoH, p, p)", t.kernel_fn, slice_dir("NoL"), slice_dir("NoV"))
-                   : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
-  });
-  out += switch_fn("eval_F", "real VoH, real p0, real p1", s.f,
-                   [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; });
+  out += switch_fn(
+      "eval_D", "real NoH, real sin2H, real p", s.d,
+      [](const Term& t) {
+        return t.aniso ? t.kernel_fn + "(NoH, sqrt(sin2H), R(0.0), p, p)" : t.kernel_fn + "(NoH, sin2H, p)";
+      },
+      true);
+  out += switch_fn(
+      "eval_G", "real NoL, real NoV, real NoH, real VoH, real p", s.g,
+      [](const Term& t) {
+        return t.aniso ? fmt::format("{}({}, {}, VoH, p, p)", t.kernel_fn, slice_dir("NoL"), slice_dir("NoV"))
+                       : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
+      },
+      true);
+  out += switch_fn(
+      "eval_F", "real VoH, real p0, real p1", s.f, [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; }, true);
   // Two widths and the tangent components (kernels/integrate.cl, agree.cl):
   // isotropic terms ignore hx, hy and p2 and see exactly what eval_D gives them.
   out += switch_fn("eval_D_aniso", "real NoH, real sin2H, real hx, real hy, real p, real p2", s.d, [](const Term& t) {

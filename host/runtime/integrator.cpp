@@ -34,6 +34,11 @@ const std::vector<std::string>& integrate_sources() {
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  // Every term forced inline, so that PoCL vectorizes the fast paths of a
+  // program of many terms (docs/performance.md); PoCL only: Intel's CPU
+  // runtime miscompiles programs built so (kernels/terms_d.cl).
+  if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
+    defines.push_back("MFV_INLINE_TERMS");
   return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore);
 }
 
@@ -89,12 +94,15 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
 
 // kernels/integrate.cl spec_is_microfacet: the integrals a *_values kernel
 // takes (one sample per work-item, vectorized on PoCL): iid albedo and
-// masking, stratified d_norm. Returns the kernel, or nullptr.
+// masking, stratified d_norm, mfv energy's RQMC albedo and E_avg. Returns
+// the kernel, or nullptr.
 static const char* values_kernel(const IntegralSpec& s) {
   if (s.estimator != 0 || s.model != 0 || s.pd2 > 0 || s.phi_o != 0 || !(s.width > 0)) return nullptr;
   if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
   if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_values";
   if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc) && s.strata == 0) return "albedo_rqmc_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::EavgRqmc) && s.strata > 0) return "albedo_rqmc_values";
   return nullptr;
 }
 
@@ -142,8 +150,10 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
   // stratified d_norm: neighbouring strata's squared differences, as `integrate`
   const bool pairs = std::string(kernel) == "d_norm_values";
-  cl::Kernel values_k(program_, kernel), sum_k(program_, pairs ? "sum_pairs" : "sum_values");
-  const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice;
+  // RQMC: an E and a B plane, reduced by sum_rqmc
+  const bool rqmc = std::string(kernel) == "albedo_rqmc_values";
+  cl::Kernel values_k(program_, kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
+  const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
   for (size_t first = 0; first < specs.size(); first += per_launch) {
@@ -164,7 +174,14 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
       cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, groups * MFV_SUM_SLOTS * acc);
       sum_k.setArg(0, values);
       sum_k.setArg(1, static_cast<cl_uint>(per_slice));
-      sum_k.setArg(2, sums);
+      if (rqmc) {
+        sum_k.setArg(2, static_cast<cl_ulong>(count * m));  // the B plane follows the E plane
+        sum_k.setArg(3, spec_buf);                          // stratified (E_avg) or not, per integral
+        sum_k.setArg(4, static_cast<cl_uint>(ns));
+        sum_k.setArg(5, sums);
+      } else {
+        sum_k.setArg(2, sums);
+      }
       rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(groups));
       add_sums(sums, count, ns, out.data() + first);
     }
