@@ -25,6 +25,21 @@ typedef float2 real2;
 // (mfv run's same-sample comparison) stays.
 #define MFV_NO_IMPLICIT_VECTORIZE __attribute__((vec_type_hint(float4)))
 
+// The terms (terms_d/g/f.cl) sit between MFV_TERMS_BEGIN and MFV_TERMS_END:
+// every function there is inlined where it is called (PoCL vectorizes a
+// kernel only where no call is left; see mfv_exp below), but only where the
+// host asks (MFV_INLINE_TERMS: the integration programs on PoCL,
+// runtime/integrator.cpp). Intel's CPU runtime miscompiles the whole-model
+// agree kernels of a program whose terms are all forced inline (mfv agree:
+// lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
+#define MFV_TERMS_BEGIN _Pragma("clang attribute push(__attribute__((always_inline)), apply_to = function)")
+#define MFV_TERMS_END _Pragma("clang attribute pop")
+#else
+#define MFV_TERMS_BEGIN
+#define MFV_TERMS_END
+#endif
+
 #define MFV_PI R(3.14159265358979323846)
 #define MFV_INV_PI R(0.31830988618379067154)
 #define MFV_SQRT_PI R(1.77245385090551602730)

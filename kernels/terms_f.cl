@@ -2,15 +2,7 @@
 // argument VoH = cos of the angle of incidence on the facet. An RGB material
 // is three channels. Reference twin: host/reference/terms_f.cpp.
 
-// Every function here is inlined where it is called (PoCL vectorizes a
-// kernel only where no call is left; see mfv_exp in common.cl).
-// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
-// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
-// whole-model agree kernels of a program whose terms are all forced inline
-// (mfv agree: lambert 0 or inf; the Intel portability test).
-#ifdef MFV_INLINE_TERMS
-#pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
-#endif
+MFV_TERMS_BEGIN  // inlined where the host asks (common.cl)
 
 static inline real F_none(real VoH, real unused0, real unused1) {
   // F = 1: the white furnace's perfect reflector
@@ -84,6 +76,4 @@ static inline real F_conductor(real VoH, real n, real k) {
   return R(0.5) * (rp + rs);
 }
 
-#ifdef MFV_INLINE_TERMS
-#pragma clang attribute pop
-#endif
+MFV_TERMS_END
