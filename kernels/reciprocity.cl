@@ -35,12 +35,15 @@ static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed
 // (max and min in place of fabs: two fabs feeding a max become a 2-lane SLP
 // vector that stops PoCL vectorizing, see normalize_sum)
 // A NaN or Inf value is no evidence of symmetry (max() would drop a NaN):
-// it is the worst asymmetry.
+// it is the worst asymmetry. Finite is tested as x - x == 0 (exactly 0 for
+// every finite x, NaN for ±Inf and NaN): isfinite() keeps PoCL from
+// vectorizing reciprocity_asym_pairs ("instruction return type cannot be
+// vectorized"); the results are the same.
 static inline float reciprocity_asym(real f1, real f2) {
   real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
   real d = max(f1 - f2, f2 - f1);           // |f1 - f2|
   float a = m > R(0.0) ? (float)(d / max(m, R(1e-4))) : 0.0f;
-  return isfinite(f1) && isfinite(f2) ? a : INFINITY;
+  return f1 - f1 == R(0.0) && f2 - f2 == R(0.0) ? a : INFINITY;
 }
 
 // One pair per work-item: work-item (k, j) writes the asymmetry of pair k of
