@@ -37,7 +37,7 @@ static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed
 // A NaN or Inf value is no evidence of symmetry (max() would drop a NaN):
 // it is the worst asymmetry. Finite is tested as x - x == 0 (exactly 0 for
 // every finite x, NaN for ±Inf and NaN): isfinite() keeps PoCL from
-// vectorizing reciprocity_asym_pairs ("instruction return type cannot be
+// vectorizing its caller ("instruction return type cannot be
 // vectorized"); the results are the same.
 static inline float reciprocity_asym(real f1, real f2) {
   real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
