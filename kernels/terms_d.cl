@@ -9,7 +9,13 @@
 
 // Every function here is inlined where it is called (PoCL vectorizes a
 // kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
 
 static inline real D_phong(real NoH, real sin2H, real alpha_p) {
   // seed 000 "Phong" and seed 003 "Blinn microfacet distribution": (ap+2)/(2π) (n·h)^ap
@@ -117,4 +123,6 @@ static inline real D_charlie(real NoH, real sin2H, real alpha) {
   return (R(2.0) + R(1.0) / alpha) * (R(0.5) * MFV_INV_PI) * mfv_exp(R(0.5) / alpha * log_s2);
 }
 
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute pop
+#endif

@@ -4,7 +4,13 @@
 
 // Every function here is inlined where it is called (PoCL vectorizes a
 // kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
 
 static inline real F_none(real VoH, real unused0, real unused1) {
   // F = 1: the white furnace's perfect reflector
@@ -78,4 +84,6 @@ static inline real F_conductor(real VoH, real n, real k) {
   return R(0.5) * (rp + rs);
 }
 
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute pop
+#endif

@@ -5,7 +5,13 @@
 
 // Every function here is inlined where it is called (PoCL vectorizes a
 // kernel only where no call is left; see mfv_exp in common.cl).
+// Only where the host asks (MFV_INLINE_TERMS: the integration programs on
+// PoCL, runtime/integrator.cpp): Intel's CPU runtime miscompiles the
+// whole-model agree kernels of a program whose terms are all forced inline
+// (mfv agree: lambert 0 or inf; the Intel portability test).
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute push(__attribute__((always_inline)), apply_to = function)
+#endif
 
 // ---- Lambda and G1 ------------------------------------------------------
 
@@ -208,4 +214,6 @@ static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real 
   return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
 }
 
+#ifdef MFV_INLINE_TERMS
 #pragma clang attribute pop
+#endif

@@ -24,7 +24,8 @@ namespace {
 // (always inlined, as the terms are): a switch, or a call left in the body,
 // keeps PoCL from running work-items in SIMD lanes, and the fast paths of
 // kernels/integrate.cl spend less on the extra terms than they gain from 8
-// lanes. Without it (the anisotropic and G1 variants, run by scalar
+// lanes (measured: docs/performance.md, "Full-catalog programs,
+// vectorized"). Without it (the anisotropic and G1 variants, run by scalar
 // kernels), a switch.
 template <class Call>
 std::string switch_fn(const std::string& name, const std::string& params, const std::vector<const Term*>& terms,

@@ -34,6 +34,11 @@ const std::vector<std::string>& integrate_sources() {
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   std::vector<std::string> defines;
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  // Every term forced inline, so that PoCL vectorizes the fast paths of a
+  // program of many terms (docs/performance.md); PoCL only: Intel's CPU
+  // runtime miscompiles programs built so (kernels/terms_d.cl).
+  if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
+    defines.push_back("MFV_INLINE_TERMS");
   return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore);
 }
 
