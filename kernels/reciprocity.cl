@@ -37,7 +37,7 @@ static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed
 // A NaN or Inf value is no evidence of symmetry (max() would drop a NaN):
 // it is the worst asymmetry. Finite is tested as x - x == 0 (exactly 0 for
 // every finite x, NaN for ±Inf and NaN): isfinite() keeps PoCL from
-// vectorizing reciprocity_asym_pairs ("instruction return type cannot be
+// vectorizing its caller ("instruction return type cannot be
 // vectorized"); the results are the same.
 static inline float reciprocity_asym(real f1, real f2) {
   real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
@@ -61,29 +61,19 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const Integr
 }
 
 #if !defined(MFV_USER_BRDF) && !defined(MFV_DOUBLE)
-// The microfacet kernel in two passes, so that each work-item makes one
-// brdf_eval_c call: with two (f(a, b) and f(b, a)) LLVM keeps the BRDF, or
-// a term such as G_smith_ggx_correlated (inline cost 245 > 225), out of line,
-// and that call stops PoCL vectorizing the work-item loop. Work-item
-// (k, j) evaluates f of pair k / 2 of integral j, with its directions
-// swapped for odd k; reciprocity_asym_pairs turns neighbouring values into
-// the asymmetry reciprocity_values gives (the same float values to the bit).
-__kernel void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs, ulong seed,
-                                            __global float* restrict f) {
+// The microfacet kernel (model 0, isotropic): work-item (k, j) draws pair k
+// of integral j once and evaluates f(a, b) and f(b, a) with brdf_eval_c,
+// the same floats reciprocity_values gives. flatten inlines both calls; the
+// terms and the generated eval_D/eval_G/eval_F under them are always_inline,
+// so no call is left and PoCL vectorizes the work-item loop.
+__kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs,
+                                                                     ulong seed, __global float* restrict asym) {
   size_t k = get_global_id(0), j = get_global_id(1);
   __global const IntegralSpec* s = specs + j;
   real ax, ay, az, bx, by, bz;
-  reciprocity_pair_c(s, seed, (uint)(k / 2u), &ax, &ay, &az, &bx, &by, &bz);
-  bool swap = (k & 1u) != 0u;  // selects, not a branch (see sample_m_c)
-  real lx = swap ? bx : ax, ly = swap ? by : ay, lz = swap ? bz : az;
-  real vx = swap ? ax : bx, vy = swap ? ay : by, vz = swap ? az : bz;
-  f[j * get_global_size(0) + k] = brdf_eval_c(s->d, s->g, s->f, lx, ly, lz, vx, vy, vz, s->pd, s->pg, s->f0, s->f1, s->kd);
-}
-
-// asym[i] from f(a, b) = f[2i] and f(b, a) = f[2i + 1].
-__kernel void reciprocity_asym_pairs(__global const float* restrict f, __global float* restrict asym) {
-  size_t i = get_global_id(0);
-  asym[i] = reciprocity_asym(f[2 * i], f[2 * i + 1]);
+  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
+  real fab = brdf_eval_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
+  real fba = brdf_eval_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
+  asym[j * get_global_size(0) + k] = reciprocity_asym(fab, fba);
 }
 #endif
-

@@ -37,9 +37,9 @@ IntegralSpec ggx_albedo(uint32_t stream) {
 
 TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[device][device_layer]") {
   if (!test::device_runtime()) return;
-  // the microfacet kernel leaves f(a, b) of pair 0 unwritten
-  const test::PlantedKernelDir dir("reciprocity.cl", "  f[j * get_global_size(0) + k] = brdf_eval_c(",
-                                   "  if (k > 0) f[j * get_global_size(0) + k] = brdf_eval_c(");
+  // the microfacet kernel leaves the asymmetry of pair 0 unwritten
+  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * get_global_size(0) + k] = reciprocity_asym(fab,",
+                                   "  if (k > 0) asym[j * get_global_size(0) + k] = reciprocity_asym(fab,");
   Runtime planted = dir.runtime();
   Integrator bad(planted, ggx_selection());
   const WorstPairs w = bad.reciprocity({ggx_albedo(0)}, 64, 7);

@@ -369,35 +369,24 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
   return program_sample_values<float>(rt_, program_, specs, n, seed);
 }
 
-// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each.
-// `k` writes one asymmetry per pair; or, where `asym_pairs` is set (the
-// microfacet kernel), f(a, b) and f(b, a) of each pair, which asym_pairs
-// turns into the asymmetry (kernels/reciprocity.cl).
-void Integrator::worst_of(cl::Kernel& k, cl::Kernel* asym_pairs, const std::vector<IntegralSpec>& specs,
-                          const std::vector<size_t>& at, uint32_t pairs, uint64_t seed, WorstPairs& out) {
+// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each;
+// `k` writes one asymmetry per pair (kernels/reciprocity.cl).
+void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
+                          uint32_t pairs, uint64_t seed, WorstPairs& out) {
   const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
   const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
-  const size_t items = asym_pairs ? 2 * size_t(pairs) : pairs;  // work-items per integral
-  size_t local = fit_local_size(k, rt_.device().device, 256);   // the device's and kernel's limits
-  while (pairs % local != 0) local /= 2;                        // a power of two that divides pairs
+  size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
+  while (pairs % local != 0) local /= 2;                       // a power of two that divides pairs
   for (size_t first = 0; first < at.size(); first += per_launch) {
     const size_t count = std::min(per_launch, at.size() - first);
     std::vector<IntegralSpec> batch;
     for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
     cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
-    // an unwritten pair (or value) is the worst
-    cl::Buffer ab = nan_buffer(asym_pairs ? CL_MEM_READ_WRITE : CL_MEM_WRITE_ONLY, count * items * sizeof(float));
+    cl::Buffer ab = nan_buffer(CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));  // an unwritten pair is the worst
     k.setArg(0, sb);
     k.setArg(1, static_cast<cl_ulong>(seed));
     k.setArg(2, ab);
-    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items, count), cl::NDRange(local, 1));
-    if (asym_pairs) {
-      cl::Buffer fb = ab;
-      ab = nan_buffer(CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));
-      asym_pairs->setArg(0, fb);
-      asym_pairs->setArg(1, ab);
-      rt_.queue().enqueueNDRangeKernel(*asym_pairs, cl::NullRange, cl::NDRange(count * pairs));
-    }
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
     std::vector<float> a(count * pairs);
     rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
     for (size_t i = 0; i < count; ++i) {
@@ -416,19 +405,17 @@ void Integrator::worst_of(cl::Kernel& k, cl::Kernel* asym_pairs, const std::vect
 WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint32_t pairs, uint64_t seed) {
   WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
   if (specs.empty() || pairs == 0) return out;
-  cl::Kernel generic(program_, "reciprocity_values"), microfacet, asym_pairs;
+  cl::Kernel generic(program_, "reciprocity_values"), microfacet;
   // not in user programs (mfv check) nor in float64 ones: asked by name, since
   // a failed clCreateKernel is an API error to checkers such as Oclgrind
   const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
-  if (names.find(";reciprocity_values_microfacet;") != std::string::npos) {
+  if (names.find(";reciprocity_values_microfacet;") != std::string::npos)
     microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
-    asym_pairs = cl::Kernel(program_, "reciprocity_asym_pairs");
-  }
   std::vector<size_t> fast, slow;
   for (size_t i = 0; i < specs.size(); ++i)
     (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
-  if (!fast.empty()) worst_of(microfacet, &asym_pairs, specs, fast, pairs, seed, out);
-  if (!slow.empty()) worst_of(generic, nullptr, specs, slow, pairs, seed, out);
+  if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(generic, specs, slow, pairs, seed, out);
   return out;
 }
 

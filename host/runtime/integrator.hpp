@@ -146,8 +146,8 @@ class Integrator {
   void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
   cl::Buffer nan_buffer(cl_mem_flags flags, size_t bytes);
   // One launch of a reciprocity kernel over specs[at[..]] into out.
-  void worst_of(cl::Kernel& k, cl::Kernel* asym_pairs, const std::vector<IntegralSpec>& specs,
-                const std::vector<size_t>& at, uint32_t pairs, uint64_t seed, WorstPairs& out);
+  void worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at, uint32_t pairs,
+                uint64_t seed, WorstPairs& out);
   Runtime& rt_;
   cl::Program program_;
   bool acc_double_;
