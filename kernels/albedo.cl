@@ -151,7 +151,7 @@ static inline uint4 mis_shift(uint stream, ulong seed, uint replicate) { return 
 // Point k of n of a replicate with shift `shift`, by components and with
 // selects (no branch, no float3: albedo_mis_values vectorizes, see
 // albedo_values); the three candidates share one (u_phi, u_r).
-static inline real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
                                          real co, uint4 shift, uint k, uint n) {
   uint n_vis = n / 2u, n_slope = n / 4u;
   bool vis = k < n_vis, cosine = k >= n_vis + n_slope;

@@ -5,7 +5,7 @@
 // wi = light, wo = view, both pointing away from the surface.
 // By components (l = (lx, ly, lz), v = (vx, vy, vz)): no float3 value, so
 // PoCL can run work-items in SIMD lanes (integrate.cl albedo_values).
-static inline real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy, real vz, real pd,
+static inline MFV_ALWAYS_INLINE real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy, real vz, real pd,
                                real pg, real f0, real f1, real kd) {
   real NoL = lz;
   real NoV = vz;

@@ -35,7 +35,9 @@ typedef float2 real2;
 #ifdef MFV_INLINE_TERMS
 #define MFV_TERMS_BEGIN _Pragma("clang attribute push(__attribute__((always_inline)), apply_to = function)")
 #define MFV_TERMS_END _Pragma("clang attribute pop")
+#define MFV_ALWAYS_INLINE __attribute__((always_inline))
 #else
+#define MFV_ALWAYS_INLINE
 #define MFV_TERMS_BEGIN
 #define MFV_TERMS_END
 #endif

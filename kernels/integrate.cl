@@ -182,15 +182,20 @@ __kernel void albedo_values(__global const IntegralSpec* restrict specs, ulong s
 // of integral (row / replicates); work-item k takes point k of it. The
 // replicate's shift depends on the row only, so it is computed once per
 // work-group loop, not per point. sum_values then reduces each row.
-__kernel void albedo_mis_values(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,
-                                __global float* restrict values) {
-  size_t k = get_global_id(0), row = row0 + get_global_id(1);
-  __global const IntegralSpec* s = specs + row / replicates;
-  uint4 shift = mis_shift(s->stream, seed, (uint)(row % replicates));
-  values[get_global_id(1) * get_global_size(0) + k] =
-      (float)albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift,
-                                   (uint)k, s->strata);
-}
+// MFV_ALBEDO_MIS_VALUES(name, D, G, F): the kernel with its term ids given
+// by D, G, F: s->d, s->g, s->f in albedo_mis_values; constants in the
+// specialized kernels the host generates per term combination
+// (runtime/specialize.cpp), where the selects of eval_D/G/F fold away.
+#define MFV_ALBEDO_MIS_VALUES(NAME, D, G, F)                                                                      \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,         \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), row = row0 + get_global_id(1);                                                  \
+    __global const IntegralSpec* s = specs + row / replicates;                                                   \
+    uint4 shift = mis_shift(s->stream, seed, (uint)(row % replicates));                                          \
+    values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_microfacet(                            \
+        D, G, F, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift, (uint)k, s->strata);              \
+  }
+MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g, s->f)
 #endif
 
 #ifndef MFV_USER_BRDF

@@ -39,7 +39,14 @@ cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   // runtime miscompiles programs built so (kernels/terms_d.cl).
   if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
     defines.push_back("MFV_INLINE_TERMS");
-  return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore);
+  std::string spec;
+  if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
+    for (auto* d : terms.d)
+      for (auto* g : terms.g)
+          spec += fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values_{0}_{1}, {0}, {1}, s->f)\n", term_index(*d),
+                              term_index(*g));
+  return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore,
+                  {Runtime::ExtraSource{"<specialized>", spec, ""}});
 }
 
 Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
@@ -203,16 +210,27 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
 
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
 // one row per replicate) and sum_values (one sum per row).
-std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
+std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs_all, uint64_t seed) {
+  std::vector<Sums> out_all(specs_all.size() * kMisReplicates);
+  if (specs_all.empty()) return out_all;
+  const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
+  std::map<std::string, std::vector<size_t>> by_kernel;
+  for (size_t i = 0; i < specs_all.size(); ++i) {
+    const auto& s = specs_all[i];
+    std::string name = fmt::format("albedo_mis_values_{}_{}", s.d, s.g);
+    by_kernel[names.find(";" + name + ";") != std::string::npos ? name : "albedo_mis_values"].push_back(i);
+  }
+  for (const auto& [kname, at] : by_kernel) {
+  std::vector<IntegralSpec> specs;
+  for (size_t i : at) specs.push_back(specs_all[i]);
   const size_t rows = specs.size() * kMisReplicates;
   std::vector<Sums> out(rows);
-  if (specs.empty()) return out;
   const uint32_t n = specs.front().strata;  // points per replicate, the same for every spec of a run
   for (const auto& s : specs)
     if (s.strata != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
   const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
   const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
-  cl::Kernel k(program_, "albedo_mis_values");
+  cl::Kernel k(program_, kname.c_str());
   size_t local = fit_local_size(k, rt_.device().device, 1024);  // the device's and kernel's limits
   while (n % local != 0) local /= 2;                            // a power of two that divides n
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
@@ -228,7 +246,10 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, 1));
     sum_rows(values, count, n, out.data() + row0);
   }
-  return out;
+  for (size_t j = 0; j < at.size(); ++j)
+    for (uint32_t r = 0; r < kMisReplicates; ++r) out_all[at[j] * kMisReplicates + r] = out[j * kMisReplicates + r];
+  }
+  return out_all;
 }
 
 // Mean and standard error of an AlbedoMis integral from its replicates' sums
