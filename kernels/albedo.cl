@@ -47,7 +47,7 @@ static inline real eavg_cos(uint4 shift, uint k, uint strata) {
 // the same value to the bit.
 // Returns E and sets *b to B (scalars: a 2-lane real2 select would keep
 // PoCL from vectorizing across work-items).
-static inline real albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+static inline MFV_ALWAYS_INLINE real albedo_rqmc_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
                                           real co, uint4 shift, uint k, real* b) {
   real u_phi = u01_open(shift.x + k * RQMC_G1), u_r = u01_open(shift.y + k * RQMC_G2);
   real so2 = sin2_from_cos(co), ox = sqrt(so2);

@@ -31,21 +31,25 @@ typedef float2 real2;
 // host asks (MFV_INLINE_TERMS: the integration programs on PoCL,
 // runtime/integrator.cpp). Intel's CPU runtime miscompiles the whole-model
 // agree kernels of a program whose terms are all forced inline (mfv agree:
-// lambert 0 or inf; the Intel portability test).
+// lambert 0 or inf; the Intel portability test). MFV_ALWAYS_INLINE marks
+// the integrands the kernels specialized per term pair call
+// (runtime/specialize.cpp): inlined, their term ids become constants and
+// the select chains of eval_D/eval_G fold to one term.
 #ifdef MFV_INLINE_TERMS
 #define MFV_TERMS_BEGIN _Pragma("clang attribute push(__attribute__((always_inline)), apply_to = function)")
 #define MFV_TERMS_END _Pragma("clang attribute pop")
 #define MFV_ALWAYS_INLINE __attribute__((always_inline))
 #else
-#define MFV_ALWAYS_INLINE
 #define MFV_TERMS_BEGIN
 #define MFV_TERMS_END
+#define MFV_ALWAYS_INLINE
 #endif
 
 #define MFV_PI R(3.14159265358979323846)
 #define MFV_INV_PI R(0.31830988618379067154)
 #define MFV_SQRT_PI R(1.77245385090551602730)
 
+MFV_TERMS_BEGIN  // the helpers below are inlined where the host asks, as the terms
 static inline real saturate(real x) { return clamp(x, R(0.0), R(1.0)); }
 static inline real safe_sqrt(real x) { return sqrt(max(x, R(0.0))); }
 static inline real sqr(real x) { return x * x; }
@@ -187,3 +191,4 @@ static inline real normalize_sum(real sx, real sy, real sz, real* hx, real* hy, 
 static inline real log_cos(real c, real sin2) {
   return sin2 < R(0.5) ? R(0.5) * mfv_log1p(-sin2) : mfv_log(c);
 }
+MFV_TERMS_END

@@ -22,7 +22,7 @@ typedef float acc_t;
 // the fast path give the same samples to the bit.
 
 // d_norm, stratified: sample `index` of `strata` (see sample_value).
-static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint index, real u_phi, real u_r) {
+static inline MFV_ALWAYS_INLINE real d_norm_value_c(int d, real pd, real w, uint strata, uint index, real u_phi, real u_r) {
   uint n_cos = strata / 4u;
   bool cosine = index < n_cos;
   uint k = cosine ? index : index - n_cos, n = cosine ? n_cos : strata - n_cos;
@@ -32,7 +32,7 @@ static inline real d_norm_value_c(int d, real pd, real w, uint strata, uint inde
   return eval_D(d, c, s2, pd) * c / pdf_mix(c, pdf_slope(c, s2, w));  // pdf_m at w > 0, without its loop
 }
 
-static inline real masking_value_c(int d, int g, real pd, real pg, real w, real co, real u_pick, real u_phi,
+static inline MFV_ALWAYS_INLINE real masking_value_c(int d, int g, real pd, real pg, real w, real co, real u_pick, real u_phi,
                                    real u_r) {
   real ox = sqrt(sin2_from_cos(co));  // spec_view at phi_o = 0
   real mx, my, c, s2;
@@ -182,20 +182,18 @@ __kernel void albedo_values(__global const IntegralSpec* restrict specs, ulong s
 // of integral (row / replicates); work-item k takes point k of it. The
 // replicate's shift depends on the row only, so it is computed once per
 // work-group loop, not per point. sum_values then reduces each row.
-// MFV_ALBEDO_MIS_VALUES(name, D, G, F): the kernel with its term ids given
-// by D, G, F: s->d, s->g, s->f in albedo_mis_values; constants in the
-// specialized kernels the host generates per term combination
-// (runtime/specialize.cpp), where the selects of eval_D/G/F fold away.
-#define MFV_ALBEDO_MIS_VALUES(NAME, D, G, F)                                                                      \
+// MFV_ALBEDO_MIS_VALUES(name, D, G): as MFV_MASKING_VALUES (F stays a
+// select: its terms cost little beside the G chain).
+#define MFV_ALBEDO_MIS_VALUES(NAME, D, G)                                                                         \
   __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,         \
                      __global float* restrict values) {                                                          \
     size_t k = get_global_id(0), row = row0 + get_global_id(1);                                                  \
     __global const IntegralSpec* s = specs + row / replicates;                                                   \
     uint4 shift = mis_shift(s->stream, seed, (uint)(row % replicates));                                          \
     values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_microfacet(                            \
-        D, G, F, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift, (uint)k, s->strata);              \
+        D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift, (uint)k, s->strata);              \
   }
-MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g, s->f)
+MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
 #endif
 
 #ifndef MFV_USER_BRDF
@@ -203,23 +201,31 @@ MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g, s->f)
 // (spec_is_microfacet) with one sample per work-item, as albedo_values:
 // work-item (k, j) takes sample first + k of integral j, the sample
 // `integrate` takes there. sum_pairs / sum_values reduce.
-__kernel void d_norm_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
-                            __global float* restrict values) {
-  size_t k = get_global_id(0), j = get_global_id(1);
-  __global const IntegralSpec* s = specs + j;
-  uint4 r = mfv_philox(seed, s->stream, 0, first + k);
-  values[j * get_global_size(0) + k] =
-      (float)d_norm_value_c(s->d, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w));
-}
+// MFV_D_NORM_VALUES(name, D) and MFV_MASKING_VALUES(name, D, G) define
+// these kernels with the term ids D and G: s->d and s->g here, constants in
+// the kernels specialized per term pair (runtime/specialize.cpp), where the
+// select chains of eval_D and eval_G fold to the one term.
+#define MFV_D_NORM_VALUES(NAME, D)                                                                                \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
+    values[j * get_global_size(0) + k] =                                                                         \
+        (float)d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w));   \
+  }
+MFV_D_NORM_VALUES(d_norm_values, s->d)
 
-__kernel void masking_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
-                             __global float* restrict values) {
-  size_t k = get_global_id(0), j = get_global_id(1);
-  __global const IntegralSpec* s = specs + j;
-  uint4 r = mfv_philox(seed, s->stream, 0, first + k);
-  values[j * get_global_size(0) + k] = (float)masking_value_c(s->d, s->g, s->pd, s->pg, s->width, s->cos_o,
-                                                              u01_open(r.y), u01_open(r.z), u01_open(r.w));
-}
+#define MFV_MASKING_VALUES(NAME, D, G)                                                                            \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
+    values[j * get_global_size(0) + k] = (float)masking_value_c(D, G, s->pd, s->pg, s->width, s->cos_o,          \
+                                                                u01_open(r.y), u01_open(r.z), u01_open(r.w));    \
+  }
+MFV_MASKING_VALUES(masking_values, s->d, s->g)
 #endif
 
 #ifndef MFV_USER_BRDF
@@ -231,19 +237,21 @@ __kernel void masking_values(__global const IntegralSpec* restrict specs, ulong 
 // 2-lane vector, which keeps PoCL from vectorizing across work-items);
 // sum_rqmc reduces. The points and values are those `integrate` takes
 // (albedo_rqmc_value).
-__kernel void albedo_rqmc_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
-                                 __global float* restrict values) {
-  size_t k = get_global_id(0), j = get_global_id(1);
-  __global const IntegralSpec* s = specs + j;
-  uint4 shift = rqmc_shift(s, seed);
-  uint i = (uint)(first + k);
-  real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, i, s->strata) : s->cos_o;
-  real b;
-  real e = albedo_rqmc_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, i, &b);
-  size_t at = j * get_global_size(0) + k;
-  values[at] = (float)e;
-  values[get_global_size(0) * get_global_size(1) + at] = (float)b;
-}
+#define MFV_ALBEDO_RQMC_VALUES(NAME, D, G)                                                                        \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    uint4 shift = rqmc_shift(s, seed);                                                                           \
+    uint i = (uint)(first + k);                                                                                  \
+    real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, i, s->strata) : s->cos_o;                        \
+    real b;                                                                                                      \
+    real e = albedo_rqmc_microfacet(D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, i, &b);  \
+    size_t at = j * get_global_size(0) + k;                                                                      \
+    values[at] = (float)e;                                                                                       \
+    values[get_global_size(0) * get_global_size(1) + at] = (float)b;                                             \
+  }
+MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 #endif
 
 // The sums `integrate` leaves for the RQMC integrals from the E and B planes

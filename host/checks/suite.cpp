@@ -7,6 +7,7 @@
 #include "checks/reference_compare.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
+#include "runtime/specialize.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "util/error.hpp"
@@ -177,6 +178,7 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& str
 void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
   if (plan.specs.empty()) return;
   double b0 = rt.build_stats().seconds;
+  plan.terms.specialized = fast_path_pairs(plan.specs);  // kernels per term pair (runtime/specialize.hpp)
   Integrator in(rt, plan.terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
   run_plan(in, plan, opt, stream, rep);
@@ -210,15 +212,28 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   uint32_t stream = 0;
   std::vector<Plan> plans = make_plans(opt);
+  const bool reciprocity = suite_check_wanted(opt, "reciprocity");
+  Plan rp = reciprocity ? reciprocity_plan(opt) : Plan{};
+  // One program for every plan: the kernels specialized per term pair
+  // (runtime/specialize.hpp) are shared by the plans that integrate the
+  // same pair (furnace, energy, energy_diffuse), so each is compiled once.
+  TermSelection terms = rp.terms;
+  for (auto& p : plans) {
+    p.terms.specialized = fast_path_pairs(p.specs);
+    terms.add(p.terms);
+  }
+  const double b0 = rt.build_stats().seconds;
+  Integrator in(rt, terms);
+  rep.build_seconds += rt.build_stats().seconds - b0;
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
     if (plans[i].check == "furnace") attach_furnace_truth(plans[i]);  // its pooled test is two-sided
-    run_plan(rt, plans[i], opt, stream, rep);
+    run_plan(in, plans[i], opt, stream, rep);
   }
-  if (suite_check_wanted(opt, "reciprocity")) {
+  if (reciprocity && !rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
-    Plan rp = reciprocity_plan(opt);
-    run_reciprocity(rt, rp, opt, rep);
+    record_reciprocity(in, rp.specs, rp.points, kReciprocityBound, opt.scale, opt.seed, std::chrono::steady_clock::now(),
+                       rep);
   }
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <set>
+
 namespace mfv {
 
 TermSelection TermSelection::all() {
@@ -12,6 +15,21 @@ TermSelection TermSelection::all() {
   s.g1 = true;
   for (auto& m : ::mfv::models()) s.models.push_back(&m);
   return s;
+}
+
+void TermSelection::add(const TermSelection& o) {
+  auto append = [](auto& to, const auto& from) {
+    for (const auto& x : from)
+      if (std::find(to.begin(), to.end(), x) == to.end()) to.push_back(x);
+  };
+  append(d, o.d);
+  append(g, o.g);
+  append(f, o.f);
+  append(models, o.models);
+  g1 = g1 || o.g1;
+  std::set<TermPair> pairs(specialized.begin(), specialized.end());
+  pairs.insert(o.specialized.begin(), o.specialized.end());
+  specialized.assign(pairs.begin(), pairs.end());
 }
 
 int term_index(const Term& t) { return static_cast<int>(&t - catalog().data()); }

@@ -12,11 +12,21 @@
 
 namespace mfv {
 
+// A D and a G term by id (term_index).
+struct TermPair {
+  int d = 0, g = 0;
+  bool operator<(const TermPair& o) const { return d != o.d ? d < o.d : g < o.g; }
+};
+
 struct TermSelection {
   std::vector<const Term*> d, g, f;
   bool g1 = false;                   // also emit eval_G1 for the Smith G terms in g
   std::vector<const Model*> models;  // whole models: eval_model(id, ...), id = Model::number()
+  // (D, G) pairs whose fast-path kernels the integration program specializes
+  // (runtime/specialize.hpp; PoCL only): the pairs a run integrates.
+  std::vector<TermPair> specialized;
   static TermSelection all();        // every term and every model
+  void add(const TermSelection& o);  // o's terms, models and pairs not yet here, appended
 };
 
 int term_index(const Term& t);  // the id the kernels receive

@@ -1,5 +1,6 @@
 #include "runtime/integrator.hpp"
 
+#include "runtime/specialize.hpp"
 #include "runtime/work_group.hpp"
 #include "util/error.hpp"
 
@@ -37,16 +38,14 @@ cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   // Every term forced inline, so that PoCL vectorizes the fast paths of a
   // program of many terms (docs/performance.md); PoCL only: Intel's CPU
   // runtime miscompiles programs built so (kernels/terms_d.cl).
-  if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
-    defines.push_back("MFV_INLINE_TERMS");
-  std::string spec;
-  if (rt.device().platform.find("Portable Computing Language") != std::string::npos)
-    for (auto* d : terms.d)
-      for (auto* g : terms.g)
-          spec += fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values_{0}_{1}, {0}, {1}, s->f)\n", term_index(*d),
-                              term_index(*g));
-  return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore,
-                  {Runtime::ExtraSource{"<specialized>", spec, ""}});
+  const bool pocl = rt.device().platform.find("Portable Computing Language") != std::string::npos;
+  if (pocl) defines.push_back("MFV_INLINE_TERMS");
+  // The fast paths specialized per term pair (runtime/specialize.hpp): only
+  // where the terms are inlined, so that their ids fold to constants.
+  std::vector<Runtime::ExtraSource> extra;
+  if (pocl && !terms.specialized.empty())
+    extra.push_back({"<specialized>", generate_specializations(terms.specialized), ""});
+  return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore, extra);
 }
 
 Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
@@ -58,6 +57,17 @@ Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt,
 Integrator::Integrator(Runtime& rt, cl::Program program)
     : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
   local_size_ = fit_local_size(cl::Kernel(program_, "integrate"), rt.device().device, 64);
+  const std::string names = program_.getInfo<CL_PROGRAM_KERNEL_NAMES>();
+  for (size_t at = 0; at < names.size();) {
+    size_t end = std::min(names.find(';', at), names.size());
+    kernel_names_.insert(names.substr(at, end - at));
+    at = end + 1;
+  }
+}
+
+std::string Integrator::kernel_for(const std::string& base, const IntegralSpec& s) const {
+  std::string name = specialized_name(base, s);
+  return kernel_names_.count(name) ? name : base;
 }
 
 void Integrator::layout(uint64_t samples, uint32_t& per_item, uint32_t& slices) const {
@@ -145,9 +155,9 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
 // The same sums for albedo_fast_path integrals through albedo_values (one
 // sample per work-item, stored) and sum_values (the per-slice sums of
 // `integrate`): the samples of `integrate`, reduced in the same slices.
-std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<IntegralSpec>& specs, const char* kernel,
-                                                      uint32_t per_item, uint32_t slices, uint64_t seed,
-                                                      uint64_t first_index) {
+std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<IntegralSpec>& specs, const std::string& base,
+                                                      const std::string& kernel, uint32_t per_item, uint32_t slices,
+                                                      uint64_t seed, uint64_t first_index) {
   std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
   const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
@@ -156,10 +166,10 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
   // stratified d_norm: neighbouring strata's squared differences, as `integrate`
-  const bool pairs = std::string(kernel) == "d_norm_values";
+  const bool pairs = base == "d_norm_values";
   // RQMC: an E and a B plane, reduced by sum_rqmc
-  const bool rqmc = std::string(kernel) == "albedo_rqmc_values";
-  cl::Kernel values_k(program_, kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
+  const bool rqmc = base == "albedo_rqmc_values";
+  cl::Kernel values_k = launched(kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
@@ -210,29 +220,36 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
 
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
 // one row per replicate) and sum_values (one sum per row).
-std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs_all, uint64_t seed) {
-  std::vector<Sums> out_all(specs_all.size() * kMisReplicates);
-  if (specs_all.empty()) return out_all;
-  const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
-  std::map<std::string, std::vector<size_t>> by_kernel;
-  for (size_t i = 0; i < specs_all.size(); ++i) {
-    const auto& s = specs_all[i];
-    std::string name = fmt::format("albedo_mis_values_{}_{}", s.d, s.g);
-    by_kernel[names.find(";" + name + ";") != std::string::npos ? name : "albedo_mis_values"].push_back(i);
+std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
+  std::vector<Sums> out(specs.size() * kMisReplicates);
+  std::map<std::string, std::vector<size_t>> by_kernel;  // specialized per term pair where the program has it
+  for (size_t i = 0; i < specs.size(); ++i) by_kernel[kernel_for("albedo_mis_values", specs[i])].push_back(i);
+  for (const auto& [kernel, at] : by_kernel) {
+    std::vector<IntegralSpec> group;
+    for (size_t i : at) group.push_back(specs[i]);
+    const std::vector<Sums> sums = sums_mis(group, kernel, seed);
+    for (size_t j = 0; j < at.size(); ++j)
+      std::copy_n(sums.begin() + j * kMisReplicates, kMisReplicates, out.begin() + at[j] * kMisReplicates);
   }
-  for (const auto& [kname, at] : by_kernel) {
-  std::vector<IntegralSpec> specs;
-  for (size_t i : at) specs.push_back(specs_all[i]);
+  return out;
+}
+
+std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, const std::string& kernel,
+                                                   uint64_t seed) {
   const size_t rows = specs.size() * kMisReplicates;
   std::vector<Sums> out(rows);
+  if (specs.empty()) return out;
   const uint32_t n = specs.front().strata;  // points per replicate, the same for every spec of a run
   for (const auto& s : specs)
     if (s.strata != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
   const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
   const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
-  cl::Kernel k(program_, kname.c_str());
-  size_t local = fit_local_size(k, rt_.device().device, 1024);  // the device's and kernel's limits
-  while (n % local != 0) local /= 2;                            // a power of two that divides n
+  cl::Kernel k = launched(kernel);
+  // The device's and kernel's limits, at most 64: one work-group size for
+  // every point count of the default checks (PoCL compiles a kernel once
+  // per work-group size), a power of two that divides n.
+  size_t local = fit_local_size(k, rt_.device().device, 64);
+  while (n % local != 0) local /= 2;
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
@@ -246,10 +263,12 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, 1));
     sum_rows(values, count, n, out.data() + row0);
   }
-  for (size_t j = 0; j < at.size(); ++j)
-    for (uint32_t r = 0; r < kMisReplicates; ++r) out_all[at[j] * kMisReplicates + r] = out[j * kMisReplicates + r];
-  }
-  return out_all;
+  return out;
+}
+
+cl::Kernel Integrator::launched(const std::string& kernel) {
+  launched_.insert(kernel);
+  return cl::Kernel(program_, kernel.c_str());
 }
 
 // Mean and standard error of an AlbedoMis integral from its replicates' sums
@@ -303,7 +322,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   // isotropic microfacet integrals take the vectorizable fast paths
   std::vector<IntegralSpec> general, mis;
   std::vector<size_t> general_at, mis_at;
-  std::map<std::string, std::vector<size_t>> fast_at;  // by values kernel
+  std::map<std::pair<std::string, std::string>, std::vector<size_t>> fast_at;  // by values kernel, specialized
   for (size_t j = 0; j < specs.size(); ++j) {
     if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
       if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) ||
@@ -316,7 +335,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     // sum_values takes runs of a multiple of 4 (per_item is even)
     const char* fast = fast_albedo_ && local_size_ % 2 == 0 ? values_kernel(specs[j]) : nullptr;
     if (fast) {
-      fast_at[fast].push_back(j);
+      fast_at[{fast, kernel_for(fast, specs[j])}].push_back(j);
     } else {
       general.push_back(specs[j]);
       general_at.push_back(j);
@@ -329,7 +348,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   for (const auto& [kernel, at] : fast_at) {
     std::vector<IntegralSpec> fast;
     for (size_t j : at) fast.push_back(specs[j]);
-    const auto fs = sums_values(fast, kernel.c_str(), per_item, slices, seed, first_index);
+    const auto fs = sums_values(fast, kernel.first, kernel.second, per_item, slices, seed, first_index);
     for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
   }
   const auto gs = sums_integrate(general, per_item, slices, seed, first_index);

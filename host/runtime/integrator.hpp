@@ -12,6 +12,7 @@
 #include "util/progress.hpp"
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,9 @@ class Integrator {
   // instruction on PoCL where the program holds one term of each kind), on
   // the samples `integrate` takes; off: `integrate` takes them (tests compare).
   void set_albedo_fast_path(bool on) { fast_albedo_ = on && fast_albedo_available_; }
+  // The fast-path kernels launched so far, by name (the specialized ones
+  // carry their term ids: runtime/specialize.hpp).
+  const std::set<std::string>& launched_kernels() const { return launched_; }
 
  private:
   struct Sums {
@@ -137,10 +141,17 @@ class Integrator {
   // sum_pairs; albedo_mis_values for AlbedoMis (kernels/integrate.cl)
   std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
                                    uint64_t seed, uint64_t first_index);
-  std::vector<Sums> sums_values(const std::vector<IntegralSpec>& specs, const char* kernel, uint32_t per_item,
-                                uint32_t slices, uint64_t seed, uint64_t first_index);
-  // AlbedoMis: the sums of each replicate (kMisReplicates per integral, integral-major)
+  // `kernel`: `base` or its specialization to the specs' term pair
+  std::vector<Sums> sums_values(const std::vector<IntegralSpec>& specs, const std::string& base,
+                                const std::string& kernel, uint32_t per_item, uint32_t slices, uint64_t seed,
+                                uint64_t first_index);
+  // AlbedoMis: the sums of each replicate (kMisReplicates per integral, integral-major),
+  // through one kernel per term pair where the program specializes it
   std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed);
+  std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, const std::string& kernel, uint64_t seed);
+  // `base` specialized to s's term pair where the program has that kernel, else `base`
+  std::string kernel_for(const std::string& base, const IntegralSpec& s) const;
+  cl::Kernel launched(const std::string& kernel);  // the kernel, noted in launched_
   // sum_values over `rows` runs of `per_row` values in `values`, added to out[0 .. rows)
   void sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out);
   void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
@@ -152,6 +163,7 @@ class Integrator {
   cl::Program program_;
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
+  std::set<std::string> kernel_names_, launched_;
   size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less
   progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read
   uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()

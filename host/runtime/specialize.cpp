@@ -1,0 +1,64 @@
+#include "runtime/specialize.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+namespace mfv {
+
+namespace {
+
+// The kernels of kernels/integrate.cl defined by a MFV_*_VALUES macro, and
+// whether the G id is part of their specialization.
+struct Specializable {
+  const char* base;
+  const char* macro;
+  bool by_g;
+};
+constexpr Specializable kSpecializable[] = {
+    {"d_norm_values", "MFV_D_NORM_VALUES", false},
+    {"masking_values", "MFV_MASKING_VALUES", true},
+    {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", true},
+    {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", true},
+};
+
+std::string name_of(const std::string& base, int d, int g, bool by_g) {
+  return by_g ? fmt::format("{}__d{}_g{}", base, d, g) : fmt::format("{}__d{}", base, d);
+}
+
+const Specializable* find(const std::string& base) {
+  for (const auto& k : kSpecializable)
+    if (base == k.base) return &k;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
+  std::set<TermPair> pairs;
+  // as Integrator's values_kernel and AlbedoMis: catalog terms (model 0),
+  // isotropic (no second width, view in the xz-plane), one width
+  for (const auto& s : specs)
+    if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && s.phi_o == 0 && s.width > 0)
+      pairs.insert({s.d, s.g});
+  return {pairs.begin(), pairs.end()};
+}
+
+std::string generate_specializations(const std::vector<TermPair>& pairs) {
+  std::string out;
+  std::set<int> ds;
+  for (const auto& p : pairs) {
+    for (const auto& k : kSpecializable)
+      if (k.by_g) out += fmt::format("{}({}, {}, {})\n", k.macro, name_of(k.base, p.d, p.g, true), p.d, p.g);
+    if (ds.insert(p.d).second) out += fmt::format("MFV_D_NORM_VALUES({}, {})\n", name_of("d_norm_values", p.d, 0, false), p.d);
+  }
+  return out;
+}
+
+std::string specialized_name(const std::string& base, const IntegralSpec& s) {
+  const Specializable* k = find(base);
+  return k ? name_of(base, s.d, s.g, k->by_g) : base;
+}
+
+}  // namespace mfv

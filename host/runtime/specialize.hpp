@@ -1,0 +1,31 @@
+// Kernels specialized per term pair (docs/performance.md, "Kernels
+// specialized per term pair"). A program of many terms evaluates every D
+// and G of its select chains in each SIMD lane (runtime/dispatch.cpp); for
+// each (D, G) pair a run integrates, the program also gets copies of the
+// one-sample-per-work-item kernels (kernels/integrate.cl MFV_*_VALUES) with
+// the pair's ids as constants, where the chains fold to the one term. The
+// samples and their arithmetic are those of the generic kernels, to the bit.
+#pragma once
+
+#include "abi/integral.h"
+#include "runtime/dispatch.hpp"
+
+#include <string>
+#include <vector>
+
+namespace mfv {
+
+// The (D, G) pairs of the isotropic microfacet integrals among `specs` (the
+// ones the fast paths take), each once, in a fixed order.
+std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
+
+// OpenCL C that defines the specialized kernels of `pairs` (after
+// kernels/integrate.cl): d_norm_values per D, masking_values,
+// albedo_mis_values and albedo_rqmc_values per pair.
+std::string generate_specializations(const std::vector<TermPair>& pairs);
+
+// The name of the kernel `base` specialized to the terms of `s`
+// (d_norm_values: D only).
+std::string specialized_name(const std::string& base, const IntegralSpec& s);
+
+}  // namespace mfv
