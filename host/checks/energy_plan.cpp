@@ -124,6 +124,7 @@ TermSelection add_energy_subjects(EnergyReport& rep) {
     rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
     add_once(sel.d, d);
     add_once(sel.g, g);
+    sel.specialized.push_back({term_index(*d), term_index(*g)});  // its kernels per term pair (runtime/specialize.hpp)
   }
   for (auto& mp : model_points_of(opt)) {
     ModelEnergy me;

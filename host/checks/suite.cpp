@@ -232,8 +232,8 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   }
   if (reciprocity && !rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
-    record_reciprocity(in, rp.specs, rp.points, kReciprocityBound, opt.scale, opt.seed, std::chrono::steady_clock::now(),
-                       rep);
+    record_reciprocity(in, rp.specs, rp.points, kReciprocityBound, opt.scale, opt.seed,
+                       std::chrono::steady_clock::now(), rep);
   }
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);

@@ -33,6 +33,10 @@ const std::vector<std::string>& integrate_sources() {
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
+  return build_integrate_program(rt, terms, generate_specializations(terms.specialized));
+}
+
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms, const std::string& specializations) {
   std::vector<std::string> defines;
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
   // Every term forced inline, so that PoCL vectorizes the fast paths of a
@@ -43,19 +47,18 @@ cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   // The fast paths specialized per term pair (runtime/specialize.hpp): only
   // where the terms are inlined, so that their ids fold to constants.
   std::vector<Runtime::ExtraSource> extra;
-  if (pocl && !terms.specialized.empty())
-    extra.push_back({"<specialized>", generate_specializations(terms.specialized), ""});
+  if (pocl && !specializations.empty()) extra.push_back({"<specialized>", specializations, ""});
   return rt.build(integrate_sources(), defines, generate_dispatch(terms), kDispatchBefore, extra);
 }
 
-Integrator::Integrator(Runtime& rt, const TermSelection& terms) : Integrator(rt, build_integrate_program(rt, terms)) {
-  fast_albedo_ = fast_albedo_available_ =
-      true;  // the catalog's program defines albedo_values (a user program does not)
-}
+Integrator::Integrator(Runtime& rt, const TermSelection& terms)
+    : Integrator(rt, build_integrate_program(rt, terms), true) {}
 
 // The program must define MFV_ACC_DOUBLE exactly when the device has fp64.
-Integrator::Integrator(Runtime& rt, cl::Program program)
+Integrator::Integrator(Runtime& rt, cl::Program program, bool catalog)
     : rt_(rt), program_(std::move(program)), acc_double_(rt.device().fp64) {
+  // the catalog's program defines albedo_values and the other fast paths (a user program does not)
+  fast_albedo_ = fast_albedo_available_ = catalog;
   local_size_ = fit_local_size(cl::Kernel(program_, "integrate"), rt.device().device, 64);
   const std::string names = program_.getInfo<CL_PROGRAM_KERNEL_NAMES>();
   for (size_t at = 0; at < names.size();) {

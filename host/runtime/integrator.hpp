@@ -67,6 +67,9 @@ const std::vector<std::string>& integration_files();
 const std::vector<std::string>& integrate_sources();
 // integrate.cl with the generated dispatch of `terms` (MFV_ACC_DOUBLE where the device has fp64).
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms);
+// The same with `specializations` in place of generate_specializations(terms.specialized)
+// (tests plant a wrong one).
+cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms, const std::string& specializations);
 
 // The `sample_values` kernel of `program` (kernels/integrate.cl): float, or
 // double for a MFV_DOUBLE build (host/checks/reference_compare.cpp).
@@ -90,8 +93,9 @@ class Integrator {
  public:
   // Builds one program with the given terms (one build for a whole check).
   Integrator(Runtime& rt, const TermSelection& terms);
-  // From a program built elsewhere with integrate.cl in it (mfv check: the user's code).
-  Integrator(Runtime& rt, cl::Program program);
+  // From a program built elsewhere with integrate.cl in it (mfv check: the
+  // user's code); `catalog`: a build_integrate_program program (fast paths on).
+  Integrator(Runtime& rt, cl::Program program, bool catalog = false);
 
   // Samples per integral are rounded up to a whole number of work-group
   // slices; samples_used() tells the count actually taken. d_norm integrals

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <set>
 
 namespace mfv {
@@ -41,18 +40,17 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
   // isotropic (no second width, view in the xz-plane), one width
   for (const auto& s : specs)
     if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && s.phi_o == 0 && s.width > 0)
-      pairs.insert({s.d, s.g});
+      pairs.insert({s.d, s.check == MFV_CHECK_D_NORM ? kNoG : s.g});
   return {pairs.begin(), pairs.end()};
 }
 
 std::string generate_specializations(const std::vector<TermPair>& pairs) {
   std::string out;
-  std::set<int> ds;
-  for (const auto& p : pairs) {
+  for (const auto& p : pairs)
     for (const auto& k : kSpecializable)
-      if (k.by_g) out += fmt::format("{}({}, {}, {})\n", k.macro, name_of(k.base, p.d, p.g, true), p.d, p.g);
-    if (ds.insert(p.d).second) out += fmt::format("MFV_D_NORM_VALUES({}, {})\n", name_of("d_norm_values", p.d, 0, false), p.d);
-  }
+      if (k.by_g == (p.g != kNoG))
+        out += k.by_g ? fmt::format("{}({}, {}, {})\n", k.macro, name_of(k.base, p.d, p.g, true), p.d, p.g)
+                      : fmt::format("{}({}, {})\n", k.macro, name_of(k.base, p.d, p.g, false), p.d);
   return out;
 }
 

@@ -16,12 +16,14 @@
 namespace mfv {
 
 // The (D, G) pairs of the isotropic microfacet integrals among `specs` (the
-// ones the fast paths take), each once, in a fixed order.
+// ones the fast paths take), each once, in a fixed order; d_norm integrals
+// give (D, kNoG).
+constexpr int kNoG = -1;
 std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 
 // OpenCL C that defines the specialized kernels of `pairs` (after
-// kernels/integrate.cl): d_norm_values per D, masking_values,
-// albedo_mis_values and albedo_rqmc_values per pair.
+// kernels/integrate.cl): d_norm_values for (D, kNoG), masking_values,
+// albedo_mis_values and albedo_rqmc_values for the other pairs.
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
 // The name of the kernel `base` specialized to the terms of `s`

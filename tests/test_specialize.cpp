@@ -1,0 +1,125 @@
+// The kernels specialized per (D, G) pair (runtime/specialize.hpp) take the
+// samples of the generic fast paths and give their estimates to the bit, and
+// Integrator::run launches them where the program has them. A planted
+// specialization that evaluates another G than its name says is caught.
+#include "albedo_spec.hpp"
+#include "catalog/catalog.hpp"
+#include "catalog/roughness.hpp"
+#include "checks/integrate.hpp"
+#include "device_fixture.hpp"
+#include "runtime/dispatch.hpp"
+#include "runtime/specialize.hpp"
+
+#include <fmt/format.h>
+#include <catch2/catch.hpp>
+
+#include <cstring>
+
+using namespace mfv;
+
+namespace {
+
+TermSelection three_of_each() {
+  TermSelection sel;
+  sel.d = {&find_term("ggx"), &find_term("beckmann"), &find_term("phong")};
+  sel.g = {&find_term("smith_ggx_correlated"), &find_term("smith_beckmann"), &find_term("smith_phong")};
+  sel.f = {&find_term("schlick"), &find_term("none")};
+  return sel;
+}
+
+// AlbedoMis, masking, stratified d_norm and RQMC albedo integrals over
+// several pairs, a mismatched one among them, grazing and normal views.
+std::vector<IntegralSpec> mixed_specs() {
+  using test::albedo_spec;
+  std::vector<IntegralSpec> s;
+  uint32_t stream = 0;
+  for (auto kind : {IntegralKind::AlbedoMis, IntegralKind::Masking, IntegralKind::AlbedoRqmc}) {
+    s.push_back(albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.3, 0.7, 0.04, 0.0, stream++, kind));
+    s.push_back(albedo_spec("beckmann", "smith_beckmann", "none", 0.05, 1e-3, 1.0, 0.0, stream++, kind));
+    s.push_back(albedo_spec("phong", "smith_phong", "schlick", 0.8, 0.2, 0.5, 0.3, stream++, kind));
+    s.push_back(albedo_spec("ggx", "smith_beckmann", "none", 0.5, 0.05, 1.0, 0.0, stream++, kind));
+  }
+  for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"phong", 0.6}}) {
+    const Term& t = find_term(d);
+    MicrofacetIntegral m;
+    m.kind = IntegralKind::DNorm;
+    m.d = &t;
+    m.pd = native_from_alpha(t.roughness, a);
+    m.width = a;
+    s.push_back(spec_of(m));
+    s.back().stream = stream++;
+  }
+  return s;
+}
+
+bool pocl(Runtime& rt) { return rt.device().platform.find("Portable Computing Language") != std::string::npos; }
+
+std::vector<Estimate> run(Integrator& in, std::vector<IntegralSpec> specs) {
+  in.stratify(specs, 16384);
+  return in.run(specs, 16384, 11);
+}
+
+}  // namespace
+
+TEST_CASE("kernels specialized per term pair give the generic kernels' estimates, to the bit", "[integrate][device]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  const std::vector<IntegralSpec> specs = mixed_specs();
+  TermSelection sel = three_of_each();
+  Integrator generic(*rt, sel);
+  sel.specialized = fast_path_pairs(specs);
+  REQUIRE(sel.specialized.size() == 4 + 3);  // four (D, G) pairs, and the d_norm integrals' three Ds
+  Integrator specialized(*rt, sel);
+  const auto a = run(generic, specs), b = run(specialized, specs);
+  REQUIRE(a.size() == b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    INFO("integral " << i << ": generic " << a[i].mean << " +- " << a[i].stderr_ << ", specialized " << b[i].mean
+                     << " +- " << b[i].stderr_);
+    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
+    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
+  }
+  // the generic program launched only generic kernels; the specialized one,
+  // where PoCL inlines the terms, one kernel per pair and check
+  for (auto& k : generic.launched_kernels()) CHECK(k.find("__") == std::string::npos);
+  if (!pocl(*rt)) return;
+  const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
+  const int beckmann = term_index(find_term("beckmann"));
+  const auto& launched = specialized.launched_kernels();
+  for (auto name :
+       {fmt::format("albedo_mis_values__d{}_g{}", ggx, corr), fmt::format("masking_values__d{}_g{}", ggx, corr),
+        fmt::format("albedo_rqmc_values__d{}_g{}", ggx, corr), fmt::format("d_norm_values__d{}", beckmann)}) {
+    INFO(name);
+    CHECK(launched.count(name) == 1);
+  }
+  for (auto base : {"albedo_mis_values", "masking_values", "albedo_rqmc_values", "d_norm_values"}) {
+    INFO(base);
+    CHECK(launched.count(base) == 0);
+  }
+}
+
+TEST_CASE("a specialized kernel that evaluates another G than its pair's is caught (planted)",
+          "[integrate][device][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt || !pocl(*rt)) return;  // other drivers build no specializations
+  const std::vector<IntegralSpec> specs = mixed_specs();
+  TermSelection sel = three_of_each();
+  sel.specialized = fast_path_pairs(specs);
+  Integrator generic(*rt, three_of_each());
+  const auto a = run(generic, specs);
+  const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
+  const int separable = term_index(find_term("smith_beckmann"));
+  for (auto macro : {"MFV_ALBEDO_MIS_VALUES(albedo_mis_values", "MFV_MASKING_VALUES(masking_values",
+                     "MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values"}) {
+    INFO(macro);
+    std::string text = generate_specializations(sel.specialized);
+    const std::string right = fmt::format("{}__d{}_g{}, {}, {})", macro, ggx, corr, ggx, corr);
+    const size_t at = text.find(right);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, right.size(), fmt::format("{}__d{}_g{}, {}, {})", macro, ggx, corr, ggx, separable));
+    Integrator planted(*rt, build_integrate_program(*rt, sel, text), true);
+    const auto b = run(planted, specs);
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
+    CHECK(differ == 1);  // the one integral of that pair and check
+  }
+}
