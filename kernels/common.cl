@@ -62,6 +62,11 @@ static inline real mfv_log1p(real x) { return log1p(x); }
 static inline real mfv_erfc(real x) { return erfc(x); }
 static inline real mfv_pow(real x, real y) { return pow(x, y); }
 #else
+// Inlined with the terms (MFV_INLINE_TERMS): a select chain of two Beckmann
+// Smith terms calls mfv_erfc from two places, and LLVM's inliner then keeps
+// it out of line (cost 490 > 225), which stops PoCL vectorizing the caller
+// (the anisotropic masking, kernels/aniso_values.cl).
+MFV_TERMS_BEGIN
 // 2^k for an integer k in [-126, 127], from its bits.
 static inline float mfv_pow2i(int k) { return as_float((k + 127) << 23); }
 
@@ -128,6 +133,7 @@ static inline float mfv_erfc(float x) {
 // relative error is |y log x| times log's plus exp's own: y log x carries
 // log's relative error into an absolute one in the exponent.
 static inline float mfv_pow(float x, float y) { return mfv_exp(y * mfv_log(x)); }
+MFV_TERMS_END
 #endif
 
 // sin^2 from cos without cancellation: (1-c)(1+c); 1-c is exact for

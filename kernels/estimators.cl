@@ -177,10 +177,13 @@ static inline void stratum_2d(ulong k, ulong n, real* u_r, real* u_phi) {
 
 // The view of masking and albedo: cos θ = cos_o at azimuth phi_o (in the
 // xz-plane, phi_o = 0, for every isotropic spec), by components; the azimuth
-// through sincos_2pi (exact at phi_o = 0: (so, 0, co)).
+// through sincos_2pi (exact at phi_o = 0: (so, 0, co)), its turns reduced to
+// [0, 1) by a conversion (floor() is a call that keeps PoCL from vectorizing;
+// |phi_o| < 2^31 turns).
 static inline void spec_view_c(real co, real phi_o, real* ox, real* oy) {
   real so = sqrt(sin2_from_cos(co)), u = phi_o * (R(0.5) * MFV_INV_PI);
-  real2 sc = sincos_2pi(u - floor(u));
+  u -= (real)(int)u;
+  real2 sc = sincos_2pi(u < R(0.0) ? u + R(1.0) : u);
   *ox = so * sc.y;
   *oy = so * sc.x;
 }
