@@ -110,10 +110,10 @@ TEST_CASE("the anisotropic fast paths are checked against integrate (planted)", 
   if (!test::device_runtime()) return;
   // each kernel planted to store its sample 1.001 times: the comparison above
   // must see it, and so each kernel is the one Integrator::run launches
-  for (const char* kernel : {"d_norm_aniso_value_c", "masking_aniso_value_c", "albedo_aniso_value_c"}) {
+  for (const char* kernel : {"d_norm_aniso_values", "masking_aniso_values", "albedo_aniso_values"}) {
     CAPTURE(kernel);
-    const std::string call = std::string("= (float)") + kernel + "(";
-    test::PlantedKernelDir dir("aniso_values.cl", call, "= 1.001f * (float)" + std::string(kernel) + "(");
+    const std::string at = std::string("MFV_ANISO_VALUES_KERNEL(") + kernel + ",";
+    test::PlantedKernelDir dir("aniso_values.cl", at, at + " 1.001f * ");
     Runtime rt = dir.runtime();
     const Difference d = fast_against_general(rt, aniso_specs());
     CHECK(d.mean > 1e-4);
