@@ -31,20 +31,25 @@ static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, r
 
 // The same BRDF with anisotropic terms (Term::aniso): D of widths (pd, pd2)
 // and G of widths (pg, pg2) in the tangent frame t = +x, b = +y; isotropic
-// terms in the mix see exactly what brdf_eval gives them.
+// terms in the mix see exactly what brdf_eval gives them. By components and
+// with the half vector formed as brdf_eval_c forms it (normalize_sum), so
+// that kernels/aniso_values.cl vectorizes.
 // Reference twin: brdf_aniso in host/reference/brdf.cpp.
+static inline real brdf_eval_aniso_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy, real vz,
+                                     real pd, real pd2, real pg, real pg2, real f0, real f1, real kd) {
+  real NoL = lz;
+  real NoV = vz;
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  real hx, hy, NoH;
+  real len = normalize_sum(lx + vx, ly + vy, lz + vz, &hx, &hy, &NoH);
+  real VoH = min(R(0.5) * len, R(1.0));
+  real sin2H = hx * hx + hy * hy;
+  real spec = eval_D_aniso(d, NoH, sin2H, hx, hy, pd, pd2) * eval_F(f, VoH, f0, f1) *
+              eval_G_aniso(g, lx, ly, lz, vx, vy, vz, NoH, VoH, pg, pg2);
+  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+}
+
 static inline real brdf_eval_aniso(int d, int g, int f, real3 wi, real3 wo, real pd, real pd2, real pg, real pg2,
                                    real f0, real f1, real kd) {
-  real NoL = wi.z;
-  real NoV = wo.z;
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
-  real3 sum = wi + wo;  // half vector and v·h as brdf_eval forms them
-  real len = length(sum);
-  real3 h = sum / len;
-  real NoH = h.z;
-  real VoH = min(R(0.5) * len, R(1.0));
-  real sin2H = h.x * h.x + h.y * h.y;
-  real spec = eval_D_aniso(d, NoH, sin2H, h.x, h.y, pd, pd2) * eval_F(f, VoH, f0, f1) *
-              eval_G_aniso(g, wi, wo, NoL, NoV, NoH, VoH, pg, pg2);
-  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+  return brdf_eval_aniso_c(d, g, f, wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, pd, pd2, pg, pg2, f0, f1, kd);
 }

@@ -49,7 +49,12 @@ typedef float2 real2;
 #define MFV_INV_PI R(0.31830988618379067154)
 #define MFV_SQRT_PI R(1.77245385090551602730)
 
-MFV_TERMS_BEGIN  // the helpers below are inlined where the host asks, as the terms
+// The helpers below are inlined with the terms (MFV_INLINE_TERMS): a select
+// chain of two Beckmann Smith terms calls mfv_erfc from two places, and
+// LLVM's inliner then keeps it out of line (cost 490 > 225), which stops
+// PoCL vectorizing the caller (the specialized albedo_mis_values of
+// smith_beckmann, the anisotropic masking).
+MFV_TERMS_BEGIN
 static inline real saturate(real x) { return clamp(x, R(0.0), R(1.0)); }
 static inline real safe_sqrt(real x) { return sqrt(max(x, R(0.0))); }
 static inline real sqr(real x) { return x * x; }

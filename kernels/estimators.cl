@@ -131,43 +131,67 @@ static inline real3 sample_m(real u_pick, real u_phi, real u_r, real w, real* c,
 // In the stretched slopes an anisotropic GGX or Beckmann of widths (wx, wy)
 // is radially symmetric, as the isotropic terms are in the plain ones; the
 // D's formula is never sampled.
-static inline real pdf_slope_aniso(real3 m, real wx, real wy) {
-  real tx = m.x / wx, ty = m.y / wy;
-  real k = m.z * m.z + tx * tx + ty * ty;
-  return R(1.0) / (R(2.0) * MFV_PI * wx * wy * k * sqrt(k));
+// By components (m = (mx, my, mz)), as the isotropic pdf_slope.
+static inline real pdf_m_aniso_c(real mx, real my, real mz, real wx, real wy) {
+  real tx = mx / wx, ty = my / wy;
+  real k = mz * mz + tx * tx + ty * ty;
+  return MIX_COS * mz * MFV_INV_PI + (R(1.0) - MIX_COS) * (R(1.0) / (R(2.0) * MFV_PI * wx * wy * k * sqrt(k)));
 }
 
-static inline real pdf_m_aniso(real3 m, real wx, real wy) {
-  return MIX_COS * m.z * MFV_INV_PI + (R(1.0) - MIX_COS) * pdf_slope_aniso(m, wx, wy);
+static inline real pdf_m_aniso(real3 m, real wx, real wy) { return pdf_m_aniso_c(m.x, m.y, m.z, wx, wy); }
+
+// m from the cosine lobe (as sample_m_c) or from the stretched Cauchy slopes,
+// by components: both candidates formed and one selected, the azimuth from
+// sincos_2pi (no library call, no branch: kernels/aniso_values.cl vectorizes).
+static inline void sample_m_aniso_c(bool cosine, real u_phi, real u_r, real wx, real wy, real* mx, real* my, real* c,
+                                    real* s2) {
+  real2 sc = sincos_2pi(u_phi);
+  real t = sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // |slope| of unit width, as sample_m_c
+  real sx = wx * t * sc.y, sy = wy * t * sc.x;
+  real t2 = sx * sx + sy * sy;
+  real ct = R(1.0) / sqrt(R(1.0) + t2);
+  real stc = sqrt(u_r);  // the cosine lobe (Malley): disk radius² = sin²θ
+  *c = cosine ? sqrt(R(1.0) - u_r) : ct;
+  *s2 = cosine ? u_r : t2 / (R(1.0) + t2);
+  *mx = cosine ? stc * sc.y : sx * ct;
+  *my = cosine ? stc * sc.x : sy * ct;
 }
 
 static inline real3 sample_m_aniso(real u_pick, real u_phi, real u_r, real wx, real wy, real* c, real* s2) {
-  if (u_pick < MIX_COS) return sample_m(u_pick, u_phi, u_r, wx, c, s2);  // the cosine lobe, as isotropic
-  real phi = R(2.0) * MFV_PI * u_phi;
-  real t = sqrt(u_r * (R(2.0) - u_r)) / (R(1.0) - u_r);  // |slope| of unit width, as sample_m
-  real sx = wx * t * cos(phi), sy = wy * t * sin(phi);
-  real t2 = sx * sx + sy * sy;
-  *c = R(1.0) / sqrt(R(1.0) + t2);
-  *s2 = t2 / (R(1.0) + t2);
-  return (real3)(sx * *c, sy * *c, *c);
+  real mx, my;
+  sample_m_aniso_c(u_pick < MIX_COS, u_phi, u_r, wx, wy, &mx, &my, c, s2);
+  return (real3)(mx, my, *c);
 }
 
 // Stratum k of n equal cells of the unit square (anisotropic d_norm, whose
 // integrand depends on the azimuth too): n_phi columns, n_phi the largest
 // power of 2 with n_phi² <= n that divides n; neighbouring k share a row.
+// That is 2^min(floor(log2(n) / 2), trailing zeros of n), formed without a
+// loop (a loop keeps PoCL from vectorizing the caller); n < 2^32 (strata).
 static inline void stratum_2d(ulong k, ulong n, real* u_r, real* u_phi) {
-  ulong n_phi = 1;
-  while (4u * n_phi * n_phi <= n && n % (2u * n_phi) == 0) n_phi *= 2u;
+  uint n32 = (uint)n, half_log2 = (31u - (uint)clz(max(n32, 1u))) / 2u, tz = (uint)popcount((n32 & (0u - n32)) - 1u);
+  ulong n_phi = 1ul << min(half_log2, tz);
   *u_r = min(((real)(k / n_phi) + *u_r) / (real)(n / n_phi), R(0x1.fffffep-1));
   *u_phi = ((real)(k % n_phi) + *u_phi) / (real)n_phi;
 }
 
 // The view of masking and albedo: cos θ = cos_o at azimuth phi_o (in the
-// xz-plane, phi_o = 0, for every isotropic spec).
+// xz-plane, phi_o = 0, for every isotropic spec), by components; the azimuth
+// through sincos_2pi (exact at phi_o = 0: (so, 0, co)), its turns reduced to
+// [0, 1) by a conversion (floor() is a call that keeps PoCL from vectorizing;
+// |phi_o| < 2^31 turns).
+static inline void spec_view_c(real co, real phi_o, real* ox, real* oy) {
+  real so = sqrt(sin2_from_cos(co)), u = phi_o * (R(0.5) * MFV_INV_PI);
+  u -= (real)(int)u;
+  real2 sc = sincos_2pi(u < R(0.0) ? u + R(1.0) : u);
+  *ox = so * sc.y;
+  *oy = so * sc.x;
+}
+
 static inline real3 spec_view(__global const IntegralSpec* s) {
-  real co = s->cos_o, so = sqrt(sin2_from_cos(co));
-  if (s->phi_o == 0.0f) return (real3)(so, R(0.0), co);
-  return (real3)(so * cos((real)s->phi_o), so * sin((real)s->phi_o), co);
+  real ox, oy;
+  spec_view_c(s->cos_o, s->phi_o, &ox, &oy);
+  return (real3)(ox, oy, s->cos_o);
 }
 
 // The albedo proposal's pdf of light direction i (n·i = iz, o·h = oh) where

@@ -52,6 +52,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
   }
   uint4 r = mfv_philox(seed, s->stream, 0, index);
   real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
+  if (spec_is_aniso_microfacet(s)) return aniso_sample_value(s, (uint)index, u_branch, u_pick, u_phi, u_r);
   real w = s->width;
   if (s->check == MFV_CHECK_D_NORM) {
     // ∫ D(m) (m·n) dm = 1. The integrand depends on θ only (isotropic D), so

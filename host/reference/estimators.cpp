@@ -55,7 +55,7 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
 
 // Anisotropic widths (wx, wy) along (t, b) = (+x, +y): the Cauchy slopes
 // stretched, slope density (1/(2π wx wy)) (1 + sx²/wx² + sy²/wy²)^(-3/2),
-// over solid angle divided by cos³θ (twin of pdf_slope_aniso in kernels/estimators.cl).
+// over solid angle divided by cos³θ (twin of pdf_m_aniso_c in kernels/estimators.cl).
 double pdf_m_aniso(const glm::dvec3& m, double wx, double wy) {
   const double c = m.z, sx = m.x / c, sy = m.y / c;
   const double slope = std::pow(1.0 + sx * sx / (wx * wx) + sy * sy / (wy * wy), -1.5) / (2.0 * M_PI * wx * wy);

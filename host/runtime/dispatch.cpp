@@ -62,6 +62,19 @@ std::string switch_fn(const std::string& name, const std::string& params, const 
   return s + "  }\n  return NAN;\n}\n";
 }
 
+// The select form where the program forces its terms inline
+// (MFV_INLINE_TERMS: the integration programs on PoCL, whose anisotropic
+// fast paths, kernels/aniso_values.cl, vectorize with it) and the switch
+// elsewhere (Intel's CPU runtime, agree and pointwise programs), so that
+// those keep the code they had.
+template <class Call>
+std::string select_if_inline(const std::string& name, const std::string& params, const std::vector<const Term*>& terms,
+                             Call call) {
+  if (terms.size() <= 1) return switch_fn(name, params, terms, call);
+  return "#ifdef MFV_INLINE_TERMS\n" + switch_fn(name, params, terms, call, true) + "#else\n" +
+         switch_fn(name, params, terms, call) + "#endif\n";
+}
+
 // Anisotropic terms (Term::aniso) seen through the one-width functions:
 // their isotropic slice, the direction in the xz-plane and alpha_y = alpha_x.
 std::string slice_dir(const char* cos) { return fmt::format("(real3)(sqrt(sin2_from_cos({0})), R(0.0), {0})", cos); }
@@ -87,19 +100,23 @@ std::string generate_dispatch(const TermSelection& s) {
       true);
   out += switch_fn(
       "eval_F", "real VoH, real p0, real p1", s.f, [](const Term& t) { return t.kernel_fn + "(VoH, p0, p1)"; }, true);
-  // Two widths and the tangent components (kernels/integrate.cl, agree.cl):
-  // isotropic terms ignore hx, hy and p2 and see exactly what eval_D gives them.
-  out += switch_fn("eval_D_aniso", "real NoH, real sin2H, real hx, real hy, real p, real p2", s.d, [](const Term& t) {
-    return t.aniso ? t.kernel_fn + "(NoH, hx, hy, p, p2)" : t.kernel_fn + "(NoH, sin2H, p)";
-  });
-  out += switch_fn("eval_G_aniso", "real3 l, real3 v, real NoL, real NoV, real NoH, real VoH, real p, real p2", s.g,
-                   [](const Term& t) {
-                     return t.aniso ? t.kernel_fn + "(l, v, VoH, p, p2)" : t.kernel_fn + "(NoL, NoV, NoH, VoH, p)";
-                   });
+  // Two widths and the tangent components (kernels/aniso_values.cl, brdf.cl,
+  // pointwise.cl): isotropic terms ignore hx, hy and p2 and see exactly what
+  // eval_D gives them. eval_G_aniso takes l and v by components (no float3
+  // value in the fast paths).
+  out += select_if_inline(
+      "eval_D_aniso", "real NoH, real sin2H, real hx, real hy, real p, real p2", s.d,
+      [](const Term& t) { return t.aniso ? t.kernel_fn + "(NoH, hx, hy, p, p2)" : t.kernel_fn + "(NoH, sin2H, p)"; });
+  out += select_if_inline("eval_G_aniso",
+                          "real lx, real ly, real lz, real vx, real vy, real vz, real NoH, real VoH, real p, real p2",
+                          s.g, [](const Term& t) {
+                            return t.aniso ? t.kernel_fn + "((real3)(lx, ly, lz), (real3)(vx, vy, vz), VoH, p, p2)"
+                                           : t.kernel_fn + "(lz, vz, NoH, VoH, p)";
+                          });
   std::vector<const Term*> smith;
   for (auto* t : s.g)
     if (!t->g1_kernel_fn.empty()) smith.push_back(t);
-  out += switch_fn("eval_G1_aniso", "real NoV, real vx, real vy, real p, real p2", smith, [](const Term& t) {
+  out += select_if_inline("eval_G1_aniso", "real NoV, real vx, real vy, real p, real p2", smith, [](const Term& t) {
     return t.aniso ? t.g1_kernel_fn + "(NoV, vx, vy, p, p2)" : t.g1_kernel_fn + "(NoV, p)";
   });
   // Whole models (kernels/models.cl), by Model::number(); none selected

@@ -22,8 +22,8 @@ std::vector<std::string> catalog_sources(const std::vector<std::string>& then) {
 }
 
 const std::vector<std::string>& integration_files() {
-  static const std::vector<std::string> files = {"estimators.cl", "albedo.cl", "convergence.cl", "integrate.cl",
-                                                 "reciprocity.cl"};
+  static const std::vector<std::string> files = {"estimators.cl",   "albedo.cl",    "convergence.cl",
+                                                 "aniso_values.cl", "integrate.cl", "reciprocity.cl"};
   return files;
 }
 
@@ -112,12 +112,23 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
                    : 0u;
 }
 
+// kernels/aniso_values.cl spec_is_aniso_microfacet: anisotropic d_norm
+// (stratified), masking and furnace albedo of the catalog's microfacet BRDF.
+static const char* aniso_values_kernel(const IntegralSpec& s) {
+  if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_aniso_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_aniso_values";
+  if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_aniso_values";
+  return nullptr;
+}
+
 // kernels/integrate.cl spec_is_microfacet: the integrals a *_values kernel
 // takes (one sample per work-item, vectorized on PoCL): iid albedo and
-// masking, stratified d_norm, mfv energy's RQMC albedo and E_avg. Returns
-// the kernel, or nullptr.
+// masking, stratified d_norm, mfv energy's RQMC albedo and E_avg; and their
+// anisotropic counterparts. Returns the kernel, or nullptr.
 static const char* values_kernel(const IntegralSpec& s) {
-  if (s.estimator != 0 || s.model != 0 || s.pd2 > 0 || s.phi_o != 0 || !(s.width > 0)) return nullptr;
+  if (s.estimator != 0 || s.model != 0 || !(s.width > 0)) return nullptr;
+  if (s.pd2 > 0) return aniso_values_kernel(s);
+  if (s.phi_o != 0) return nullptr;
   if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
   if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_values";
   if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_values";
@@ -169,7 +180,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
   const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
   // stratified d_norm: neighbouring strata's squared differences, as `integrate`
-  const bool pairs = base == "d_norm_values";
+  const bool pairs = base == "d_norm_values" || base == "d_norm_aniso_values";
   // RQMC: an E and a B plane, reduced by sum_rqmc
   const bool rqmc = base == "albedo_rqmc_values";
   cl::Kernel values_k = launched(kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
