@@ -149,7 +149,7 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
           // (checks/furnace_truth): Estevez and Kulla's fitted Λ under-masks near
           // grazing for small widths (masking shows it), and there the lobe alone
           // reflects more than it receives.
-          const KnownValue q = albedo_by_quadrature(p.specs.back());
+          const KnownValue q = cached_albedo_by_quadrature(p.specs.back());  // attach_furnace_truth reuses it
           if (q.value - q.error > 1.1) {  // ~5 standard errors of a default-size integral
             pt.expect = Expect::Fail;
             pt.reason = fmt::format("the fitted Lambda of {} under-masks {} here: E = {:.3g} by quadrature", g.id, d.id,
