@@ -2,14 +2,13 @@
 
 #include "numeric/hemisphere_quadrature.hpp"
 #include "reference/brdf.hpp"
+#include "util/parallel.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <tuple>
 
 namespace mfv {
@@ -114,19 +113,12 @@ std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& s
   for (auto& [cos_o, which] : by_view) units.push_back(which);
   for (size_t i : alone) units.push_back({i});
   // each unit writes its own slots: the values do not depend on the thread count
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t u; (u = next++) < units.size();) {
-      if (units[u].size() == 1 && !shares_nodes(reference_of(specs[units[u][0]])))
-        out[units[u][0]] = albedo_by_quadrature(specs[units[u][0]]);
-      else
-        albedos_at_view(specs, units[u], out);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < std::max(1u, threads); ++w) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  parallel_for(units.size(), threads, [&](size_t u) {
+    if (units[u].size() == 1 && !shares_nodes(reference_of(specs[units[u][0]])))
+      out[units[u][0]] = albedo_by_quadrature(specs[units[u][0]]);
+    else
+      albedos_at_view(specs, units[u], out);
+  });
   return out;
 }
 
@@ -141,8 +133,6 @@ std::string cache_key(IntegralSpec s) {
   s.stream = 0;
   return std::string(reinterpret_cast<const char*>(&s), sizeof s);
 }
-
-unsigned truth_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
 
 }  // namespace
 
@@ -170,7 +160,7 @@ void attach_furnace_truth(Plan& plan) {
         if (!cache.count(cache_key(plan.specs[i]))) missing.push_back(i), specs.push_back(plan.specs[i]);
       }
   }
-  const std::vector<KnownValue> computed = albedos_by_quadrature(specs, truth_threads());
+  const std::vector<KnownValue> computed = albedos_by_quadrature(specs, host_threads());
   std::lock_guard<std::mutex> g(cache_lock);
   for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(plan.specs[missing[k]]), computed[k]);
   for (size_t i : todo) {
