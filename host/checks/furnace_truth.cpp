@@ -2,78 +2,178 @@
 
 #include "numeric/hemisphere_quadrature.hpp"
 #include "reference/brdf.hpp"
+#include "util/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <string>
-#include <thread>
+#include <tuple>
 
 namespace mfv {
+namespace {
+
+// Two rules: order 8 and 6, 2 panels a decade in t = 1 - cos of the half
+// vector's angle down to 1e-7 (the smallest width checked, alpha = 0.01,
+// puts the lobe at t ~ alpha²/2 = 5e-5), 4 and 2 phi panels. Their
+// difference bounds the finer one's error wherever the coarser is at least
+// twice as wrong. The phi panels are even: at grazing view the horizon cut
+// t_c(phi) jumps at phi = pi/2, which must be a panel edge (3 panels read
+// 3e-3 of error there at every width; 2 and 4 read below 2e-4).
+const ProductRule kFine{8, 2, 4, 1e-7}, kCoarse{6, 2, 2, 1e-7};
+
+glm::dvec3 view_of(double cos_o) { return {std::sqrt((1.0 - cos_o) * (1.0 + cos_o)), 0.0, cos_o}; }
+
+KnownValue known_from(double fine, double coarse) { return {fine, std::fabs(fine - coarse)}; }
+
+// One rule at one view: its nodes and the BRDF's shading at them, which every
+// isotropic D x G x F at that view shares (ref::brdf forms the same Shading
+// from the same i and o), and the terms' values at the nodes by (term, params).
+class ViewRule {
+ public:
+  ViewRule(const glm::dvec3& o, const ProductRule& rule) : nodes_(reflected_nodes(o, rule)) {
+    shading_.resize(nodes_.i.size());
+    for (size_t k = 0; k < shading_.size(); ++k)
+      if (nodes_.live[k]) shading_[k] = ref::shading_from(nodes_.i[k], o);
+  }
+
+  // ∫ f(i, o) (n·i) di by the rule: the same bits as integrate_reflected of
+  // ref::brdf(s, i, o) * i.z (brdf.hpp: brdf_of_terms is brdf's own assembly).
+  double albedo(const ref::BrdfSpec& s) {
+    const std::vector<double>& D =
+        values(d_, {s.d, s.pd, 0}, [&](const ref::Shading& c) { return ref::eval_d_iso(s, c); });
+    const std::vector<double>& G =
+        values(g_, {s.g, s.pg, 0}, [&](const ref::Shading& c) { return ref::eval_g_iso(s, c); });
+    const std::vector<double>& F =
+        values(f_, {s.f, s.f0, s.f1}, [&](const ref::Shading& c) { return s.f->ref_f(c.VoH, s.f0, s.f1); });
+    std::vector<double> f(shading_.size(), 0.0);
+    for (size_t k = 0; k < f.size(); ++k)
+      if (nodes_.live[k]) f[k] = ref::brdf_of_terms(s, shading_[k], D[k], F[k], G[k]) * nodes_.i[k].z;
+    return sum_reflected(nodes_, f);
+  }
+
+ private:
+  using Key = std::tuple<const ref::TermTwins*, double, double>;
+  using Cache = std::map<Key, std::vector<double>>;
+
+  template <class Term>
+  const std::vector<double>& values(Cache& cache, const Key& key, const Term& term) {
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    std::vector<double> v(shading_.size(), 0.0);
+    for (size_t k = 0; k < v.size(); ++k)
+      if (nodes_.live[k]) v[k] = term(shading_[k]);
+    return cache.emplace(key, std::move(v)).first->second;
+  }
+
+  ReflectedNodes nodes_;
+  std::vector<ref::Shading> shading_;
+  Cache d_, g_, f_;
+};
+
+// The specs the shared-node path takes: isotropic D x G x F, the view above the horizon.
+bool shares_nodes(const ref::IntegralRef& r) {
+  return !r.brdf.model && !r.brdf.aniso() && r.brdf.d && r.brdf.g && r.brdf.f && r.cos_o > 0 && r.phi_o == 0;
+}
+
+// The integrals `which` of `specs`, all at one view, into their slots of out.
+void albedos_at_view(const std::vector<IntegralSpec>& specs, const std::vector<size_t>& which,
+                     std::vector<KnownValue>& out) {
+  const glm::dvec3 o = view_of(reference_of(specs[which.front()]).cos_o);
+  ViewRule fine(o, kFine), coarse(o, kCoarse);
+  for (size_t i : which) {
+    const ref::IntegralRef r = reference_of(specs[i]);
+    out[i] = known_from(fine.albedo(r.brdf), coarse.albedo(r.brdf));
+  }
+}
+
+}  // namespace
 
 KnownValue albedo_by_quadrature(const IntegralSpec& s) {
   const ref::IntegralRef r = reference_of(s);
-  const glm::dvec3 o(std::sqrt((1.0 - r.cos_o) * (1.0 + r.cos_o)), 0.0, r.cos_o);
+  const glm::dvec3 o = view_of(r.cos_o);
   auto f = [&](const glm::dvec3& i) { return ref::brdf(r.brdf, i, o) * i.z; };
-  // Two rules: order 8 and 6, 2 panels a decade in t = 1 - cos of the half
-  // vector's angle down to 1e-7 (the smallest width checked, alpha = 0.01,
-  // puts the lobe at t ~ alpha²/2 = 5e-5), 4 and 2 phi panels. Their
-  // difference bounds the finer one's error wherever the coarser is at least
-  // twice as wrong. The phi panels are even: at grazing view the horizon cut
-  // t_c(phi) jumps at phi = pi/2, which must be a panel edge (3 panels read
-  // 3e-3 of error there at every width; 2 and 4 read below 2e-4).
-  const ProductRule fine{8, 2, 4, 1e-7}, coarse{6, 2, 2, 1e-7};
-  const double hi = integrate_reflected(f, o, fine).value, lo = integrate_reflected(f, o, coarse).value;
-  return {hi, std::fabs(hi - lo)};
+  return known_from(integrate_reflected(f, o, kFine).value, integrate_reflected(f, o, kCoarse).value);
+}
+
+std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads) {
+  std::vector<KnownValue> out(specs.size());
+  // the work: one unit per view (sharing its nodes), one per other spec
+  std::map<double, std::vector<size_t>> by_view;
+  std::vector<size_t> alone;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const ref::IntegralRef r = reference_of(specs[i]);
+    if (shares_nodes(r))
+      by_view[r.cos_o].push_back(i);
+    else
+      alone.push_back(i);
+  }
+  std::vector<std::vector<size_t>> units;
+  for (auto& [cos_o, which] : by_view) units.push_back(which);
+  for (size_t i : alone) units.push_back({i});
+  // each unit writes its own slots: the values do not depend on the thread count
+  parallel_for(units.size(), threads, [&](size_t u) {
+    if (units[u].size() == 1 && !shares_nodes(reference_of(specs[units[u][0]])))
+      out[units[u][0]] = albedo_by_quadrature(specs[units[u][0]]);
+    else
+      albedos_at_view(specs, units[u], out);
+  });
+  return out;
 }
 
 namespace {
 
 // The quadratures of a process, by the spec's bytes less its stream: a
 // process that runs the suite under many seeds (the tests) computes each once.
-KnownValue cached_albedo(IntegralSpec s) {
-  static std::mutex lock;
-  static std::map<std::string, KnownValue> cache;
+std::mutex cache_lock;
+std::map<std::string, KnownValue> cache;
+
+std::string cache_key(IntegralSpec s) {
   s.stream = 0;
-  const std::string key(reinterpret_cast<const char*>(&s), sizeof s);
-  {
-    std::lock_guard<std::mutex> g(lock);
-    auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-  }
-  const KnownValue v = albedo_by_quadrature(s);
-  std::lock_guard<std::mutex> g(lock);
-  return cache.emplace(key, v).first->second;
+  return std::string(reinterpret_cast<const char*>(&s), sizeof s);
 }
 
 }  // namespace
 
+KnownValue cached_albedo_by_quadrature(const IntegralSpec& s) {
+  {
+    std::lock_guard<std::mutex> g(cache_lock);
+    auto it = cache.find(cache_key(s));
+    if (it != cache.end()) return it->second;
+  }
+  const KnownValue v = albedo_by_quadrature(s);
+  std::lock_guard<std::mutex> g(cache_lock);
+  return cache.emplace(cache_key(s), v).first->second;
+}
+
 void attach_furnace_truth(Plan& plan) {
   constexpr double kMaxTruthError = 1e-3;
-  // Every isotropic point that must hold.
-  std::vector<size_t> todo;
-  for (size_t i = 0; i < plan.points.size(); ++i)
-    if (plan.points[i].expect == Expect::Hold && !(plan.specs[i].pd2 > 0) && plan.specs[i].phi_o == 0)
-      todo.push_back(i);
-  // the points split over the cores (each quadrature is independent)
-  const size_t workers = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (size_t w = 0; w < workers; ++w)
-    pool.emplace_back([&, w] {
-      for (size_t k = w; k < todo.size(); k += workers) {
-        const KnownValue v = cached_albedo(plan.specs[todo[k]]);
-        PointResult& p = plan.points[todo[k]];
-        // A value known to worse than kMaxTruthError adds more bias bound to
-        // the pool than information (an integral's SE is ~1.7e-2 at default
-        // samples): such points stay out of it (none in the catalog today:
-        // the worst estimate is 2e-4).
-        p.known = std::isfinite(v.value) && v.error <= kMaxTruthError;
-        p.known_value = v.value;
-        p.known_error = v.error;
+  // Every isotropic point that must hold, less those the process knows.
+  std::vector<size_t> todo, missing;
+  std::vector<IntegralSpec> specs;
+  {
+    std::lock_guard<std::mutex> g(cache_lock);
+    for (size_t i = 0; i < plan.points.size(); ++i)
+      if (plan.points[i].expect == Expect::Hold && !(plan.specs[i].pd2 > 0) && plan.specs[i].phi_o == 0) {
+        todo.push_back(i);
+        if (!cache.count(cache_key(plan.specs[i]))) missing.push_back(i), specs.push_back(plan.specs[i]);
       }
-    });
-  for (auto& t : pool) t.join();
+  }
+  const std::vector<KnownValue> computed = albedos_by_quadrature(specs, host_threads());
+  std::lock_guard<std::mutex> g(cache_lock);
+  for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(plan.specs[missing[k]]), computed[k]);
+  for (size_t i : todo) {
+    const KnownValue& v = cache.at(cache_key(plan.specs[i]));
+    PointResult& p = plan.points[i];
+    // A value known to worse than kMaxTruthError adds more bias bound to
+    // the pool than information (an integral's SE is ~1.7e-2 at default
+    // samples): such points stay out of it (none in the catalog today:
+    // the worst estimate is 2e-4).
+    p.known = std::isfinite(v.value) && v.error <= kMaxTruthError;
+    p.known_value = v.value;
+    p.known_error = v.error;
+  }
 }
 
 }  // namespace mfv

@@ -6,6 +6,8 @@
 
 #include "checks/suite.hpp"
 
+#include <vector>
+
 namespace mfv {
 
 struct KnownValue {
@@ -16,6 +18,12 @@ struct KnownValue {
 // parameters the device sees) by product Gauss-Legendre over half vectors
 // (host/numeric/hemisphere_quadrature.hpp).
 KnownValue albedo_by_quadrature(const IntegralSpec& s);
+// The same for many integrals, the same bits: those at one view share the
+// rule's nodes, the shading at them and each term's values (furnace_truth.cpp);
+// the views split over `threads` threads, each writing its own slots.
+std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads);
+// albedo_by_quadrature, remembered for the process (by the spec less its stream).
+KnownValue cached_albedo_by_quadrature(const IntegralSpec& s);
 
 // Sets PointResult::known on the furnace plan's points that must hold.
 void attach_furnace_truth(Plan& plan);

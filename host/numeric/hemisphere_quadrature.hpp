@@ -5,7 +5,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstddef>
 #include <functional>
+#include <vector>
 
 namespace mfv {
 
@@ -37,5 +39,22 @@ QuadratureResult integrate_normals(const std::function<double(const glm::dvec3& 
 // so no kink lies inside a panel. The view o must lie in the xz-plane.
 QuadratureResult integrate_reflected(const std::function<double(const glm::dvec3& i)>& f, const glm::dvec3& o,
                                      const ProductRule& rule);
+
+// The nodes of integrate_reflected's rule at the view o, in its summation
+// order: per φ node, `per_phi` t nodes. Integrals at the same view and rule
+// share them (checks/furnace_truth.cpp evaluates the BRDF's geometry once).
+struct ReflectedNodes {
+  size_t per_phi = 0;
+  std::vector<double> phi_weight;  // the φ node's weight (times 2 for φ ∈ [π, 2π])
+  std::vector<double> weight;      // the t node's weight
+  std::vector<double> oh;          // o·h
+  std::vector<glm::dvec3> i;       // the light direction reflect(o, h)
+  std::vector<char> live;          // o·h > 0 and i above the horizon; elsewhere the integrand is 0
+};
+ReflectedNodes reflected_nodes(const glm::dvec3& o, const ProductRule& rule);
+
+// ∫ f(i) dω_i as integrate_reflected sums it (the same bits), from f at the
+// nodes (f_values[k] for node k; read only where live).
+double sum_reflected(const ReflectedNodes& nodes, const std::vector<double>& f_values);
 
 }  // namespace mfv

@@ -22,13 +22,21 @@ Shading shading_from(const glm::dvec3& wi_in, const glm::dvec3& wo_in) {
 }
 
 double brdf(const BrdfSpec& s, const Shading& c) {
+  if (c.NoL <= 0.0 || c.NoV <= 0.0) return 0.0;
+  return brdf_of_terms(s, c, eval_d_iso(s, c), s.f->ref_f(c.VoH, s.f0, s.f1), eval_g_iso(s, c));
+}
+
+double brdf_of_terms(const BrdfSpec& s, const Shading& c, double D, double F, double G) {
   // seed 000: BRDF = Kd/π + D(H) F(L,H) G(L,V,H) / (4 (L·N)(V·N))
   if (c.NoL <= 0.0 || c.NoV <= 0.0) return 0.0;
-  const double D = c.sin2H >= 0.0 ? eval_d_cs(s, c.NoH, c.sin2H) : s.d->ref_d(c.NoH, s.pd);
-  const double F = s.f->ref_f(c.VoH, s.f0, s.f1);
-  const double G = s.g->ref_g(c.NoL, c.NoV, c.NoH, c.VoH, s.pg);
   return s.kd / M_PI + D * F * G / (4.0 * c.NoL * c.NoV);
 }
+
+double eval_d_iso(const BrdfSpec& s, const Shading& c) {
+  return c.sin2H >= 0.0 ? eval_d_cs(s, c.NoH, c.sin2H) : s.d->ref_d(c.NoH, s.pd);
+}
+
+double eval_g_iso(const BrdfSpec& s, const Shading& c) { return s.g->ref_g(c.NoL, c.NoV, c.NoH, c.VoH, s.pg); }
 
 double eval_d(const BrdfSpec& s, const glm::dvec3& m) {
   if (s.aniso() && s.d->aniso) return s.d->ref_d_aniso(m, s.pd, s.pd2);

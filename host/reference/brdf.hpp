@@ -33,6 +33,11 @@ struct Shading {
 Shading shading_from(const glm::dvec3& wi, const glm::dvec3& wo);  // n = +z
 double brdf(const BrdfSpec& s, const Shading& c);
 double brdf(const BrdfSpec& s, const glm::dvec3& wi, const glm::dvec3& wo);  // anisotropic too when s.aniso()
+// brdf(s, c) from its isotropic terms' values at c: D = eval_d_iso(s, c),
+// F = s.f->ref_f(c.VoH, s.f0, s.f1), G = eval_g_iso(s, c) (the same bits as brdf(s, c)).
+double brdf_of_terms(const BrdfSpec& s, const Shading& c, double D, double F, double G);
+double eval_d_iso(const BrdfSpec& s, const Shading& c);
+double eval_g_iso(const BrdfSpec& s, const Shading& c);
 
 // The directions' D and G, anisotropic terms with two widths, isotropic ones
 // as brdf() evaluates them (twins of eval_D_aniso, eval_G_aniso, eval_G1_aniso).

@@ -29,6 +29,12 @@ std::string reference_line(const SuiteReport& rep);
 // One record of results.json's "results": one integral or measured maximum.
 nlohmann::json point_record(const PointResult& p);
 
+// The compact JSON array of point_record(p) for every point: the bytes of
+// nlohmann's dump of that array, built on the host's threads.
+std::string results_array_json(const std::vector<PointResult>& points);
+// j.dump(), except that the key "results" (if j has it) takes the given JSON text as its value.
+std::string dump_with_results(const nlohmann::json& j, const std::string& results);
+
 // results.json as a string (schema mfv-run/1, schemas/mfv-run-1.schema.json), also used by tests.
 std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt);
 
