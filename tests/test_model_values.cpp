@@ -38,12 +38,8 @@ TermSelection model_selection(std::vector<IntegralSpec>& specs) {
   return sel;
 }
 
-bool pocl(Runtime& rt) { return rt.device().platform.find("Portable Computing Language") != std::string::npos; }
-
-std::vector<Estimate> run(Integrator& in, std::vector<IntegralSpec> specs) {
-  in.stratify(specs, 16384);
-  return in.run(specs, 16384, 5);
-}
+// iid integrals (no strata): 16384 samples each, seed 5
+std::vector<Estimate> run(Integrator& in, const std::vector<IntegralSpec>& specs) { return in.run(specs, 16384, 5); }
 
 }  // namespace
 
@@ -75,7 +71,7 @@ TEST_CASE("whole models' albedo kernels give integrate's estimates", "[integrate
     CHECK(std::fabs(a[i].stderr_ - b[i].stderr_) <= 1e-9 * std::max(1e-6, a[i].stderr_));
   }
   const auto& launched = in.launched_kernels();
-  if (!pocl(*rt)) {
+  if (!test::is_pocl(*rt)) {
     CHECK(launched.count("model_albedo_values") == 1);
     return;
   }
@@ -89,7 +85,7 @@ TEST_CASE("whole models' albedo kernels give integrate's estimates", "[integrate
 TEST_CASE("a model kernel that evaluates another model than its name says is caught (planted)",
           "[integrate][device][model_values][planted]") {
   Runtime* rt = test::device_runtime();
-  if (!rt || !pocl(*rt)) return;  // other drivers build no specializations
+  if (!rt || !test::is_pocl(*rt)) return;  // other drivers build no specializations
   std::vector<IntegralSpec> specs;
   const TermSelection sel = model_selection(specs);
   Integrator generic(*rt, sel);
