@@ -7,7 +7,7 @@
 // MODEL: (int)s->model in the generic model_albedo_values, a constant in the
 // kernels specialized per model (runtime/specialize.cpp), where eval_model's
 // switch folds to the one model and PoCL vectorizes the work-group loop.
-// Needs albedo.cl and integrate.cl before it.
+// Needs albedo.cl and integrate.cl (MFV_SAMPLE_VALUES) before it.
 
 #ifndef MFV_USER_BRDF
 // albedo_value's general path (kernels/albedo.cl) for a whole model at
@@ -34,14 +34,7 @@ static inline MFV_ALWAYS_INLINE real model_albedo_value_c(int model, __global co
   return eval_model(model, (real3)(ox, oy, oz), (real3)(ix, iy, iz), p) * iz / albedo_pdf(iz, oh, pm);
 }
 
-#define MFV_MODEL_ALBEDO_VALUES(NAME, MODEL)                                                                      \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
-                     __global float* restrict values) {                                                          \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
-    __global const IntegralSpec* s = specs + j;                                                                  \
-    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
-    values[j * get_global_size(0) + k] =                                                                         \
-        (float)model_albedo_value_c(MODEL, s, u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w));       \
-  }
+#define MFV_MODEL_ALBEDO_VALUES(NAME, MODEL) \
+  MFV_SAMPLE_VALUES(NAME, model_albedo_value_c(MODEL, s, u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w)))
 MFV_MODEL_ALBEDO_VALUES(model_albedo_values, (int)s->model)
 #endif
