@@ -7,6 +7,8 @@
 // MODEL: (int)s->model in the generic model_albedo_values, a constant in the
 // kernels specialized per model (runtime/specialize.cpp), where eval_model's
 // switch folds to the one model and PoCL vectorizes the work-group loop.
+// The host launches only the specialized kernels (Intel's CPU runtime
+// miscompiles the generic one: Integrator::run).
 // Needs albedo.cl and integrate.cl (MFV_SAMPLE_VALUES) before it.
 
 #ifndef MFV_USER_BRDF

@@ -71,11 +71,8 @@ TEST_CASE("whole models' albedo kernels give integrate's estimates", "[integrate
     CHECK(std::fabs(a[i].stderr_ - b[i].stderr_) <= 1e-9 * std::max(1e-6, a[i].stderr_));
   }
   const auto& launched = in.launched_kernels();
-  if (!test::is_pocl(*rt)) {
-    CHECK(launched.count("model_albedo_values") == 1);
-    return;
-  }
-  CHECK(launched.count("model_albedo_values") == 0);  // every model has its own kernel
+  CHECK(launched.count("model_albedo_values") == 0);  // the generic kernel is never launched (Integrator::run)
+  if (!test::is_pocl(*rt)) return;                    // nor are specializations built there
   for (const Model* m : sel.models) {
     INFO(m->id);
     CHECK(launched.count(fmt::format("model_albedo_values__m{}", m->number())) == 1);
