@@ -206,26 +206,25 @@ MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
 // these kernels with the term ids D and G: s->d and s->g here, constants in
 // the kernels specialized per term pair (runtime/specialize.cpp), where the
 // select chains of eval_D and eval_G fold to the one term.
-#define MFV_D_NORM_VALUES(NAME, D)                                                                                \
+// MFV_SAMPLE_VALUES(name, VALUE): work-item (k, j) stores VALUE, an
+// expression of s (integral j), r (its Philox draw at sample first + k) and
+// first + k; also kernels/model_values.cl.
+#define MFV_SAMPLE_VALUES(NAME, VALUE)                                                                            \
   __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
                      __global float* restrict values) {                                                          \
     size_t k = get_global_id(0), j = get_global_id(1);                                                           \
     __global const IntegralSpec* s = specs + j;                                                                  \
     uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
-    values[j * get_global_size(0) + k] =                                                                         \
-        (float)d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w));   \
+    values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
   }
+#define MFV_D_NORM_VALUES(NAME, D)                                                                                \
+  MFV_SAMPLE_VALUES(NAME,                                                                                         \
+                    d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w)))
 MFV_D_NORM_VALUES(d_norm_values, s->d)
 
 #define MFV_MASKING_VALUES(NAME, D, G)                                                                            \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
-                     __global float* restrict values) {                                                          \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
-    __global const IntegralSpec* s = specs + j;                                                                  \
-    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
-    values[j * get_global_size(0) + k] = (float)masking_value_c(D, G, s->pd, s->pg, s->width, s->cos_o,          \
-                                                                u01_open(r.y), u01_open(r.z), u01_open(r.w));    \
-  }
+  MFV_SAMPLE_VALUES(NAME, masking_value_c(D, G, s->pd, s->pg, s->width, s->cos_o, u01_open(r.y), u01_open(r.z),    \
+                                          u01_open(r.w)))
 MFV_MASKING_VALUES(masking_values, s->d, s->g)
 #endif
 

@@ -38,4 +38,10 @@ inline Runtime* fp64_runtime(const std::string& what) {
   return rt;
 }
 
+// PoCL builds the kernels specialized per term pair or model
+// (runtime/specialize.hpp); other drivers do not.
+inline bool is_pocl(const Runtime& rt) {
+  return rt.device().platform.find("Portable Computing Language") != std::string::npos;
+}
+
 }  // namespace mfv::test

@@ -52,8 +52,6 @@ std::vector<IntegralSpec> mixed_specs() {
   return s;
 }
 
-bool pocl(Runtime& rt) { return rt.device().platform.find("Portable Computing Language") != std::string::npos; }
-
 std::vector<Estimate> run(Integrator& in, std::vector<IntegralSpec> specs) {
   in.stratify(specs, 16384);
   return in.run(specs, 16384, 11);
@@ -81,7 +79,7 @@ TEST_CASE("kernels specialized per term pair give the generic kernels' estimates
   // the generic program launched only generic kernels; the specialized one,
   // where PoCL inlines the terms, one kernel per pair and check
   for (auto& k : generic.launched_kernels()) CHECK(k.find("__") == std::string::npos);
-  if (!pocl(*rt)) return;
+  if (!test::is_pocl(*rt)) return;
   const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
   const int beckmann = term_index(find_term("beckmann"));
   const auto& launched = specialized.launched_kernels();
@@ -100,7 +98,7 @@ TEST_CASE("kernels specialized per term pair give the generic kernels' estimates
 TEST_CASE("a specialized kernel that evaluates another G than its pair's is caught (planted)",
           "[integrate][device][planted]") {
   Runtime* rt = test::device_runtime();
-  if (!rt || !pocl(*rt)) return;  // other drivers build no specializations
+  if (!rt || !test::is_pocl(*rt)) return;  // other drivers build no specializations
   const std::vector<IntegralSpec> specs = mixed_specs();
   TermSelection sel = three_of_each();
   sel.specialized = fast_path_pairs(specs);

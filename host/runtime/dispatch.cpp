@@ -128,7 +128,7 @@ std::string generate_dispatch(const TermSelection& s) {
     out += fmt::format("static inline real eval_model(int id, {}) {{\n  return {}(wi, wo, p);\n}}\n", mp,
                        s.models[0]->kernel_fn);
   } else {
-    out += fmt::format("static inline real eval_model(int id, {}) {{\n  switch (id) {{\n", mp);
+    out += fmt::format("static inline MFV_ALWAYS_INLINE real eval_model(int id, {}) {{\n  switch (id) {{\n", mp);
     for (auto* m : s.models) out += fmt::format("    case {}: return {}(wi, wo, p);\n", m->number(), m->kernel_fn);
     out += "  }\n  return NAN;\n}\n";
   }

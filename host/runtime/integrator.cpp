@@ -23,7 +23,8 @@ std::vector<std::string> catalog_sources(const std::vector<std::string>& then) {
 
 const std::vector<std::string>& integration_files() {
   static const std::vector<std::string> files = {"estimators.cl",   "albedo.cl",    "convergence.cl",
-                                                 "aniso_values.cl", "integrate.cl", "reciprocity.cl"};
+                                                 "aniso_values.cl", "integrate.cl", "model_values.cl",
+                                                 "reciprocity.cl"};
   return files;
 }
 
@@ -33,7 +34,8 @@ const std::vector<std::string>& integrate_sources() {
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
-  return build_integrate_program(rt, terms, generate_specializations(terms.specialized));
+  return build_integrate_program(
+      rt, terms, generate_specializations(terms.specialized) + generate_model_specializations(terms.models));
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms, const std::string& specializations) {
@@ -121,12 +123,21 @@ static const char* aniso_values_kernel(const IntegralSpec& s) {
   return nullptr;
 }
 
+// kernels/model_values.cl: iid albedo of a whole model of the catalog, isotropic
+// proposal, light in the xz-plane (width > 0 is checked by the caller).
+static const char* model_values_kernel(const IntegralSpec& s) {
+  const bool albedo = s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0;
+  if (!albedo || s.model >= MFV_MODEL_CATALOG_END || s.pd2 > 0 || s.phi_o != 0) return nullptr;
+  return "model_albedo_values";
+}
+
 // kernels/integrate.cl spec_is_microfacet: the integrals a *_values kernel
 // takes (one sample per work-item, vectorized on PoCL): iid albedo and
 // masking, stratified d_norm, mfv energy's RQMC albedo and E_avg; and their
 // anisotropic counterparts. Returns the kernel, or nullptr.
 static const char* values_kernel(const IntegralSpec& s) {
-  if (s.estimator != 0 || s.model != 0 || !(s.width > 0)) return nullptr;
+  if (s.estimator != 0 || !(s.width > 0)) return nullptr;
+  if (s.model != 0) return model_values_kernel(s);
   if (s.pd2 > 0) return aniso_values_kernel(s);
   if (s.phi_o != 0) return nullptr;
   if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
@@ -348,8 +359,14 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     }
     // sum_values takes runs of a multiple of 4 (per_item is even)
     const char* fast = fast_albedo_ && local_size_ % 2 == 0 ? values_kernel(specs[j]) : nullptr;
+    const std::string kernel = fast ? kernel_for(fast, specs[j]) : "";
+    // whole models only through their specialized kernels (PoCL): Intel's
+    // CPU runtime miscompiles the generic one (NaN and wrong albedos in
+    // tests/test_portability.cpp's closed_form run), as it does the
+    // whole-model agree kernels (kernels/common.cl)
+    if (fast && kernel == "model_albedo_values") fast = nullptr;
     if (fast) {
-      fast_at[{fast, kernel_for(fast, specs[j])}].push_back(j);
+      fast_at[{fast, kernel}].push_back(j);
     } else {
       general.push_back(specs[j]);
       general_at.push_back(j);

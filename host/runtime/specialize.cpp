@@ -26,6 +26,11 @@ std::string name_of(const std::string& base, int d, int g, bool by_g) {
   return by_g ? fmt::format("{}__d{}_g{}", base, d, g) : fmt::format("{}__d{}", base, d);
 }
 
+// kernels/model_values.cl, specialized per model
+constexpr const char* kModelAlbedo = "model_albedo_values";
+
+std::string model_kernel_name(int model) { return fmt::format("{}__m{}", kModelAlbedo, model); }
+
 const Specializable* find(const std::string& base) {
   for (const auto& k : kSpecializable)
     if (base == k.base) return &k;
@@ -54,7 +59,15 @@ std::string generate_specializations(const std::vector<TermPair>& pairs) {
   return out;
 }
 
+std::string generate_model_specializations(const std::vector<const Model*>& models) {
+  std::string out;
+  for (const Model* m : models)
+    out += fmt::format("MFV_MODEL_ALBEDO_VALUES({}, {})\n", model_kernel_name(m->number()), m->number());
+  return out;
+}
+
 std::string specialized_name(const std::string& base, const IntegralSpec& s) {
+  if (base == kModelAlbedo) return model_kernel_name(int(s.model));
   const Specializable* k = find(base);
   return k ? name_of(base, s.d, s.g, k->by_g) : base;
 }
