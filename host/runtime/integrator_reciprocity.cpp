@@ -1,0 +1,61 @@
+// Integrator's reciprocity launches (kernels/reciprocity.cl): one pair per
+// work-item, the worst asymmetry of each integral read back.
+#include "runtime/integrator.hpp"
+#include "runtime/work_group.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mfv {
+
+// One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each;
+// `k` writes one asymmetry per pair (kernels/reciprocity.cl).
+void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
+                          uint32_t pairs, uint64_t seed, WorstPairs& out) {
+  const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
+  const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
+  size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
+  while (pairs % local != 0) local /= 2;                       // a power of two that divides pairs
+  for (size_t first = 0; first < at.size(); first += per_launch) {
+    const size_t count = std::min(per_launch, at.size() - first);
+    std::vector<IntegralSpec> batch;
+    for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
+    cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
+    cl::Buffer ab = nan_buffer(CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));  // an unwritten pair is the worst
+    k.setArg(0, sb);
+    k.setArg(1, static_cast<cl_ulong>(seed));
+    k.setArg(2, ab);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    std::vector<float> a(count * pairs);
+    rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
+    for (size_t i = 0; i < count; ++i) {
+      float worst = 0;
+      uint32_t where = 0;
+      for (uint32_t p = 0; p < pairs; ++p) {
+        const float v = a[i * pairs + p];
+        if (!(v <= worst)) worst = std::isnan(v) ? INFINITY : v, where = p;
+      }
+      out.worst[at[first + i]] = worst;
+      out.at[at[first + i]] = where;
+    }
+  }
+}
+
+WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint32_t pairs, uint64_t seed) {
+  WorstPairs out{std::vector<float>(specs.size(), 0.0f), std::vector<uint32_t>(specs.size(), 0)};
+  if (specs.empty() || pairs == 0) return out;
+  cl::Kernel generic(program_, "reciprocity_values"), microfacet;
+  // not in user programs (mfv check) nor in float64 ones: asked by name, since
+  // a failed clCreateKernel is an API error to checkers such as Oclgrind
+  const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
+  if (names.find(";reciprocity_values_microfacet;") != std::string::npos)
+    microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
+  std::vector<size_t> fast, slow;
+  for (size_t i = 0; i < specs.size(); ++i)
+    (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
+  if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
+  if (!slow.empty()) worst_of(generic, specs, slow, pairs, seed, out);
+  return out;
+}
+
+}  // namespace mfv
