@@ -270,10 +270,12 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
   const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
   cl::Kernel k = launched(kernel);
-  // The device's and kernel's limits, at most 64: one work-group size for
-  // every point count of the default checks (PoCL compiles a kernel once
-  // per work-group size), a power of two that divides n.
-  size_t local = fit_local_size(k, rt_.device().device, 64);
+  // The device's and kernel's limits, a power of two that divides n. (At
+  // most 64 would give every point count of the default checks one
+  // work-group size, so that furnace and energy share PoCL's compile of a
+  // kernel, but small work-groups cost more per point: mfv bench --case took
+  // 1.5-1.7 ms to SE 1e-4 with 64 against 1.0-1.4 ms with up to 1024.)
+  size_t local = fit_local_size(k, rt_.device().device, 1024);
   while (n % local != 0) local /= 2;
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
