@@ -68,16 +68,8 @@ TEST_CASE("the albedo fast path gives the general kernel's estimates", "[integra
   }
   SECTION("stratified d_norm (d_norm_values + sum_pairs)") {
     std::vector<IntegralSpec> norms;
-    for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"ggx", 1.5}}) {
-      const Term& t = find_term(d);
-      MicrofacetIntegral m;
-      m.kind = IntegralKind::DNorm;
-      m.d = &t;
-      m.pd = native_from_alpha(t.roughness, a);
-      m.width = a;
-      norms.push_back(spec_of(m));
-      norms.back().stream = uint32_t(norms.size());
-    }
+    for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"ggx", 1.5}})
+      norms.push_back(test::d_norm_spec(d, a, uint32_t(norms.size() + 1)));
     in.set_albedo_fast_path(true);
     const auto fast = in.run(norms, 1 << 18, 5);
     in.set_albedo_fast_path(false);

@@ -39,16 +39,8 @@ std::vector<IntegralSpec> mixed_specs() {
     s.push_back(albedo_spec("phong", "smith_phong", "schlick", 0.8, 0.2, 0.5, 0.3, stream++, kind));
     s.push_back(albedo_spec("ggx", "smith_beckmann", "none", 0.5, 0.05, 1.0, 0.0, stream++, kind));
   }
-  for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"phong", 0.6}}) {
-    const Term& t = find_term(d);
-    MicrofacetIntegral m;
-    m.kind = IntegralKind::DNorm;
-    m.d = &t;
-    m.pd = native_from_alpha(t.roughness, a);
-    m.width = a;
-    s.push_back(spec_of(m));
-    s.back().stream = stream++;
-  }
+  for (auto [d, a] : {std::pair<const char*, double>{"ggx", 0.3}, {"beckmann", 1e-3}, {"phong", 0.6}})
+    s.push_back(test::d_norm_spec(d, a, stream++));
   return s;
 }
 
