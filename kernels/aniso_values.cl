@@ -95,26 +95,14 @@ static inline real aniso_sample_value(__global const IntegralSpec* s, uint index
 }
 
 #ifndef MFV_USER_BRDF
-// The fast paths (host: Integrator::run, values_kernel), as d_norm_values:
-// work-item (k, j) stores sample first + k of integral j, VALUE, an
-// expression of the integral s, its Philox draw r and the index i;
+// The fast paths (host: Integrator::run, values_kernel), as d_norm_values;
 // sum_pairs (d_norm: neighbouring strata) or sum_values reduce.
-#define MFV_ANISO_VALUES_KERNEL(NAME, VALUE)                                                                  \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                    \
-                     __global float* restrict values) {                                                       \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                        \
-    __global const IntegralSpec* s = specs + j;                                                               \
-    ulong i = first + k;                                                                                      \
-    uint4 r = mfv_philox(seed, s->stream, 0, i);                                                              \
-    values[j * get_global_size(0) + k] = (float)(VALUE);                                                      \
-  }
-
-MFV_ANISO_VALUES_KERNEL(d_norm_aniso_values, d_norm_aniso_value_c(s->d, s->pd, s->pd2, s->width, s->strata, (uint)i,
+MFV_SAMPLE_VALUES(d_norm_aniso_values, d_norm_aniso_value_c(s->d, s->pd, s->pd2, s->width, s->strata, (uint)(first + k),
                                                                   u01_open(r.z), u01_open(r.w)))
-MFV_ANISO_VALUES_KERNEL(masking_aniso_values,
+MFV_SAMPLE_VALUES(masking_aniso_values,
                         masking_aniso_value_c(s->d, s->g, s->pd, s->pd2, s->pg, s->pg2, s->width, s->cos_o, s->phi_o,
                                               u01_open(r.y), u01_open(r.z), u01_open(r.w)))
-MFV_ANISO_VALUES_KERNEL(albedo_aniso_values,
+MFV_SAMPLE_VALUES(albedo_aniso_values,
                         albedo_aniso_value_c(s->d, s->g, s->f, s->pd, s->pd2, s->pg, s->pg2, s->f0, s->f1, s->kd,
                                              s->width, s->cos_o, s->phi_o, u01_open(r.x), u01_open(r.y), u01_open(r.z),
                                              u01_open(r.w)))

@@ -10,6 +10,19 @@
 
 #include "abi/integral.h"  // IntegralSpec, MFV_CHECK_*, MFV_EST_*, MFV_SLOT_* (shared with the host)
 
+// MFV_SAMPLE_VALUES(name, VALUE): the shape of the one-sample-per-work-item
+// kernels (integrate.cl, aniso_values.cl, model_values.cl): work-item (k, j)
+// stores VALUE, an expression of s (integral j), r (its Philox draw at sample
+// first + k) and first + k; sum_values or sum_pairs reduce.
+#define MFV_SAMPLE_VALUES(NAME, VALUE)                                                                            \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
+    values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
+  }
+
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
 

@@ -166,15 +166,9 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* s
 // sum_values reduces them. Work-item (k, j) takes sample first + k of
 // integral j; the sample is the one `integrate` takes at that index, to the
 // bit (the same albedo_value_microfacet).
-__kernel void albedo_values(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
-                            __global float* restrict values) {
-  size_t k = get_global_id(0), j = get_global_id(1);
-  __global const IntegralSpec* s = specs + j;
-  uint4 r = mfv_philox(seed, s->stream, 0, first + k);
-  values[j * get_global_size(0) + k] =
-      (float)albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o,
-                                     u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w));
-}
+MFV_SAMPLE_VALUES(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd,
+                                                         s->width, s->cos_o, u01_open(r.x), u01_open(r.y),
+                                                         u01_open(r.z), u01_open(r.w)))
 #endif
 
 #ifndef MFV_USER_BRDF
@@ -206,17 +200,6 @@ MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
 // these kernels with the term ids D and G: s->d and s->g here, constants in
 // the kernels specialized per term pair (runtime/specialize.cpp), where the
 // select chains of eval_D and eval_G fold to the one term.
-// MFV_SAMPLE_VALUES(name, VALUE): work-item (k, j) stores VALUE, an
-// expression of s (integral j), r (its Philox draw at sample first + k) and
-// first + k; also kernels/model_values.cl.
-#define MFV_SAMPLE_VALUES(NAME, VALUE)                                                                            \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
-                     __global float* restrict values) {                                                          \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
-    __global const IntegralSpec* s = specs + j;                                                                  \
-    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
-    values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
-  }
 #define MFV_D_NORM_VALUES(NAME, D)                                                                                \
   MFV_SAMPLE_VALUES(NAME,                                                                                         \
                     d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w)))

@@ -3,12 +3,13 @@
 // (MFV_CHECK_ALBEDO, isotropic proposal, light in the xz-plane, one width
 // > 0; host: Integrator values_kernel) with one sample per work-item, stored
 // and reduced by sum_values, as albedo_values (kernels/integrate.cl).
-// MFV_MODEL_ALBEDO_VALUES(NAME, MODEL) defines the kernel for model id
-// MODEL: (int)s->model in the generic model_albedo_values, a constant in the
-// kernels specialized per model (runtime/specialize.cpp), where eval_model's
-// switch folds to the one model and PoCL vectorizes the work-group loop.
-// The host launches only the specialized kernels (Intel's CPU runtime
-// miscompiles the generic one: Integrator::run).
+// MFV_MODEL_ALBEDO_VALUES(NAME, MODEL) defines the kernel for the constant
+// model id MODEL, one per model (runtime/specialize.cpp, PoCL only), where
+// eval_model's switch folds to the one model and PoCL vectorizes the
+// work-group loop. There is no generic instance: Intel's CPU runtime
+// miscompiled one taking (int)s->model (NaN and wrong albedos in
+// tests/test_portability.cpp's closed_form run), so a program without the
+// specializations leaves whole models to `integrate` (Integrator::run).
 // Needs albedo.cl and integrate.cl (MFV_SAMPLE_VALUES) before it.
 
 #ifndef MFV_USER_BRDF
@@ -38,5 +39,4 @@ static inline MFV_ALWAYS_INLINE real model_albedo_value_c(int model, __global co
 
 #define MFV_MODEL_ALBEDO_VALUES(NAME, MODEL) \
   MFV_SAMPLE_VALUES(NAME, model_albedo_value_c(MODEL, s, u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w)))
-MFV_MODEL_ALBEDO_VALUES(model_albedo_values, (int)s->model)
 #endif

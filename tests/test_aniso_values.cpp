@@ -112,7 +112,7 @@ TEST_CASE("the anisotropic fast paths are checked against integrate (planted)", 
   // must see it, and so each kernel is the one Integrator::run launches
   for (const char* kernel : {"d_norm_aniso_values", "masking_aniso_values", "albedo_aniso_values"}) {
     CAPTURE(kernel);
-    const std::string at = std::string("MFV_ANISO_VALUES_KERNEL(") + kernel + ",";
+    const std::string at = std::string("MFV_SAMPLE_VALUES(") + kernel + ",";
     test::PlantedKernelDir dir("aniso_values.cl", at, at + " 1.001f * ");
     Runtime rt = dir.runtime();
     const Difference d = fast_against_general(rt, aniso_specs());

@@ -71,7 +71,7 @@ TEST_CASE("whole models' albedo kernels give integrate's estimates", "[integrate
     CHECK(std::fabs(a[i].stderr_ - b[i].stderr_) <= 1e-9 * std::max(1e-6, a[i].stderr_));
   }
   const auto& launched = in.launched_kernels();
-  CHECK(launched.count("model_albedo_values") == 0);  // the generic kernel is never launched (Integrator::run)
+  CHECK(launched.count("model_albedo_values") == 0);  // there is no generic kernel (kernels/model_values.cl)
   if (!test::is_pocl(*rt)) return;                    // nor are specializations built there
   for (const Model* m : sel.models) {
     INFO(m->id);

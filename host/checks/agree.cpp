@@ -8,6 +8,7 @@
 #include "runtime/dispatch.hpp"
 #include "runtime/integrator.hpp"
 #include "util/error.hpp"
+#include "util/parallel.hpp"
 #include "util/progress.hpp"
 
 #include <glm/geometric.hpp>
@@ -347,12 +348,9 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       rt.queue().enqueueReadBuffer(rec_buf, CL_TRUE, 0, n * kRecord * sizeof(float), rec.data());
       auto t1 = std::chrono::steady_clock::now();
       std::vector<Stats> part(threads);
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-          check_range(c, rec.data(), n * t / threads, n * (t + 1) / threads, opt.fp64, ftz_floor, part[t]);
-        });
-      for (auto& th : pool) th.join();
+      parallel_for(threads, threads, [&](size_t t) {
+        check_range(c, rec.data(), n * t / threads, n * (t + 1) / threads, opt.fp64, ftz_floor, part[t]);
+      });
       auto t2 = std::chrono::steady_clock::now();
       rep.kernel_seconds += std::chrono::duration<double>(t1 - t0).count();
       rep.reference_seconds += std::chrono::duration<double>(t2 - t1).count();

@@ -8,6 +8,7 @@
 #include "runtime/provenance.hpp"
 #include "util/error.hpp"
 #include "util/files.hpp"
+#include "util/parallel.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -165,13 +166,9 @@ void bench_reference(const BenchOptions& opt, unsigned threads, const std::vecto
     Timings tm;
     for (int rep_i = 0; rep_i < opt.repeats; ++rep_i)
       tm.time([&] {
-        std::vector<std::thread> pool;
-        for (unsigned t = 0; t < threads; ++t)
-          pool.emplace_back([&, t] {
-            for (size_t j = t; j < specs.size(); j += threads)
-              results[j] = reference_integral(name, specs[j], opt.ref_samples, opt.seed + rep_i);
-          });
-        for (auto& th : pool) th.join();
+        parallel_for(specs.size(), threads, [&](size_t j) {
+          results[j] = reference_integral(name, specs[j], opt.ref_samples, opt.seed + rep_i);
+        });
       });
     double checksum = 0;
     for (double v : results) checksum += v / results.size();

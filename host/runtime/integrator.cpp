@@ -362,11 +362,9 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     // sum_values takes runs of a multiple of 4 (per_item is even)
     const char* fast = fast_albedo_ && local_size_ % 2 == 0 ? values_kernel(specs[j]) : nullptr;
     const std::string kernel = fast ? kernel_for(fast, specs[j]) : "";
-    // whole models only through their specialized kernels (PoCL): Intel's
-    // CPU runtime miscompiles the generic one (NaN and wrong albedos in
-    // tests/test_portability.cpp's closed_form run), as it does the
-    // whole-model agree kernels (kernels/common.cl)
-    if (fast && kernel == "model_albedo_values") fast = nullptr;
+    // a path the program lacks goes to `integrate` (whole models have only
+    // their specialized kernels: kernels/model_values.cl)
+    if (fast && !kernel_names_.count(kernel)) fast = nullptr;
     if (fast) {
       fast_at[{fast, kernel}].push_back(j);
     } else {

@@ -47,8 +47,7 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   cl::Kernel generic(program_, "reciprocity_values"), microfacet;
   // not in user programs (mfv check) nor in float64 ones: asked by name, since
   // a failed clCreateKernel is an API error to checkers such as Oclgrind
-  const std::string names = ";" + program_.getInfo<CL_PROGRAM_KERNEL_NAMES>() + ";";
-  if (names.find(";reciprocity_values_microfacet;") != std::string::npos)
+  if (kernel_names_.count("reciprocity_values_microfacet"))
     microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
   std::vector<size_t> fast, slow;
   for (size_t i = 0; i < specs.size(); ++i)
