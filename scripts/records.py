@@ -245,29 +245,87 @@ def same_value(a, b, rtol):
     return a == b
 
 
-def differences(before, after, rtol):
-    """{'added': records, 'removed': records, 'changed': 'key: a -> b' lines}."""
+def rounding_bias(records, key):
+    """The float-rounding bias bound the run derived for the integral whose
+    estimate is `key` (its `bias`, less the model's documented tolerance,
+    which bounds the model against the truth, not one device against
+    another), or None where the record states none."""
+    rec = key[:-len(".estimate")]
+    bias = records.get(rec + ".bias")
+    if not isinstance(bias, (int, float)) or isinstance(bias, bool):
+        return None
+    group = f"run.groups{{check={records.get(rec + '.check')} model={records.get(rec + '.model')}}}"
+    tolerance, expected = records.get(group + ".tolerance", 0.0), records.get(rec + ".expected", 0.0)
+    if isinstance(tolerance, (int, float)) and isinstance(expected, (int, float)):
+        bias -= tolerance * abs(expected)
+    return max(bias, records.get(rec + ".rounding_bound", 0.0) or 0.0)
+
+
+def pooled_bias(records, key):
+    """A pooled mean deviation's bias bound, for groups without a tolerance (bias_bound is then rounding alone)."""
+    group = key[:-len(".pooled.mean_deviation")]
+    if records.get(group + ".tolerance") != 0.0:
+        return None
+    return records.get(group + ".pooled.bias_bound")
+
+
+def cross_device_bounds(before, after):
+    """{key: bound} for the numbers two devices must still agree on: each
+    estimate (and pooled mean deviation) lies within its derived rounding
+    bias of the exact value of the same samples on either device, so the two
+    differ by at most the sum of both biases. Every other number is a
+    statistic of the device's own rounding (ulps, worst relative errors,
+    standard errors of rounded values) and is compared in neither direction."""
+    bounds = {}
+    for key in before.keys() & after.keys():
+        if key.startswith("run.results{") and key.endswith("}.estimate"):
+            pair = rounding_bias(before, key), rounding_bias(after, key)
+        elif key.startswith("run.groups{") and key.endswith("}.pooled.mean_deviation"):
+            pair = pooled_bias(before, key), pooled_bias(after, key)
+        else:
+            continue
+        if None not in pair:
+            bounds[key] = pair[0] + pair[1]
+    return bounds
+
+
+def differences(before, after, rtol, bounds=None):
+    """{'added': records, 'removed': records, 'changed': 'key: a -> b' lines}.
+    `bounds` (another device): numbers are compared only where it names a
+    derived bound, within that bound; strings by their words, integers and
+    verdicts exactly. The device's own name is never a difference."""
+    def same(k):
+        a, b = before[k], after[k]
+        if bounds is None:
+            return same_value(a, b, rtol)
+        if isinstance(a, float) and isinstance(b, float) and not (math.isnan(a) or math.isnan(b)):
+            return k not in bounds or abs(a - b) <= bounds[k]
+        return same_value(a, b, math.inf)
+
+    keys_before, keys_after = before.keys() - {DEVICE_KEY}, after.keys() - {DEVICE_KEY}
     return {
-        "added": whole_records(after.keys() - before.keys(), before.keys()),
-        "removed": whole_records(before.keys() - after.keys(), after.keys()),
-        "changed": [f"{k}: {before[k]!r} -> {after[k]!r}" for k in sorted(before.keys() & after.keys())
-                    if not same_value(before[k], after[k], rtol)],
+        "added": whole_records(keys_after - keys_before, keys_before),
+        "removed": whole_records(keys_before - keys_after, keys_after),
+        "changed": [f"{k}: {before[k]!r} -> {after[k]!r}" for k in sorted(keys_before & keys_after) if not same(k)],
     }
 
 
 def report(before, after, rtol, limit):
     """Prints the differences of two record sets; returns (exit code, differences)."""
-    same_device = before.get(DEVICE_KEY) == after.get(DEVICE_KEY)
-    if not same_device:
-        # another CPU may round a builtin (exp, pow, sqrt) differently in its
-        # last bit: then only what the numbers decide is compared (verdicts,
-        # counts, exit codes, the words of every message), not the numbers
+    bounds = None
+    if before.get(DEVICE_KEY) != after.get(DEVICE_KEY):
+        # another CPU (another vector width, another builtin) rounds in other
+        # last bits: what the numbers decide is compared exactly (verdicts,
+        # counts, exit codes, the words of every message), estimates within
+        # their derived rounding bounds, and the rest not
+        bounds = cross_device_bounds(before, after)
         print(f"records: devices differ ({before.get(DEVICE_KEY)!r} vs {after.get(DEVICE_KEY)!r}): "
-              "comparing verdicts, counts and messages, not values")
-        rtol = math.inf
-    diff = differences(before, after, rtol)
+              f"comparing verdicts, counts and messages exactly and {len(bounds)} estimates within their "
+              "derived rounding bounds")
+    diff = differences(before, after, rtol, bounds)
+    tol = "derived bounds" if bounds is not None else f"rtol {rtol:g}"
     print(f"records: {len(before)} values before, {len(after)} after: {len(diff['added'])} records added, "
-          f"{len(diff['removed'])} removed, {len(diff['changed'])} values changed (rtol {rtol:g})")
+          f"{len(diff['removed'])} removed, {len(diff['changed'])} values changed ({tol})")
     for kind in ("added", "removed", "changed"):
         for line in diff[kind][:limit]:
             print(f"  {kind}: {line}")
@@ -293,7 +351,9 @@ def inserted_record(records):
 def selftest(golden):
     """compare must fail on a changed verdict, a value moved by 1e-4, a lost
     record and an inserted one (reported as one record added, nothing
-    changed), and pass a value moved within rounding; flatten must key a
+    changed), and pass a value moved within rounding; across two device
+    names it must pass the same findings and fail a changed verdict, count,
+    record or an estimate beyond its derived bound; flatten must key a
     list's records by identity, so an insertion shifts nothing."""
     base = json.load(gzip.open(golden, "rt"))
     verdict = next(k for k, v in base.items() if k.endswith(".verdict") and v == "pass")
@@ -306,6 +366,29 @@ def selftest(golden):
         "an estimate moved by 1e-6 (rounding)": (lambda r: r.__setitem__(estimate, r[estimate] * (1 + 1e-6)), 0,
                                                  (0, 0, 0)),
     }
+    # Another device (an AVX2 CPU against the golden's AVX-512 one): its name
+    # is no difference; verdicts, counts and words still are; an estimate may
+    # move within its derived rounding bound and not beyond; a statistic of
+    # the device's own rounding (a stability region's max_ulps) may move.
+    other = lambda r: r.__setitem__(DEVICE_KEY, "pthread-haswell-AMD EPYC | OpenCL 3.0 PoCL HSTR: pthread-haswell | x")
+    bounded = next(k for k, v in sorted(base.items()) if k.startswith("run.results{") and k.endswith(".estimate")
+                   and (rounding_bias(base, k) or 0) > 0)
+    bias = rounding_bias(base, bounded)
+    ulps = next(k for k, v in base.items() if k.endswith(".max_ulps") and isinstance(v, float) and v > 0)
+    count = next(k for k, v in base.items() if k.endswith(".failures") and isinstance(v, int))
+
+    def moved(key, by):
+        return lambda r: (other(r), r.__setitem__(key, r[key] + by))
+
+    cases.update({
+        "another device, the same findings": (other, 0, (0, 0, 0)),
+        "another device, a verdict changed": (lambda r: (other(r), r.__setitem__(verdict, "FAIL")), 1, (0, 0, 1)),
+        "another device, a count changed": (moved(count, 1), 1, (0, 0, 1)),
+        "another device, an estimate moved within its derived bound": (moved(bounded, 1.5 * bias), 0, (0, 0, 0)),
+        "another device, an estimate moved beyond its derived bound": (moved(bounded, 2.5 * bias), 1, (0, 0, 1)),
+        "another device, a rounding statistic moved": (moved(ulps, 3.0), 0, (0, 0, 0)),
+        "another device, a record lost": (lambda r: (other(r), r.pop(verdict)), 1, (0, 1, 0)),
+    })
     failed = 0
     for name, (change, want, counts) in cases.items():
         r = dict(base)  # values are scalars: a shallow copy is a copy
