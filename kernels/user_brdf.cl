@@ -9,6 +9,13 @@
 // params[k] is the k-th declared parameter; the host defines MFV_USER_HAS_D
 // and MFV_USER_HAS_G1 when the file has them.
 
+// The user's files end here: what kernels/user_prelude.cl pushed is popped.
+#pragma pop_macro("R")
+#pragma clang diagnostic pop
+#if MFV_USER_DIALECT != 0
+#pragma clang attribute pop
+#endif
+
 // MFV_USER_PARAMS (6) is defined in kernels/user_guard.cl. The arrays hold
 // one more slot, the poison slot that out-of-range reads are sent to; slots
 // past the declared MFV_USER_NPARAMS are NaN too, for reads through pointer

@@ -4,6 +4,7 @@
 #include "cli/report_errors.hpp"
 #include "cli/shared_options.hpp"
 #include "report/suite_report.hpp"
+#include "user/init_template.hpp"
 #include "user/time_limit.hpp"
 #include "user/user_check.hpp"
 #include "util/error.hpp"
@@ -15,10 +16,11 @@
 
 namespace mfv::cli {
 
-// Seconds. The default check takes about a minute on 2 CPU cores with PoCL
-// (README "mfv check"); ten times that is a hang, not a slow device. The
-// maximum keeps the limit a finite wait (a week).
-constexpr double kDefaultCheckTimeout = 600, kMaxCheckTimeout = 7 * 86400;
+// Seconds. Without --timeout, no limit on the whole check: each step has its
+// own, derived from a calibration launch (user/user_check.hpp,
+// kMinStepSeconds), which stops a BRDF that never returns within a minute.
+// The maximum keeps an explicit limit a finite wait (a week).
+constexpr double kMaxCheckTimeout = 7 * 86400, kDefaultCheckTimeout = kMaxCheckTimeout;
 
 namespace {
 
@@ -30,6 +32,7 @@ struct CheckCommand : SharedValues {
   UserParamArgs params;
   std::vector<std::string> map;
   std::vector<std::string> channels;
+  std::string init;
   double timeout = kDefaultCheckTimeout;
 
   void add_options(CLI::App* cmd) {
@@ -37,8 +40,15 @@ struct CheckCommand : SharedValues {
         "check your own BRDF code (an OpenCL C file) with the suite's checks; exit 0 when every check passes, 1 when "
         "one fails, 2 on bad input");
     cmd->add_option("--brdf", path,
-                    "OpenCL C file defining float3 brdf(float3 wi, float3 wo, const float* params) (optional D and G1)")
-        ->required();
+                    "file defining float3 brdf(float3 wi, float3 wo, const float* params) (optional D and G1), in "
+                    "OpenCL C, GLSL or HLSL (--dialect)");
+    cmd->add_option("--dialect", params.dialect,
+                    "glsl, hlsl or opencl (default: from the extension: .glsl .frag .fs glsl; .hlsl .fx hlsl; else "
+                    "opencl)");
+    cmd->add_option("--define", params.defines, "NAME=VALUE (or NAME) defined for the file, as -D");
+    cmd->add_option("--include", params.includes,
+                    "FILE read before --brdf, in the same dialect (an engine's shading file the adapter calls)");
+    cmd->add_option("--init", init, "glsl or hlsl: print a commented adapter template to start from, and exit");
     cmd->add_option("--param", params.params,
                     "NAME=VALUE fixes a parameter, NAME=LO:HI narrows (or declares) its range");
     cmd->add_option("--roughness", params.roughness,
@@ -56,11 +66,17 @@ struct CheckCommand : SharedValues {
         .budget(opt.scale, opt.family_alpha)
         .out("results.json, report.md and junit.xml");
     cmd->add_option("--timeout", timeout,
-                    "stop the check after this many seconds, exit 2 (default 600): user code may never return, and "
-                    "an OpenCL kernel cannot be interrupted");
+                    "stop the whole check after this many seconds, exit 2 (default: none; each step is stopped at "
+                    "100x a calibration launch of the code, at least 30 s: user code may never return, and an OpenCL "
+                    "kernel cannot be interrupted)");
   }
 
   int run(const Globals& g) {
+    if (!init.empty()) {
+      fmt::print("{}", init_template(init));
+      return 0;
+    }
+    if (path.empty()) throw Error("mfv check needs --brdf FILE (or --init glsl|hlsl for a template)");
     if (!(timeout > 0 && timeout <= kMaxCheckTimeout))
       throw Error(fmt::format("--timeout {} must be in (0, {:g}] seconds", timeout, kMaxCheckTimeout));
     apply_samples(opt.scale);

@@ -1,5 +1,7 @@
 #include "user/user_brdf.hpp"
 
+#include "user/source_reader.hpp"
+
 #include "catalog/roughness.hpp"
 #include "util/error.hpp"
 #include "util/parse.hpp"
@@ -50,25 +52,6 @@ const std::vector<Contract>& contracts() {
   return c;
 }
 
-// Comments blanked out (newlines kept, so offsets keep their line numbers).
-std::string strip_comments(const std::string& t) {
-  std::string s = t;
-  for (size_t i = 0; i + 1 < s.size(); ++i) {
-    if (s[i] == '/' && s[i + 1] == '/') {
-      while (i < s.size() && s[i] != '\n') s[i++] = ' ';
-    } else if (s[i] == '/' && s[i + 1] == '*') {
-      size_t j = i;
-      for (; j < s.size() && !(j >= i + 3 && s[j - 1] == '*' && s[j] == '/'); ++j)
-        if (s[j] != '\n') s[j] = ' ';
-      if (j < s.size()) s[j] = ' ';
-      i = j;
-    }
-  }
-  return s;
-}
-
-int line_of(const std::string& t, size_t pos) { return 1 + int(std::count(t.begin(), t.begin() + long(pos), '\n')); }
-
 std::vector<std::string> words(const std::string& s) {
   std::vector<std::string> out;
   std::string cur;
@@ -85,8 +68,9 @@ std::vector<std::string> words(const std::string& s) {
 }
 
 bool qualifier(const std::string& w) {
-  static const char* q[] = {"const",    "static",    "inline",  "__inline",      "restrict",    "__restrict",
-                            "volatile", "__private", "private", "__attribute__", "overloadable"};
+  static const char* q[] = {"const",    "static",    "inline",  "__inline",      "restrict",     "__restrict",
+                            "volatile", "__private", "private", "__attribute__", "overloadable", "in",
+                            "highp",    "mediump",   "lowp",    "precise"};
   return std::find(std::begin(q), std::end(q), w) != std::end(q);
 }
 
@@ -98,8 +82,8 @@ std::string param_type(const std::string& decl, std::string& name) {
   for (auto& w : words(decl)) {
     if (w == "*")
       ++stars;
-    else if (!qualifier(w))
-      ids.push_back(w);
+    else if (!qualifier(w) && !std::isdigit(static_cast<unsigned char>(w[0])))  // float p[6]: a pointer
+      ids.push_back(canonical_type(w));
   }
   name.clear();
   if (ids.size() >= 2) name = ids.back(), ids.pop_back();
@@ -110,12 +94,13 @@ std::string param_type(const std::string& decl, std::string& name) {
 
 struct Found {
   bool defined = false;
+  size_t unit = 0;  // the file that defines it (ReadSources::units)
   int line = 0;
   std::string params_name;  // name of its `const float*` argument
 };
 
 // Finds the definition of `c` in the comment-free text and checks its signature.
-Found find_function(const UserBrdf& u, const std::string& code, const Contract& c) {
+Found find_function(const std::string& path, const std::string& code, const Contract& c) {
   Found f;
   const std::regex def(std::string("([A-Za-z_][A-Za-z0-9_\\s\\*]*?)\\b") + c.name + "\\s*\\(([^()]*)\\)\\s*\\{");
   std::smatch m;
@@ -124,11 +109,11 @@ Found find_function(const UserBrdf& u, const std::string& code, const Contract& 
   f.line = line_of(code, size_t(m.position(0) + m.length(1)));
   std::string found = std::regex_replace(m.str(0).substr(0, m.str(0).size() - 1), std::regex("\\s+"), " ");
   auto bad = [&](const std::string& why) {
-    return Error(fmt::format("{}:{}: {} must be '{}'{}; found '{}'", u.path, f.line, c.name, c.text, why, found));
+    return Error(fmt::format("{}:{}: {} must be '{}'{}; found '{}'", path, f.line, c.name, c.text, why, found));
   };
   std::string ret;
   for (auto& w : words(m.str(1)))
-    if (!qualifier(w) && w != "__kernel" && w != "kernel") ret = w;
+    if (!qualifier(w) && w != "__kernel" && w != "kernel") ret = canonical_type(w);
   auto decls = split(m.str(2), ',');
   if (decls.size() == 1 && words(decls[0]) == std::vector<std::string>{"void"}) decls.clear();
   if (ret != c.ret || decls.size() != c.types.size()) throw bad("");
@@ -227,52 +212,29 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
   u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, Roughness::None, 0});
 }
 
-// `text` with every `NAME[k]` read (NAME: a function's params argument)
-// rewritten as `NAME[MFV_PARAM_INDEX(k)]`, found in the comment-free `code`
-// (same offsets); lines are kept, so build logs still point at the file.
-std::string guard_param_reads(const std::string& text, const std::string& code, const std::vector<std::string>& names) {
-  std::vector<std::pair<size_t, size_t>> spans;  // after '[', at the matching ']'
-  for (auto& name : names) {
-    const std::regex use("\\b" + name + "\\s*\\[");
-    for (auto it = std::sregex_iterator(code.begin(), code.end(), use); it != std::sregex_iterator(); ++it) {
-      size_t open = size_t(it->position(0) + it->length(0)), depth = 1, close = open;
-      for (; close < code.size() && depth > 0; ++close) depth += code[close] == '[' ? 1 : code[close] == ']' ? -1 : 0;
-      if (depth == 0) spans.push_back({open, close - 1});
-    }
-  }
-  std::sort(spans.begin(), spans.end());
-  std::string out;
-  size_t at = 0;
-  for (auto& [open, close] : spans) {
-    if (open < at) continue;  // nested in a span already rewritten: guarded by the outer read's rewrite below
-    out += text.substr(at, open - at) + "MFV_PARAM_INDEX(" +
-           guard_param_reads(text.substr(open, close - open), code.substr(open, close - open), names) + ")";
-    at = close;
-  }
-  return out + text.substr(at);
-}
-
 }  // namespace
 
 UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   UserBrdf u;
   u.path = path;
-  std::ifstream in(path);
-  if (!in || std::filesystem::is_directory(path)) throw Error(fmt::format("--brdf {}: cannot read that file", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  u.text = ss.str();
   u.name = std::filesystem::path(path).stem().string();
+  u.dialect = dialect_of(args.dialect, path);
+  ReadOptions ropt;
+  for (auto& d : args.defines) {
+    auto eq = d.find('=');
+    std::string name = d.substr(0, eq);
+    if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]*")))
+      throw Error(fmt::format("--define {}: give NAME=VALUE or NAME (NAME an identifier)", d));
+    ropt.defines[name] = eq == std::string::npos ? "1" : d.substr(eq + 1);
+  }
+  ropt.includes = args.includes;
+  ReadSources src = read_sources(path, ropt);
+  const ReadUnit& main = src.units[src.top.back()];
 
-  // Declarations, in file order (their order is the params[] index).
-  std::istringstream lines(u.text);
-  int n = 0;
-  for (std::string line; std::getline(lines, line);) {
-    ++n;
-    static const std::regex directive("^\\s*//\\s*mfv:\\s*(.*?)\\s*$");
-    std::smatch m;
-    if (!std::regex_match(line, m, directive)) continue;
-    UserParam p = parse_declaration(u, n, m.str(1));
+  // Declarations, in file order (their order is the params[] index): the
+  // `// mfv:` line comments of the main file's active code.
+  for (auto& [n, body] : main.mfv_lines) {
+    UserParam p = parse_declaration(u, n, body);
     if (find_param(u, p.name)) throw Error(fmt::format("{}:{}: parameter {} is declared twice", path, n, p.name));
     u.params.push_back(p);
   }
@@ -303,37 +265,53 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
     throw Error(
         fmt::format("{} declares {} parameters; mfv check passes at most {}", path, u.params.size(), kUserMaxParams));
 
-  // Functions and signatures.
-  const std::string code = strip_comments(u.text);
-  Found fb = find_function(u, code, contracts()[0]);
+  // Functions and signatures, in whichever file defines them.
+  auto find = [&](const Contract& c) {
+    for (size_t i = 0; i < src.units.size(); ++i) {
+      Found f = find_function(src.units[i].path, src.units[i].code, c);
+      if (f.defined) {
+        f.unit = i;
+        return f;
+      }
+    }
+    return Found{};
+  };
+  Found fb = find(contracts()[0]);
   if (!fb.defined)
     throw Error(fmt::format("{} defines no '{}' (the function mfv check verifies; see docs/cli/check.md)", path,
                             contracts()[0].text));
-  Found fd = find_function(u, code, contracts()[1]);
-  Found fg = find_function(u, code, contracts()[2]);
+  Found fd = find(contracts()[1]);
+  Found fg = find(contracts()[2]);
   u.has_d = fd.defined;
   u.has_g1 = fg.defined;
-  std::vector<std::string> names;
+  UserNames names = user_names(src, u.dialect);
   for (const Found* f : {&fb, &fd, &fg})
-    if (f->defined && !f->params_name.empty() && std::find(names.begin(), names.end(), f->params_name) == names.end())
-      names.push_back(f->params_name);
-  u.guarded_text = guard_param_reads(u.text, code, names);
+    if (f->defined && !f->params_name.empty()) names.guarded.insert(f->params_name);
   // Every params[k] the code reads must be declared.
   for (const Found* f : {&fb, &fd, &fg}) {
     if (!f->defined || f->params_name.empty()) continue;
+    const std::string& code = src.units[f->unit].code;
     const std::regex use("\\b" + f->params_name + "\\s*\\[\\s*([0-9]+)\\s*\\]");
     for (auto it = std::sregex_iterator(code.begin(), code.end(), use); it != std::sregex_iterator(); ++it) {
       size_t k = std::stoul((*it)[1].str());
       if (k < u.params.size()) continue;
+      // `float params[6]` in a parameter list declares, it does not read
+      size_t w = size_t(it->position(0));
+      while (w > 0 && std::isspace(static_cast<unsigned char>(code[w - 1]))) --w;
+      if (w >= 5 && code.compare(w - 5, 5, "float") == 0) continue;
       std::string names;
       for (auto& p : u.params) names += (names.empty() ? "" : ", ") + p.name;
       throw Error(fmt::format(
           "{}:{}: the code reads {}[{}] but {} parameter{} declared{}{}{}; add "
           "'// mfv: param NAME LO HI default V' or pass --param NAME=LO:HI",
-          path, line_of(code, size_t(it->position(0))), f->params_name, k, u.params.size(),
+          src.units[f->unit].path, line_of(code, size_t(it->position(0))), f->params_name, k, u.params.size(),
           u.params.size() == 1 ? " is" : "s are", names.empty() ? "" : " (", names, names.empty() ? "" : ")"));
     }
   }
+  // The sources the compiler reads, translated line for line.
+  std::vector<std::string> texts;
+  for (size_t i = 0; i < src.units.size(); ++i) texts.push_back(translate(src, i, u.dialect, names));
+  for (size_t i : src.top) u.sources.push_back({src.units[i].path, with_includes(src.units, texts, i)});
   return u;
 }
 

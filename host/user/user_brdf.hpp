@@ -5,6 +5,7 @@
 #pragma once
 
 #include "catalog/catalog.hpp"
+#include "user/dialect.hpp"
 
 #include <string>
 #include <vector>
@@ -24,9 +25,17 @@ struct UserParam {
   std::vector<double> ends() const;  // lo and hi (one value if fixed or lo == hi)
 };
 
+// One source the compiler reads (an --include file, then the main file),
+// translated from its dialect, each params[k] read bounds-checked
+// (kernels/user_guard.cl), with its #include "FILE"s in place.
+struct UserSource {
+  std::string name, text;
+};
+
 struct UserBrdf {
-  std::string path, name, text;  // name: the file's stem, used as the model name
-  std::string guarded_text;      // text with each params[k] read bounds-checked (kernels/user_guard.cl)
+  std::string path, name;  // name: the file's stem, used as the model name
+  Dialect dialect = Dialect::OpenCL;
+  std::vector<UserSource> sources;  // in the order the compiler reads them, the main file last
   bool has_d = false, has_g1 = false;
   std::vector<UserParam> params;                          // params[k] of the contract
   int roughness = -1;                                     // index of the width parameter, -1: none declared
@@ -38,8 +47,11 @@ struct UserBrdf {
 constexpr size_t kUserMaxParams = 6;
 
 struct UserParamArgs {
-  std::vector<std::string> params;  // --param NAME=V or NAME=LO:HI
-  std::string roughness;            // --roughness NAME (width = value) or NAME^2 (width = value²)
+  std::vector<std::string> params;    // --param NAME=V or NAME=LO:HI
+  std::string roughness;              // --roughness NAME (width = value) or NAME^2 (width = value²)
+  std::string dialect;                // --dialect glsl|hlsl|opencl ("": from the extension)
+  std::vector<std::string> defines;   // --define NAME=VALUE (or NAME: 1)
+  std::vector<std::string> includes;  // --include FILE, read before the file
 };
 
 // Reads and checks FILE against the contract; throws mfv::Error (one line,

@@ -3,6 +3,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
+#include "user/time_limit.hpp"
 #include "user/user_detail.hpp"
 #include "util/error.hpp"
 
@@ -42,7 +43,8 @@ using namespace user_detail;
 // integrate.cl with the user's file and the adapters after it: one build for
 // every check. A compile error leads with its first line in the user's file.
 cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
-  std::vector<std::string> defines = {"MFV_USER_BRDF", fmt::format("MFV_USER_NPARAMS={}", u.params.size())};
+  std::vector<std::string> defines = {"MFV_USER_BRDF", fmt::format("MFV_USER_NPARAMS={}", u.params.size()),
+                                      fmt::format("MFV_USER_DIALECT={}", int(u.dialect))};
   if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
   if (u.has_d) defines.push_back("MFV_USER_HAS_D");
   if (u.has_g1) defines.push_back("MFV_USER_HAS_G1");
@@ -50,11 +52,12 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
     // no catalog terms or models: the user's names must not clash with them
     std::vector<std::string> files = {"common.cl", "rng.cl", kDispatchBefore};
     for (auto& f : integration_files()) files.push_back(f);
-    for (const char* f : {"user_guard.cl", "user_brdf.cl"}) files.push_back(f);
-    return rt.build(files, defines, generate_dispatch(TermSelection{}), kDispatchBefore,
-                    {{u.path, u.guarded_text, "user_brdf.cl"}});
+    for (const char* f : {"user_guard.cl", "user_prelude.cl", "user_brdf.cl"}) files.push_back(f);
+    std::vector<Runtime::ExtraSource> sources;
+    for (auto& s : u.sources) sources.push_back({s.name, s.text, "user_brdf.cl"});
+    return rt.build(files, defines, generate_dispatch(TermSelection{}), kDispatchBefore, sources);
   } catch (const Error& e) {
-    std::string log = e.what(), first;
+    std::string log = user_terms(e.what()), first;
     size_t errors = 0;
     std::istringstream lines(log);
     // clang writes "FILE:L:C: error: what"; PoCL's log, "error: FILE:L:C: what"
@@ -63,7 +66,8 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
       if (!pocl && line.find(": error: ") == std::string::npos) continue;
       ++errors;
       if (pocl) line = line.substr(7);
-      if (first.empty() && line.rfind(u.path + ":", 0) == 0) first = line;
+      for (auto& s : u.sources)
+        if (first.empty() && line.rfind(s.name + ":", 0) == 0) first = line;
     }
     if (first.empty()) first = fmt::format("{} does not compile", u.path);
     throw Error(fmt::format("{} ({} error{}; the build log follows)\n{}", first, errors, errors == 1 ? "" : "s", log));
@@ -219,6 +223,22 @@ void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOpti
   record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
+// Seconds per evaluation of the user's brdf, from a small launch of the
+// furnace integrand at the defaults (itself under the minimum step limit).
+double calibrate(Integrator& in, const UserBrdf& u) {
+  constexpr uint64_t kSamples = 4096;
+  constexpr int kIntegrals = 8;
+  std::vector<IntegralSpec> specs;
+  for (int k = 0; k < kIntegrals; ++k) {
+    specs.push_back(user_spec(u, IntegralKind::Albedo, u.defaults(), 0.125 * (k + 1), 0));
+    specs.back().stream = uint32_t(k);
+  }
+  watchdog_arm(kMinStepSeconds, "a calibration launch of the BRDF");
+  auto t0 = Clock::now();
+  in.run(specs, kSamples, 1);
+  return since(t0) / double(kSamples * kIntegrals);
+}
+
 }  // namespace
 
 SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<Claim>& claim,
@@ -261,12 +281,28 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   cl::Program prog = build_user_program(rt, u);
   rep.build_seconds = rt.build_stats().seconds - b0;
   Integrator in(rt, prog);
+  // Each step's time limit (user/time_limit.hpp): 100x what a calibration
+  // launch of the same code measures per evaluation, at least 30 s, so a
+  // BRDF that never returns is stopped within a minute (docs/cli/check.md).
+  const double per_eval = calibrate(in, u);
+  auto arm = [&](double evals, const std::string& step) {
+    watchdog_arm(std::max(kMinStepSeconds, 100.0 * per_eval * evals), step);
+  };
   uint32_t stream = 0;
-  for (auto& plan : make_plans(u, opt, checks)) run_plan(in, plan, sopt, stream, rep);
+  for (auto& plan : make_plans(u, opt, checks)) {
+    arm(double(plan.samples) * double(plan.specs.size()), "the " + plan.check + " integrals");
+    run_plan(in, plan, sopt, stream, rep);
+  }
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
+  // pointwise steps: a few thousand evaluations per setting (a bound of their count)
+  const double settings = double(corners(u, u.defaults()).size()) * 16.0 * double(opt.channels.size());
+  arm(settings * 4096 * 2, "the reciprocity pairs");
   if (has("reciprocity")) run_user_reciprocity(in, u, opt, rep);
+  arm(settings * 4096, "the finite census");
   if (has("finite")) run_census(rt, prog, u, opt, rep);
+  arm(settings * 4096, "the agreement");
   if (has("agree")) run_agreement(rt, prog, u, *claim, opt, rep);
+  watchdog_pause();
   judge(rep, sopt);
   return rep;
 }

@@ -35,6 +35,10 @@ constexpr double kAgreeBound = 1e-4;
 // form v.h as |wi + wo|/2, are held to kReciprocityBound (1e-4).
 constexpr double kUserReciprocityBound = 1e-2;
 
+// The least time limit of a step of mfv check (user/time_limit.hpp): a BRDF
+// that never returns is stopped after between this and twice this.
+constexpr double kMinStepSeconds = 30;
+
 // Throws mfv::Error (exit 2) for a check the file cannot run or a build failure.
 SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<Claim>& claim,
                            const UserCheckOptions& opt);

@@ -1,0 +1,175 @@
+// mfv check --dialect glsl|hlsl: engine-style shading files (examples/shading/,
+// written for these tests in the way real-time engines write theirs) compile
+// as they are behind an adapter of a few lines and pass every check; each
+// named plant (a defect engines have shipped) fails the check it breaks.
+#include "run_mfv.hpp"
+#include "test_files.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <regex>
+#include <string>
+
+using namespace mfv::test;
+
+namespace {
+
+const std::string kShading = std::string(MFV_KERNEL_SOURCE_DIR) + "/../examples/shading/";
+
+bool has_line(const std::string& out, const std::string& verdict, const std::string& check) {
+  return std::regex_search(out, std::regex("(^|\n)" + verdict + " +" + check + " "));
+}
+
+bool one_error_line(const Run& r) {
+  return r.code == 2 && r.out.rfind("mfv: error: ", 0) == 0 && r.out.find('\n') == r.out.size() - 1;
+}
+
+// A named defect: in FILE, text FROM becomes TO.
+struct Plant {
+  const char* name;
+  const char* file;
+  const char* from;
+  const char* to;
+};
+
+const Plant kPlants[] = {
+    // GGX D without 1/pi integrates to pi
+    {"glsl_missing_pi", "engine_brdf.glsl", "return 1.0 / (PI * a2 * k * k);", "return 1.0 / (a2 * k * k);"},
+    {"hlsl_missing_pi", "engine_brdf.hlsl", "return rcp(PI * a2 * k * k);", "return rcp(a2 * k * k);"},
+    // a floor inside D's denominator (a fix for fp16 overflow): the peak of a narrow lobe is cut
+    {"glsl_floor_in_d", "engine_brdf.glsl", "return 1.0 / (PI * a2 * k * k);",
+     "return 1.0 / max(PI * a2 * k * k, 1e-4);"},
+    {"hlsl_floor_in_d", "engine_brdf.hlsl", "return rcp(PI * a2 * k * k);", "return rcp(max(PI * a2 * k * k, 1e-4));"},
+    // the view cosine clamped (against grazing artefacts) but not the light's: not reciprocal
+    {"glsl_view_clamp", "engine_brdf.glsl", "dots = LightDots(l.z, v.z,", "dots = LightDots(l.z, max(v.z, 0.1),"},
+    {"hlsl_view_clamp", "engine_brdf.hlsl", "Context.NoV = V.z;", "Context.NoV = max(V.z, 0.1);"},
+    // Neubelt's sheen visibility used down to sheen roughness 0.07, where it gains energy (E ~ 1.6 at grazing views)
+    {"glsl_sheen_gains", "sheen.glsl", "sheenRoughness 0.3 1", "sheenRoughness 0.07 1"},
+};
+
+const Plant& plant(const std::string& name) {
+  for (auto& p : kPlants)
+    if (name == p.name) return p;
+  throw std::runtime_error("no plant " + name);
+}
+
+// The shading file with the plant in place, in the scratch folder (same name).
+std::string planted(const Scratch& s, const Plant& p) {
+  std::string text = slurp(kShading + p.file);
+  size_t at = text.find(p.from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, std::string(p.from).size(), p.to);
+  return s.file(p.file, text);
+}
+
+std::string engine_args(const std::string& engine, const std::string& dialect) {
+  return "--include " + engine + " --brdf " + kShading + "check_engine." + dialect;
+}
+
+}  // namespace
+
+TEST_CASE("An engine-style GLSL and HLSL shading file passes every check behind its adapter",
+          "[device][check][cli][dialect]") {
+  for (const char* d : {"glsl", "hlsl"}) {
+    Run r = run_mfv("check " + engine_args(kShading + "engine_brdf." + d, d) +
+                    " --as ggx/smith_ggx_correlated/schlick --map alpha=roughness^2 --samples 512");
+    INFO(d << ": " << r.out);
+    CHECK(r.code == 0);
+    for (auto* c : {"d_norm", "furnace", "energy", "reciprocity", "finite", "agree"}) CHECK(has_line(r.out, "pass", c));
+  }
+  Run sheen = run_mfv("check --brdf " + kShading + "sheen.glsl");
+  INFO(sheen.out);
+  CHECK(sheen.code == 0);
+}
+
+TEST_CASE("Each planted engine defect fails the check it breaks, in GLSL and in HLSL",
+          "[device][check][cli][dialect][planted]") {
+  const Scratch s("mfv_dialect");
+  for (const char* d : {"glsl", "hlsl"}) {
+    const std::string dl = d;
+    Run pi =
+        run_mfv("check " + engine_args(planted(s, plant(dl + "_missing_pi")), d) + " --check d_norm --samples 256");
+    INFO(pi.out);
+    CHECK(pi.code == 1);
+    CHECK(has_line(pi.out, "FAIL", "d_norm"));
+    CHECK(pi.out.find("3.14159") != std::string::npos);
+    Run fl = run_mfv("check " + engine_args(planted(s, plant(dl + "_floor_in_d")), d) + " --check d_norm");
+    INFO(fl.out);
+    CHECK(fl.code == 1);
+    CHECK(has_line(fl.out, "FAIL", "d_norm"));
+    Run vc = run_mfv("check " + engine_args(planted(s, plant(dl + "_view_clamp")), d) + " --check reciprocity");
+    INFO(vc.out);
+    CHECK(vc.code == 1);
+    CHECK(has_line(vc.out, "FAIL", "reciprocity"));
+  }
+}
+
+TEST_CASE("An energy-gaining sheen lobe fails the furnace at default settings on seeds 1 to 3",
+          "[device][check][cli][dialect][planted]") {
+  const Scratch s("mfv_dialect");
+  const std::string file = planted(s, plant("glsl_sheen_gains"));
+  for (int seed : {1, 2, 3}) {
+    Run r = run_mfv("check --brdf " + file + " --check furnace --seed " + std::to_string(seed));
+    INFO(seed << ": " << r.out);
+    CHECK(r.code == 1);
+    CHECK(has_line(r.out, "FAIL", "furnace"));
+  }
+}
+
+TEST_CASE("The --init templates check clean as they are", "[device][check][cli][dialect]") {
+  const Scratch s("mfv_dialect");
+  for (const char* d : {"glsl", "hlsl"}) {
+    Run t = run_mfv(std::string("check --init ") + d);
+    REQUIRE(t.code == 0);
+    const std::string file = s.file(std::string("adapter.") + d, t.out);
+    Run r = run_mfv("check --brdf " + file + " --check furnace reciprocity --samples 256");
+    INFO(d << ": " << r.out);
+    CHECK(r.code == 0);
+  }
+  CHECK(one_error_line(run_mfv("check --init cuda")));
+}
+
+TEST_CASE("Dialect errors name the user's file, line and construct, in the user's names", "[check][cli][dialect]") {
+  const Scratch s("mfv_dialect");
+  const std::string param = "// mfv: param alpha 0.01 1 default 0.3 roughness\n";
+  // an undefined configuration macro is an error, not a silent low-quality branch
+  const std::string undef = s.file("undef.glsl", param +
+                                                     "#if QUALITY == HIGH\nvec3 brdf(vec3 wi, vec3 wo, float p[6]) "
+                                                     "{ return vec3(p[0]); }\n#endif\n");
+  Run u = run_mfv("check --brdf " + undef);
+  CHECK(one_error_line(u));
+  CHECK(u.out.find("undef.glsl:2: #if reads 'QUALITY'") != std::string::npos);
+  CHECK(u.out.find("--define QUALITY=VALUE") != std::string::npos);
+  // matrices are refused by name and line
+  const std::string mat = s.file(
+      "mat.glsl", param + "vec3 brdf(vec3 wi, vec3 wo, float p[6]) {\n  mat3 m = mat3(1.0);\n  return m * wi;\n}\n");
+  Run m = run_mfv("check --brdf " + mat);
+  CHECK(one_error_line(m));
+  CHECK(m.out.find("mat.glsl:3: 'mat3'") != std::string::npos);
+  // a compile error points at the user's line, in the user's names
+  const std::string bad = s.file("bad.hlsl", param +
+                                                 "float Helper(float x) { return x; }\n"
+                                                 "float3 brdf(float3 wi, float3 wo, float p[6]) {\n"
+                                                 "  return Helper(wi) * undeclared;\n}\n");
+  Run b = run_mfv("check --brdf " + bad);
+  CHECK(b.code == 2);
+  CHECK(b.out.rfind("mfv: error: " + bad + ":4:", 0) == 0);
+  CHECK(b.out.find("mfv_u_") == std::string::npos);
+  CHECK(one_error_line(run_mfv("check --brdf " + bad + " --dialect fortran")));
+}
+
+TEST_CASE("A D that integrates to 2 behind a /* */ comment fails d_norm, never skipped", "[device][check][cli]") {
+  const Scratch s("mfv_dialect");
+  std::string text = slurp(kBrdfExamples + "ggx.cl");
+  const std::string from = "return 1.0f / (M_PI_F * a2 * k * k);";
+  REQUIRE(text.find(from) != std::string::npos);
+  text.replace(text.find(from), from.size(), "return 2.0f / (M_PI_F * a2 * k * k);");
+  text = "/* a block comment\n   before everything */\n" + text;
+  const std::string d = "float D(float3 m";
+  text.insert(text.find(d), "/* and one between brdf's helpers and D */\n");
+  Run r = run_mfv("check --brdf " + s.file("ggx_twice.cl", text) + " --check d_norm --samples 256");
+  INFO(r.out);
+  CHECK(r.code == 1);
+  CHECK(has_line(r.out, "FAIL", "d_norm"));
+  CHECK(r.out.find("2.0000") != std::string::npos);
+}
