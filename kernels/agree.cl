@@ -34,7 +34,7 @@ static inline real eval_record(int mode, int d, int g, int f, __global const flo
   // unit only to ~1e-8, far above double rounding, so it is made unit first
   // (the reference does the same in double); float builds take it as it is.
 #ifdef MFV_DOUBLE
-  if (mode == PW_MODEL || mode == PW_BRDF_ANISO || mode == PW_BRDF) {
+  if (mode == PW_MODEL || mode == PW_BRDF_ANISO || mode == PW_BRDF || mode == PW_BTDF) {
     real3 wi = unit_exact((real3)(r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z]));
     real3 wo = unit_exact((real3)(r[PW_WO_X], r[PW_WO_Y], r[PW_WO_Z]));
     r[PW_WI_X] = wi.x, r[PW_WI_Y] = wi.y, r[PW_WI_Z] = wi.z;
@@ -53,21 +53,28 @@ static inline void store_value(__global float* r, real value) {
   r[PW_VALUE_LO] = isfinite(value) ? (float)(value - (real)hi) : 0.0f;
 }
 
-// The directions of one record: view cosθ = u² (dense at grazing); half
-// vector θ = (π/2) u³ (dense at the normal, where D peaks); light = view
-// mirrored about the half vector (it may fall below the horizon: terms must
-// return 0 there). Writes the geometry slots of the mode.
-static inline void draw_geometry(int mode, uint4 rg, uint4 rk, __global float* r) {
+// A direction with cosθ = u² (dense at grazing) and a facet with θ = (π/2) u³
+// (dense at the normal, where D peaks), turned by π about the normal onto the
+// direction's side if it faced away (then w·m >= 2 (n·w)(n·m)).
+static inline void draw_dir_facet(uint4 rg, real3* w, real3* m) {
   real co = sqr(u01_open(rg.x));
   real so = safe_sqrt(R(1.0) - co * co);
   real po = R(2.0) * MFV_PI * u01_open(rg.y);
   real th = R(0.5) * MFV_PI * pow(u01_open(rg.z), R(3.0));
   real ph = R(2.0) * MFV_PI * u01_open(rg.w);
-  real3 wo = (real3)(so * cos(po), so * sin(po), co);
-  real3 h = (real3)(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
-  // Keep the half vector on the view's side (v·h >= 0), the terms' domain:
-  // turning it by π about the normal makes v·h >= 2 (n·v)(n·h).
-  if (dot(wo, h) < R(0.0)) h = (real3)(-h.x, -h.y, h.z);
+  *w = (real3)(so * cos(po), so * sin(po), co);
+  *m = (real3)(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+  if (dot(*w, *m) < R(0.0)) *m = (real3)(-(*m).x, -(*m).y, (*m).z);
+}
+
+// The directions of one record: view cosθ = u² (dense at grazing); half
+// vector θ = (π/2) u³ (dense at the normal, where D peaks); light = view
+// mirrored about the half vector (it may fall below the horizon: terms must
+// return 0 there). Writes the geometry slots of the mode.
+static inline void draw_geometry(int mode, uint4 rg, uint4 rk, __global float* r) {
+  // the half vector on the view's side (v·h >= 0): the terms' domain
+  real3 wo, h;
+  draw_dir_facet(rg, &wo, &h);
   // One D record in eight takes its half vector below the horizon (n.h < 0),
   // where every D is 0 (the χ+(m·n) of Walter et al. 2007 eq. 33): a D that
   // drops its horizon test disagrees with the reference there.
@@ -84,6 +91,31 @@ static inline void draw_geometry(int mode, uint4 rg, uint4 rk, __global float* r
   if (mode == PW_G1_ANISO) { r[PW_AUX_X] = wo.x; r[PW_AUX_Y] = wo.y; }
 }
 
+// The directions of a BTDF record: the incident i with cosθ = u² (dense at
+// grazing), a facet m with θ = (π/2) u³ on i's side, o = i refracted through m
+// at the record's eta (Walter et al. 2007 eq. 40; near the critical angle k ->
+// 0), straight through under total internal reflection (h_t degenerate where
+// eta ~ 1). One record in eight takes o uniform on the other side (any pair),
+// one in sixteen on i's side (the BTDF is 0 there). Half the records mirror
+// both through the surface: light from below, relative index 1/eta.
+static inline void draw_btdf(uint4 rg, uint4 re, real eta, __global float* r) {
+  real3 wi, m;
+  draw_dir_facet(rg, &wi, &m);
+  bool below = (re.w & 1u) != 0u;
+  real q = below ? eta : R(1.0) / eta;  // η_i / η_o
+  real c = dot(wi, m);
+  real k = R(1.0) + q * q * (c * c - R(1.0));
+  real3 wo = k >= R(0.0) ? (q * c - sqrt(k)) * m - q * wi : -wi;
+  uint cls = (re.w >> 1) & 15u;
+  if (cls <= 2u) {  // 3 in 16: o uniform in cosine, on the other side (2 in 16) or on i's (1 in 16)
+    real co = u01_open(re.x), so = safe_sqrt(R(1.0) - co * co), po = R(2.0) * MFV_PI * u01_open(re.y);
+    wo = (real3)(so * cos(po), so * sin(po), cls == 2u ? co : -co);
+  }
+  if (below) wi = -wi, wo = -wo;
+  r[PW_WI_X] = wi.x; r[PW_WI_Y] = wi.y; r[PW_WI_Z] = wi.z;
+  r[PW_WO_X] = wo.x; r[PW_WO_Y] = wo.y; r[PW_WO_Z] = wo.z;
+}
+
 __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
                          __global const float* ranges, __global float* rec) {
   size_t i = get_global_id(0);
@@ -95,7 +127,6 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
   // Inputs are written to the float record first and evaluated from there,
   // so the value belongs to exactly the recorded numbers.
   __global float* r = rec + i * PW_RECORD;
-  draw_geometry(mode, rg, rk, r);
   r[PW_P0 + 0] = draw_param(ranges, 0, u01_open(rp.x));
   r[PW_P0 + 1] = draw_param(ranges, 1, u01_open(rp.y));
   r[PW_P0 + 2] = draw_param(ranges, 2, u01_open(rp.z));
@@ -109,6 +140,11 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
              : mode == PW_D_ANISO || mode == PW_BRDF_ANISO ? draw_param(ranges, 0, u01_open(rk.z))
              : mode == PW_MODEL && (rk.w & 1u) ? draw_param(ranges, 6, u01_open(rk.z))
                                                : 0.0f;
+  // the geometry after the parameters: a BTDF refracts at the record's eta
+  if (mode == PW_BTDF)
+    draw_btdf(rg, mfv_philox(seed, stream, 3, idx), r[PW_F0], r);
+  else
+    draw_geometry(mode, rg, rk, r);
   store_value(r, eval_record(mode, d, g, f, r));
 }
 

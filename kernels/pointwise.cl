@@ -13,7 +13,8 @@ static inline void pw_load_real(__global const real* g, real* r) {
   for (int k = 0; k < PW_RECORD; ++k) r[k] = g[k];
 }
 
-// Evaluates one record. `d` carries a whole model's number in mode PW_MODEL;
+// Evaluates one record. `d` carries a whole model's number in mode PW_MODEL,
+// `f` a BTDF's code in mode PW_BTDF;
 // `variant` names the formulation in mode PW_VARIANT (stability_variants.cl,
 // compiled into mfv stability's program only).
 static inline real pw_eval(int mode, int d, int g, int f, int variant, const real* r) {
@@ -38,6 +39,7 @@ static inline real pw_eval(int mode, int d, int g, int f, int variant, const rea
     case PW_BRDF_ANISO:
       return brdf_eval_aniso(d, g, f, wi, wo, r[PW_PD], r[PW_ALPHA_Y], r[PW_PG], r[PW_ALPHA_Y], r[PW_F0], r[PW_F1],
                              r[PW_KD]);
+    case PW_BTDF: return btdf_eval(d, g, f, wi, wo, r[PW_PD], r[PW_PG], r[PW_F0]);
 #ifdef MFV_STABILITY_VARIANTS
     case PW_VARIANT: return stability_variant(variant, r);
 #endif

@@ -1,4 +1,5 @@
 #include "agree_options.hpp"
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/agree.hpp"
@@ -19,13 +20,13 @@ TEST_CASE("Every kernel term and every D x G x F BRDF agrees with the double ref
   // From the catalog (checks/agree.cpp make_cases): every term; the G1 of
   // each one-width Smith G (smith_ggx_correlated shares smith_ggx's); the
   // D x G x F BRDFs of the shared-width grid; each anisotropic D with its
-  // Smith G under every F; every whole model.
+  // Smith G under every F; every whole model; every rough dielectric BTDF.
   size_t g1s = 0, aniso_brdfs = 0;
   for (auto& t : catalog()) g1s += !t.aniso && !t.g1_kernel_fn.empty() && t.id != "smith_ggx_correlated";
   for (auto* d : aniso_terms_of(Kind::D))
     for (auto* g : aniso_terms_of(Kind::G)) aniso_brdfs += g->fit_for(d->id) ? terms_of(Kind::F).size() : 0;
   const size_t grid = terms_of(Kind::D).size() * terms_of(Kind::G).size() * terms_of(Kind::F).size();
-  CHECK(rep.results.size() == catalog().size() + g1s + grid + aniso_brdfs + models().size());
+  CHECK(rep.results.size() == catalog().size() + g1s + grid + aniso_brdfs + models().size() + bsdfs().size());
   test::check_every_case_passes(rep);
   for (auto& r : rep.results) {
     CAPTURE(r.name);

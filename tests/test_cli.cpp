@@ -1,4 +1,5 @@
 // The command line: listings, and one-line errors with exit code 2 on bad input.
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 
@@ -40,7 +41,8 @@ TEST_CASE("mfv list --json is valid JSON with ranges for every parameter", "[cli
   Run r = run_mfv("list --json");
   REQUIRE(r.code == 0);
   auto j = nlohmann::json::parse(r.out);
-  REQUIRE(j.size() == mfv::catalog().size() + mfv::models().size());  // terms, then whole models
+  // terms, then whole models, then the rough dielectric BTDFs
+  REQUIRE(j.size() == mfv::catalog().size() + mfv::models().size() + mfv::bsdfs().size());
   for (auto& t : j) {
     CAPTURE(t["id"]);
     for (auto& p : t["params"]) CHECK(p["min"].get<double>() <= p["max"].get<double>());

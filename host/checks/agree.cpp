@@ -1,10 +1,12 @@
 #include "checks/agree.hpp"
 
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/pointwise.hpp"
 #include "checks/pointwise_inputs.hpp"
 #include "reference/brdf.hpp"
+#include "reference/btdf.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/integrator.hpp"
 #include "util/error.hpp"
@@ -39,6 +41,7 @@ struct Case {
   const Term* f = nullptr;
   double ulp_budget = 0, abs_floor = 0;
   const Model* model = nullptr;
+  const Bsdf* bsdf = nullptr;  // mode Btdf
 };
 
 std::vector<Case> make_cases(const AgreeOptions& opt) {
@@ -80,6 +83,9 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
     c.model = &m;
     cases.push_back(c);
   }
+  for (auto& b : bsdfs())  // the rough dielectric BTDFs, known-bad ones too (they agree with their twins)
+    cases.push_back({fmt::format("BTDF {}", b.id), EvalMode::Btdf, b.d, b.g, &find_term("dielectric"), b.ulp_budget,
+                     b.abs_floor, nullptr, &b});
   if (!opt.only.empty()) {
     std::vector<Case> kept;
     for (auto& c : cases)
@@ -142,9 +148,9 @@ struct Evaluator {
     // A whole model's direction components are bumped by an absolute amount:
     // rounding a unit vector moves each component by ~eps of its length, not
     // of the component (a small z is as uncertain as a large x).
-    if (c.mode == EvalMode::Model && bump_index >= 0 && bump_index < 6)
+    if (directions() && bump_index >= 0 && bump_index < 6)
       in[bump_index] += bump;
-    else if (!aniso() && bump_index >= 0 && bump_index < (c.mode == EvalMode::Model ? 13 : 11))
+    else if (!aniso() && bump_index >= 0 && bump_index < (directions() ? 13 : 11))
       in[bump_index] *= 1.0 + bump;
     switch (c.mode) {
       case EvalMode::DAniso: {
@@ -185,6 +191,22 @@ struct Evaluator {
         if (fp64) wi = unit_exact(wi), wo = unit_exact(wo);
         return c.model->ref(wi, wo, in + PW_P0);
       }
+      case EvalMode::Btdf: {
+        // as the whole models: the record's directions as they are (made unit in float64)
+        glm::dvec3 wi(in[PW_WI_X], in[PW_WI_Y], in[PW_WI_Z]), wo(in[PW_WO_X], in[PW_WO_Y], in[PW_WO_Z]);
+        if (fp64) wi = unit_exact(wi), wo = unit_exact(wo);
+        ref::BtdfSpec s{c.d, c.g, c.bsdf->form, c.bsdf->variant, in[PW_PD], in[PW_PG], in[PW_F0]};
+        // inputs 13 and 14: the tilt of h_t, as the kernel's rounding of s = η_i i + η_o o
+        // moves it: (η_i + η_o) units over |s|. |s| cancels where o ~ -i and η ~ 1,
+        // so that a lobe far narrower than one rounding of the directions is
+        // stepped over by their bumps (as the BRDF's bumped n.h, index 13)
+        if (bump_index == 13) {
+          const double ei = wi.z > 0 ? 1.0 : s.eta, eo = wo.z > 0 ? 1.0 : s.eta;
+          s.h_tilt = bump * (ei + eo) / glm::length(ei * wi + eo * wo);
+        }
+        if (bump_index == 14) s.f_cos_bump = bump;  // F's facet cosine, as the BRDF's bumped v·h
+        return ref::btdf(s, wi, wo);
+      }
       case EvalMode::Brdf: {
         ref::BrdfSpec s{c.d, c.g, c.f, in[PW_PD], in[PW_PG], in[PW_F0], in[PW_F1], in[PW_KD]};
         glm::dvec3 wi, wo;
@@ -198,15 +220,24 @@ struct Evaluator {
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
+  // a whole model's or a BTDF's record: two directions, their components bumped absolutely
+  bool directions() const { return c.mode == EvalMode::Model || c.mode == EvalMode::Btdf; }
   bool aniso() const {
     return c.mode == EvalMode::DAniso || c.mode == EvalMode::G1Aniso || c.mode == EvalMode::BrdfAniso;
   }
-  int inputs() const { return aniso() ? 13 : c.mode == EvalMode::Brdf ? 15 : c.mode == EvalMode::Model ? 13 : 11; }
+  int inputs() const {
+    return aniso()                        ? 13
+           : c.mode == EvalMode::Brdf     ? 15
+           : c.mode == EvalMode::Btdf     ? 15
+           : directions()                 ? 13
+                                          : 11;
+  }
 };
 
 std::string describe(const Case& c, const float* r, double k, double ref) {
   std::string in;
-  if (c.mode == EvalMode::Brdf || c.mode == EvalMode::Model || c.mode == EvalMode::BrdfAniso)
+  if (c.mode == EvalMode::Brdf || c.mode == EvalMode::Model || c.mode == EvalMode::BrdfAniso ||
+      c.mode == EvalMode::Btdf)
     in = fmt::format("wi=({:a}, {:a}, {:a}) wo=({:a}, {:a}, {:a})", r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z], r[PW_WO_X],
                      r[PW_WO_Y], r[PW_WO_Z]);
   else
@@ -254,7 +285,7 @@ void check_range(const Case& c, const float* rec, size_t begin, size_t end, bool
       // Whole models form their cosines (v·r, n·h) from three products and
       // a normalisation each: several roundings of the inputs' scale, which
       // a lobe (v·r)^n multiplies by n; their bump is 4 units, not 2.
-      const double units = c.mode == EvalMode::Model ? 4 : 2;
+      const double units = ev.directions() ? 4 : 2;
       const double dev = input_sensitivity(
           ev.inputs(), units, fp64, [&](int j, double b) { return ev.eval(j, b); }, ref);
       fail = diff > std::max(allowed, 2.0 * dev);
@@ -340,7 +371,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       kern.setArg(3, static_cast<cl_int>(c.mode));
       kern.setArg(4, static_cast<cl_int>(c.model ? int(c.model->number()) : c.d ? term_index(*c.d) : 0));
       kern.setArg(5, static_cast<cl_int>(c.g ? term_index(*c.g) : 0));
-      kern.setArg(6, static_cast<cl_int>(c.f ? term_index(*c.f) : 0));
+      kern.setArg(6, static_cast<cl_int>(c.bsdf ? c.bsdf->code() : c.f ? term_index(*c.f) : 0));
       kern.setArg(7, range_buf);
       kern.setArg(8, rec_buf);
       auto t0 = std::chrono::steady_clock::now();
@@ -367,7 +398,7 @@ namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64) {
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build(catalog_sources({"pointwise.cl", "agree.cl"}), defines, generate_dispatch(TermSelection::all()),
+  return rt.build(catalog_sources({"btdf.cl", "pointwise.cl", "agree.cl"}), defines, generate_dispatch(TermSelection::all()),
                   kDispatchBefore);
 }
 }  // namespace
@@ -385,11 +416,11 @@ PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   kern.setArg(0, static_cast<cl_int>(p.mode));
   kern.setArg(1, static_cast<cl_int>(p.model ? int(p.model->number()) : p.d ? term_index(*p.d) : 0));
   kern.setArg(2, static_cast<cl_int>(p.g ? term_index(*p.g) : 0));
-  kern.setArg(3, static_cast<cl_int>(p.f ? term_index(*p.f) : 0));
+  kern.setArg(3, static_cast<cl_int>(p.bsdf ? p.bsdf->code() : p.f ? term_index(*p.f) : 0));
   kern.setArg(4, buf);
   rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(1));
   rt.queue().enqueueReadBuffer(buf, CL_TRUE, 0, sizeof(rec), rec.data());
-  Case c{"point", p.mode, p.d, p.g, p.f, 0, 0, p.model};
+  Case c{"point", p.mode, p.d, p.g, p.f, 0, 0, p.model, p.bsdf};
   PointValue r;
   r.kernel = record_value(rec.data());
   r.reference = Evaluator{c, rec.data(), fp64}.eval(-1, 0.0);

@@ -45,6 +45,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
 // anisotropic modes' alpha_y).
 struct Term;
 struct Model;
+struct Bsdf;
 // = PW_* of kernels/abi/pointwise.h
 enum class EvalMode {
   D = pw::PW_D,
@@ -55,7 +56,8 @@ enum class EvalMode {
   Model = pw::PW_MODEL,
   DAniso = pw::PW_D_ANISO,
   G1Aniso = pw::PW_G1_ANISO,
-  BrdfAniso = pw::PW_BRDF_ANISO
+  BrdfAniso = pw::PW_BRDF_ANISO,
+  Btdf = pw::PW_BTDF  // `bsdf` names the BTDF; inputs wi.xyz, wo.xyz; params[2] = eta
 };
 struct PointSpec {
   EvalMode mode = EvalMode::Brdf;
@@ -63,6 +65,7 @@ struct PointSpec {
   const Term* g = nullptr;
   const Term* f = nullptr;
   const Model* model = nullptr;
+  const Bsdf* bsdf = nullptr;
   float inputs[6] = {0, 0, 1, 0, 0, 1};
   float params[pw::PW_PARAMS] = {0, 0, 0, 0, 0, 0, 0};
 };

@@ -1,5 +1,6 @@
 #include "checks/stability.hpp"
 
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/pointwise_inputs.hpp"
@@ -141,7 +142,7 @@ std::vector<double> run_kernel(Runtime& rt, cl::Kernel& kern, const CaseDef& c, 
   kern.setArg(0, static_cast<cl_int>(c.mode));
   kern.setArg(1, static_cast<cl_int>(c.model ? int(c.model->number()) : c.d ? term_index(*c.d) : 0));
   kern.setArg(2, static_cast<cl_int>(c.g ? term_index(*c.g) : 0));
-  kern.setArg(3, static_cast<cl_int>(c.f ? term_index(*c.f) : 0));
+  kern.setArg(3, static_cast<cl_int>(c.f_code >= 0 ? c.f_code : c.f ? term_index(*c.f) : 0));
   kern.setArg(4, static_cast<cl_int>(c.variant));
   kern.setArg(5, buf);
   rt.queue().enqueueNDRangeKernel(kern, cl::NullRange, cl::NDRange(n), cl::NDRange(kLocal));
@@ -165,6 +166,8 @@ std::vector<CaseDef> make_cases(const StabilityOptions& opt) {
         for (auto* f : terms_of(Kind::F)) cases.push_back(brdf_case(*d, *g, *f, opt.fp64));
   if (opt.models)
     for (auto& m : models()) cases.push_back(model_case(m, opt));
+  if (opt.combinations)
+    for (auto& b : bsdfs()) cases.push_back(btdf_case(b, opt.fp64));
   if (!opt.only.empty()) {
     std::vector<CaseDef> kept;
     for (auto& c : cases)
@@ -198,7 +201,7 @@ cl::Program build_stability_program(Runtime& rt, const std::vector<CaseDef>& cas
   if (!any_smith) dispatch += "static inline real eval_G1(int id, real NoV, real p) { return NAN; }\n";
   std::vector<std::string> defines;
   if (fp64) defines.push_back("MFV_DOUBLE");
-  return rt.build(catalog_sources({"stability_variants.cl", "pointwise.cl", "stability.cl"}), defines, dispatch,
+  return rt.build(catalog_sources({"stability_variants.cl", "btdf.cl", "pointwise.cl", "stability.cl"}), defines, dispatch,
                   kDispatchBefore);
 }
 

@@ -19,6 +19,7 @@
 namespace mfv {
 struct Term;
 struct Model;
+struct Bsdf;
 }  // namespace mfv
 
 namespace mfv::stability_detail {
@@ -63,6 +64,7 @@ struct CaseDef {
   const Term* f = nullptr;
   const Model* model = nullptr;  // PW_MODEL: the kernel's `d` argument carries its number
   int variant = -1;
+  int f_code = -1;  // PW_BTDF: the BTDF's code (kernels/abi/bsdf.h), passed as the kernel's `f`
   std::vector<Region> regions;
   std::vector<Point> points;
   std::function<double(const In&)> ref;  // the double reference on the rounded inputs
@@ -84,5 +86,6 @@ CaseDef term_case(const Term& t, bool g1, bool fp64);
 CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64);
 CaseDef model_case(const Model& m, const StabilityOptions& opt);
 std::vector<CaseDef> variant_cases(bool fp64);
+CaseDef btdf_case(const Bsdf& b, bool fp64);  // stability_btdf.cpp
 
 }  // namespace mfv::stability_detail

@@ -1,4 +1,5 @@
 // mfv devices, mfv list.
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "cli/shared_options.hpp"
@@ -90,7 +91,29 @@ struct ListCommand : SharedValues {
                               {"reciprocity_why", c.reciprocity_why}});
       out.push_back(j);
     }
+    for (auto& b : bsdfs()) out.push_back(bsdf_json(b));
     std::cout << out.dump(2) << "\n";
+  }
+
+  // A rough dielectric BTDF (catalog/bsdfs.hpp): its D, G and G2 form, the
+  // parameters it takes (D's, G's, eta) and the radiance/flux convention.
+  static nlohmann::json bsdf_json(const Bsdf& b) {
+    nlohmann::json j{{"id", b.id},
+                     {"kind", "bsdf"},
+                     {"source", b.source},
+                     {"formula", b.formula},
+                     {"kernel", "btdf_eval"},
+                     {"ulp_budget", b.ulp_budget},
+                     {"d", b.d->id},
+                     {"g", b.g->id},
+                     {"g2", btdf_form_name(b.form)},
+                     {"convention", kBtdfConvention}};
+    j["params"] = nlohmann::json::array();
+    for (const Param* p : {&b.d->params[0], &b.g->params[0], &b.eta})
+      j["params"].push_back({{"name", p->name}, {"min", p->lo}, {"max", p->hi}, {"default", p->fallback}, {"doc", p->doc}});
+    if (!b.known_bad.empty()) j["known_bad"] = b.known_bad;
+    if (!b.g1_fit.empty()) j["g1_fit"] = b.g1_fit;
+    return j;
   }
 
   static void print_text() {
@@ -109,6 +132,12 @@ struct ListCommand : SharedValues {
                    c.energy_why.empty() ? "" : " (" + c.energy_why + ")", expect_name(c.reciprocity),
                    c.reciprocity_why.empty() ? "" : " (" + c.reciprocity_why + ")");
     }
+    for (auto& b : bsdfs()) {
+      fmt::print("T {:<22} D {} x G1 of {}, G2 {}; params {}, {}, eta in [{:g}, {:g}]\n", b.id, b.d->id, b.g->id,
+                 btdf_form_name(b.form), b.d->params[0].name, b.g->params[0].name, b.eta.lo, b.eta.hi);
+      fmt::print("  {:<22} source: {}{}\n", "", b.source, b.known_bad.empty() ? "" : "  [known bad: " + b.known_bad + "]");
+    }
+    if (!bsdfs().empty()) fmt::print("T: rough dielectric BTDFs; {}\n", kBtdfConvention);
   }
 };
 

@@ -188,6 +188,7 @@ std::string stability_markdown(const StabilityReport& rep) {
   };
   table("Terms and Smith G1", "term");
   table("Alternative formulations (where each form breaks)", "variant");
+  table("Rough dielectric BTDFs (Walter et al. 2007, both sides)", "bsdf");
   bool any_brdf = std::any_of(rep.cases.begin(), rep.cases.end(), [](auto& c) { return c.group == "brdf"; });
   if (any_brdf) {
     o += "## Assembled BRDFs (kd = 0)\n\nOne row per D/G/F combination over every region; regions in which it "

@@ -18,8 +18,8 @@ namespace mfv::pw {
 #endif
 
 // What a record evaluates: one term, one assembled D x G x F BRDF, one whole
-// model (`d` carries the model's number) or one alternative formulation of
-// mfv stability (kernels/stability_variants.cl).
+// model (`d` carries the model's number), one alternative formulation of
+// mfv stability (kernels/stability_variants.cl) or one rough dielectric BTDF.
 enum PwMode {
   PW_D = 0,
   PW_G = 1,
@@ -30,7 +30,8 @@ enum PwMode {
   PW_D_ANISO = 6,  // anisotropic terms (Term::aniso) with both widths
   PW_G1_ANISO = 7,
   PW_BRDF_ANISO = 8,
-  PW_VARIANT = 9
+  PW_VARIANT = 9,
+  PW_BTDF = 10  // the rough dielectric BTDF (kernels/btdf.cl): `f` carries its code (abi/bsdf.h), PW_F0 eta
 };
 
 // Named slots. The geometry is either two directions (BRDF, MODEL, the half
