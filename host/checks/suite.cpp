@@ -49,17 +49,6 @@ const std::vector<std::string>& suite_checks() {
   return c;
 }
 
-namespace {
-
-std::string params_text(const PointResult& p) {
-  std::string ps;
-  for (auto& [k, v] : p.params) ps += fmt::format(" {}={:g}", k, v);
-  return ps;
-}
-
-// Which integrals of a plan the reference sees: every whole-model and d_norm
-// integral, and of each model x check its first (the narrowest width at the
-// most grazing view) and every k-th after it.
 std::vector<size_t> reference_subset(const Plan& plan, uint32_t every) {
   std::vector<size_t> which;
   std::map<std::string, uint32_t> seen;  // points so far per model
@@ -72,6 +61,14 @@ std::vector<size_t> reference_subset(const Plan& plan, uint32_t every) {
   return which;
 }
 
+namespace {
+
+std::string params_text(const PointResult& p) {
+  std::string ps;
+  for (auto& [k, v] : p.params) ps += fmt::format(" {}={:g}", k, v);
+  return ps;
+}
+
 // Without fp64: the float kernel against the reference, |k - r| / max(sum |r|, n)
 // under the fixed reference_bound (SuiteReport).
 void compare_float_only(Integrator& in, const std::vector<IntegralSpec>& subset, const std::vector<size_t>& which,
@@ -81,6 +78,7 @@ void compare_float_only(Integrator& in, const std::vector<IntegralSpec>& subset,
     rep.reference_compared++;
     if (!rep.reference_worst_at.empty() && !(agree[j].disagreement > rep.reference_worst)) continue;
     rep.reference_worst = std::max(agree[j].disagreement, rep.reference_worst);
+    rep.reference_worst_point = rep.points.size() + which[j];  // run_plan appends the plan's points next
     const PointResult& p = plan.points[which[j]];
     rep.reference_worst_at = fmt::format("{} {}{} (kernel mean {:.9g}, reference {:.9g})", p.check, model_name(p),
                                          params_text(p), agree[j].kernel_mean, agree[j].reference_mean);
@@ -94,7 +92,7 @@ void compare_float_only(Integrator& in, const std::vector<IntegralSpec>& subset,
 // does not fails its model x check. kf - kd bounds the point's rounding bias.
 void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
   if (opt.reference_samples == 0) return;
-  std::vector<size_t> which = reference_subset(plan, opt.reference_every);
+  std::vector<size_t> which = plan.reference_pick ? *plan.reference_pick : reference_subset(plan, opt.reference_every);
   std::vector<IntegralSpec> subset;
   for (size_t i : which) subset.push_back(plan.specs[i]);
   ReferenceTwin twin(in.runtime(), plan.terms);
@@ -119,6 +117,7 @@ void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions&
                                              : 0.0;
     if (!rep.reference_worst_at.empty() && !(ratio > rep.reference_worst)) continue;
     rep.reference_worst = ratio;
+    rep.reference_worst_point = rep.points.size() + which[j];
     rep.reference_worst_at = fmt::format("{} {}{} (twin mean {:.12g}, reference {:.12g}, float kernel {:.9g})", p.check,
                                          model_name(p), params_text(p), a.double_mean, a.reference_mean, a.float_mean);
   }
@@ -136,12 +135,14 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
 }
 
 void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::vector<PointResult> pts, double bound,
-                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep) {
+                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep,
+                        bool streams_set) {
   if (specs.empty()) return;
   if (!(64 * scale <= double(UINT32_MAX / 64)))
     throw Error(fmt::format("--samples/--scale ask for {:.3g} reciprocity pairs per integral: too many", 4096 * scale));
   const uint32_t pairs = 64 * std::max<uint32_t>(1, uint32_t(64 * scale));
-  for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
+  if (!streams_set)
+    for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
   const WorstPairs w = in.reciprocity(specs, pairs, seed);  // one pair per work-item
   for (size_t i = 0; i < specs.size(); ++i) {
     pts[i].estimate = w.worst[i];
@@ -158,7 +159,8 @@ void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::ve
 
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
   if (plan.specs.empty()) return;
-  for (auto& s : plan.specs) s.stream = stream++;
+  if (!plan.streams_set)
+    for (auto& s : plan.specs) s.stream = stream++;
   in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
@@ -207,13 +209,23 @@ void validate_suite_options(const SuiteOptions& opt) {
   if (!any) throw Error("no model matches the --model filter (names are D, D/G, D/G/F or model[case]: see 'mfv list')");
 }
 
-SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
-  validate_suite_options(opt);
-  SuiteReport rep;
+SuitePlans make_suite_plans(const SuiteOptions& opt) {
+  SuitePlans sp;
+  sp.plans = make_plans(opt);
+  if (suite_check_wanted(opt, "reciprocity")) sp.reciprocity = reciprocity_plan(opt);
   uint32_t stream = 0;
-  std::vector<Plan> plans = make_plans(opt);
-  const bool reciprocity = suite_check_wanted(opt, "reciprocity");
-  Plan rp = reciprocity ? reciprocity_plan(opt) : Plan{};
+  for (auto& p : sp.plans) {
+    for (auto& s : p.specs) s.stream = stream++;
+    p.streams_set = true;
+  }
+  for (size_t i = 0; i < sp.reciprocity.specs.size(); ++i) sp.reciprocity.specs[i].stream = uint32_t(i);
+  sp.reciprocity.streams_set = true;
+  return sp;
+}
+
+void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep) {
+  std::vector<Plan>& plans = sp.plans;
+  Plan& rp = sp.reciprocity;
   // One program for every plan: the kernels specialized per term pair
   // (runtime/specialize.hpp) are shared by the plans that integrate the
   // same pair (furnace, energy, energy_diffuse), so each is compiled once.
@@ -225,16 +237,24 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   const double b0 = rt.build_stats().seconds;
   Integrator in(rt, terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
+  uint32_t stream = 0;  // unused: make_suite_plans numbered the streams
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
     if (plans[i].check == "furnace") attach_furnace_truth(plans[i]);  // its pooled test is two-sided
     run_plan(in, plans[i], opt, stream, rep);
   }
-  if (reciprocity && !rp.specs.empty()) {
+  if (!rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
     record_reciprocity(in, rp.specs, rp.points, kReciprocityBound, opt.scale, opt.seed,
-                       std::chrono::steady_clock::now(), rep);
+                       std::chrono::steady_clock::now(), rep, rp.streams_set);
   }
+}
+
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
+  validate_suite_options(opt);
+  SuiteReport rep;
+  SuitePlans sp = make_suite_plans(opt);
+  run_suite_plans(rt, sp, opt, rep);
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);
   return rep;

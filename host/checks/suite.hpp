@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,7 @@ struct SuiteReport {
   double build_seconds = 0;
   double reference_worst = 0;  // worst relative kernel/reference disagreement
   std::string reference_worst_at;
+  size_t reference_worst_point = 0;  // the index in points of reference_worst_at's integral
   uint64_t reference_compared = 0;
   // Kernel and reference means on identical samples, |k - r| / max(mean |r|, 1).
   // Float rounding of ill-conditioned samples (Kelemen's 1/(v.m)^2 at grazing
@@ -142,6 +144,7 @@ const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
+
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
 
 // One check's integrals, run through one program.
@@ -151,7 +154,25 @@ struct Plan {
   std::vector<PointResult> points;
   uint64_t samples = 0;
   TermSelection terms;
+  // Sharded runs (checks/shard.hpp): streams numbered over the whole run
+  // before the plan was cut, and the integrals the reference compares, picked
+  // over the whole plan (positions in this plan); unset: run_plan numbers and picks.
+  bool streams_set = false;
+  std::optional<std::vector<size_t>> reference_pick;
 };
+
+// The run's plans (make_plans, reciprocity_plan where wanted) with every
+// integral's stream numbered as run_suite numbers them; run_suite_plans runs
+// them into `rep` without judging (mfv run --shard cuts them in between).
+struct SuitePlans {
+  std::vector<Plan> plans;
+  Plan reciprocity;
+};
+SuitePlans make_suite_plans(const SuiteOptions& opt);
+void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep);
+// Which integrals of a plan the reference compares: every whole-model and
+// d_norm integral, and of each model x check its first and every k-th after it.
+std::vector<size_t> reference_subset(const Plan& plan, uint32_t every);
 
 // Widths and views of the grids (d_norm widths; combination widths; view
 // cosines from 1e-4 to 1, dense towards grazing).
@@ -187,7 +208,8 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
 // (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
 // and the check's timing since t0 go into `rep`.
 void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::vector<PointResult> pts, double bound,
-                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep);
+                        double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep,
+                        bool streams_set = false);  // true: keep the specs' streams
 constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluation orders stays below ~1e-6
 
 // The option filters: is `check` selected; does `name` match the --model filter.

@@ -273,7 +273,8 @@ void validate_scale(double scale) {
 
 Plan reciprocity_plan(const SuiteOptions& opt) {
   // every D x G x F (the kernel dispatches on ids) and the models with a case
-  Plan plan{"reciprocity", {}, {}, 0, {}};
+  Plan plan;
+  plan.check = "reciprocity";
   plan.terms.d = terms_of(Kind::D);
   plan.terms.g = terms_of(Kind::G);
   plan.terms.f = terms_of(Kind::F);

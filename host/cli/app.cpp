@@ -25,6 +25,7 @@ void build_app(CLI::App& app, Globals& g, int& rc) {
   add_samplers(app, g, rc);
   add_bench(app, g, rc);
   add_convergence(app, g, rc);
+  add_merge(app, g, rc);
   make_options_strict(app);
 }
 

@@ -1,5 +1,6 @@
 // mfv run: the conformance suite and CI gate.
 #include "checks/suite.hpp"
+#include "cli/run_shard.hpp"
 #include "cli/shared_options.hpp"
 #include "report/energy_report.hpp"
 #include "report/suite_baseline.hpp"
@@ -23,6 +24,8 @@ struct RunCommand : SharedValues {
   bool compare_full = false;
   double baseline_alpha = 1e-3;
   CLI::Option* every_opt = nullptr;
+  std::string shard;
+  uint32_t shard_count = 0;
 
   void add_options(CLI::App* cmd) {
     cmd->description(
@@ -45,6 +48,12 @@ struct RunCommand : SharedValues {
     every_opt = cmd->add_option("--reference-every", opt.reference_every,
                                 "compare every k-th integral with the reference (1 = all)")
                     ->check(CLI::PositiveNumber);
+    cmd->add_option("--shard", shard,
+                    "run part K of N (1 <= K <= N) of the plan into --out DIR/shard.json, for mfv merge; absent: "
+                    "Bazel's, GoogleTest's, Slurm's or a Kubernetes Indexed Job's variables if set; off: the whole run");
+    cmd->add_option("--shard-count", shard_count,
+                    "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
+        ->check(CLI::PositiveNumber);
     cmd->add_flag("--compare-full", compare_full,
                   "with --scene: also run the full catalog and measure the time the scene saved");
   }
@@ -62,6 +71,11 @@ struct RunCommand : SharedValues {
       print_baseline_console(diff);
       return diff.moved.empty() ? 0 : 1;
     };
+    if (std::optional<ShardSpec> s = shard_of(scene_path.empty() ? shard : "off", shard_count)) {
+      if (!baseline.empty()) throw Error("--baseline applies to the merged run (mfv merge), not to a shard");
+      return run_shard(g, opt, *s, out_dir);
+    }
+    if (!shard.empty() && !scene_path.empty() && shard != "off") throw Error("--shard does not apply to --scene");
     if (!scene_path.empty()) {
       // every input error before any work
       const Scene scene = load_scene_instead_of(!opt.models.empty(), "--model", "models");

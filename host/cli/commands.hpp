@@ -30,6 +30,7 @@ void add_check(CLI::App& app, Globals& g, int& rc);
 void add_samplers(CLI::App& app, Globals& g, int& rc);
 void add_bench(CLI::App& app, Globals& g, int& rc);
 void add_convergence(CLI::App& app, Globals& g, int& rc);
+void add_merge(CLI::App& app, Globals& g, int& rc);
 
 // Each command's --help ends with the global options and a few examples.
 void add_help_footers(CLI::App& app);

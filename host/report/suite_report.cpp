@@ -67,8 +67,16 @@ std::string reference_line(const SuiteReport& rep) {
       rep.reference_compared, rep.reference_worst, rep.reference_bound, rep.reference_ok() ? "ok" : "FAILED", at);
 }
 
+OutputContext output_context(const Runtime& rt) {
+  return {rt.device(), rt.base_options(), rt.build_stats().builds, provenance_json()};
+}
+
 void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
-  fmt::print("device: {} ({}), {}\n", rt.device().name, rt.device().platform, rt.device().driver);
+  print_suite_console(rep, rt.device(), opt);
+}
+
+void print_suite_console(const SuiteReport& rep, const DeviceInfo& device, const SuiteOptions& opt) {
+  fmt::print("device: {} ({}), {}\n", device.name, device.platform, device.driver);
   fmt::print("{:<16} {:>10} {:>14} {:>8} {:>14}\n", "check", "integrals", "samples", "seconds", "samples/s");
   for (auto& c : rep.stats)
     fmt::print("{:<16} {:>10} {:>14} {:>8.2f} {:>14.3g}\n", c.check, c.integrals, c.samples, c.seconds,
@@ -156,7 +164,12 @@ std::string dump_with_results(const nlohmann::json& j, const std::string& result
 }
 
 std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt) {
+  return suite_json(rep, output_context(rt), opt);
+}
+
+std::string suite_json(const SuiteReport& rep, const OutputContext& ctx, const SuiteOptions& opt) {
   using nlohmann::json;
+  const DeviceInfo& dev = ctx.device;
   json j;
   j["schema"] = "mfv-run/1";
   j["tool"] = {{"name", "mfv"},
@@ -164,7 +177,7 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
                {"commit", MFV_GIT_COMMIT},
                {"describe", MFV_GIT_DESCRIBE},
                {"command", rep.title}};
-  j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
+  j["provenance"] = ctx.provenance;  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
   j["run"] = {{"seed", opt.seed},
               {"scale", opt.scale},
               {"family_alpha", opt.family_alpha},
@@ -174,12 +187,12 @@ std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOpt
               {"date", utc_timestamp()},
               {"checks", opt.checks},
               {"models", opt.models}};
-  j["device"] = {{"name", rt.device().name},
-                 {"platform", rt.device().platform},
-                 {"driver", rt.device().driver},
-                 {"version", rt.device().version},
-                 {"fp64", rt.device().fp64}};
-  j["build"] = {{"options", rt.base_options()}, {"seconds", rep.build_seconds}, {"builds", rt.build_stats().builds}};
+  j["device"] = {{"name", dev.name},
+                 {"platform", dev.platform},
+                 {"driver", dev.driver},
+                 {"version", dev.version},
+                 {"fp64", dev.fp64}};
+  j["build"] = {{"options", ctx.build_options}, {"seconds", rep.build_seconds}, {"builds", ctx.builds}};
   j["timings"] = json::array();
   for (auto& c : rep.stats)
     j["timings"].push_back(
@@ -218,11 +231,17 @@ void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteO
 
 std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const Runtime& rt,
                                                                     const SuiteOptions& opt, const std::string& dir) {
+  return suite_output_files(rep, output_context(rt), opt, dir);
+}
+
+std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const OutputContext& ctx,
+                                                                    const SuiteOptions& opt, const std::string& dir) {
+  const DeviceInfo& dev = ctx.device;
   // report.md
   std::string md = rep.title == "mfv run" ? "# microfacet-verify conformance report\n\n"
                                           : fmt::format("# microfacet-verify: {}\n\n", rep.title);
-  md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, mfv {}.\n\n", rt.device().name,
-                    rt.device().platform, rt.device().driver, opt.seed, opt.scale, version_text());
+  md += fmt::format("Device: {} ({}), driver {}. Seed {}, scale {:g}, mfv {}.\n\n", dev.name, dev.platform,
+                    dev.driver, opt.seed, opt.scale, version_text());
   md += fmt::format(
       "{} statistical tests and {} pooled ones (docs/statistics.md); family-wise false-alarm rate {:g}, "
       "half to each family, so a deviation must exceed {:.2f} standard errors plus its bias bound "
@@ -242,7 +261,7 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
   for (auto& line : rep.gate_failures()) md += fmt::format("\n- because {}", line);
   if (!rep.gate_ok()) md += "\n";
 
-  return {{dir + "/results.json", suite_json(rep, rt, opt)},
+  return {{dir + "/results.json", suite_json(rep, ctx, opt)},
           {dir + "/report.md", md},
           {dir + "/junit.xml", suite_junit(rep, opt)}};
 }

@@ -11,7 +11,21 @@
 
 namespace mfv {
 
+// What the outputs say of where the run ran: the device, its build options
+// and build count, the provenance (runtime/provenance.hpp). mfv merge
+// (report/shard_file.hpp) takes them from the shards' files.
+struct OutputContext {
+  DeviceInfo device;
+  std::string build_options;
+  int builds = 0;
+  nlohmann::json provenance;
+};
+OutputContext output_context(const Runtime& rt);
+
 void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt);
+void print_suite_console(const SuiteReport& rep, const DeviceInfo& device, const SuiteOptions& opt);
+std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteReport& rep, const OutputContext& ctx,
+                                                                    const SuiteOptions& opt, const std::string& dir);
 void write_suite_outputs(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt, const std::string& dir);
 // The (path, contents) of results.json, report.md and junit.xml, unwritten
 // (mfv run --scene adds its sections before writing them).
@@ -37,5 +51,6 @@ std::string dump_with_results(const nlohmann::json& j, const std::string& result
 
 // results.json as a string (schema mfv-run/1, schemas/mfv-run-1.schema.json), also used by tests.
 std::string suite_json(const SuiteReport& rep, const Runtime& rt, const SuiteOptions& opt);
+std::string suite_json(const SuiteReport& rep, const OutputContext& ctx, const SuiteOptions& opt);
 
 }  // namespace mfv

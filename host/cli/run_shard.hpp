@@ -1,0 +1,20 @@
+// mfv run's shards (host/cli/cmd_merge.cpp, docs/scale.md).
+#pragma once
+
+#include "checks/shard.hpp"
+#include "cli/shared_options.hpp"
+
+#include <optional>
+#include <string>
+
+namespace mfv::cli {
+
+// The shard to run: --shard K/N where given ("off": none), else the first
+// engine protocol set in the environment (checks/shard.hpp), printed to
+// stderr; Bazel's TEST_SHARD_STATUS_FILE is touched. nullopt: the whole run.
+std::optional<ShardSpec> shard_of(const std::string& option, uint32_t count);
+
+// Runs shard s of the plan of `opt` and writes out_dir/shard.json; exit code 0.
+int run_shard(const Globals& g, const SuiteOptions& opt, const ShardSpec& s, const std::string& out_dir);
+
+}  // namespace mfv::cli
