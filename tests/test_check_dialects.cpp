@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <regex>
 #include <string>
 
@@ -97,10 +98,18 @@ TEST_CASE("Each planted engine defect fails the check it breaks, in GLSL and in 
     INFO(fl.out);
     CHECK(fl.code == 1);
     CHECK(has_line(fl.out, "FAIL", "d_norm"));
-    Run vc = run_mfv("check " + engine_args(planted(s, plant(dl + "_view_clamp")), d) + " --check reciprocity");
+    const std::string out = (s.dir / (dl + "_out")).string();
+    Run vc =
+        run_mfv("check " + engine_args(planted(s, plant(dl + "_view_clamp")), d) + " --check reciprocity --out " + out);
     INFO(vc.out);
     CHECK(vc.code == 1);
     CHECK(has_line(vc.out, "FAIL", "reciprocity"));
+    // the failure names the pair's directions and both values
+    CHECK(std::regex_search(vc.out, std::regex("FAIL +reciprocity .*: brdf\\(wi=.*\\)\\.[rgb] = [0-9.e+-]+, brdf\\(wi=")));
+    // report.md lists every failing point, not only the worst
+    const std::string md = slurp(out + "/report.md");
+    CHECK(md.find("## Every failing point") != std::string::npos);
+    CHECK(std::count(md.begin(), md.end(), '\n') > 20);
   }
 }
 
@@ -156,6 +165,14 @@ TEST_CASE("Dialect errors name the user's file, line and construct, in the user'
   CHECK(b.out.rfind("mfv: error: " + bad + ":4:", 0) == 0);
   CHECK(b.out.find("mfv_u_") == std::string::npos);
   CHECK(one_error_line(run_mfv("check --brdf " + bad + " --dialect fortran")));
+}
+
+TEST_CASE("A bad MFV_CL_OPTIONS is named as the cause of a failed user build", "[device][check][cli]") {
+  Run r = run_mfv("check --brdf " + kBrdfExamples + "ggx.cl --check finite", "MFV_CL_OPTIONS=-cl-no-such-option");
+  INFO(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("failed before compiling it: ") != std::string::npos);
+  CHECK(r.out.find("-cl-no-such-option") != std::string::npos);
 }
 
 TEST_CASE("A D that integrates to 2 behind a /* */ comment fails d_norm, never skipped", "[device][check][cli]") {

@@ -36,14 +36,22 @@ double total_seconds(const SuiteReport& rep) {
 
 }  // namespace
 
-std::string worst_text(const SuiteReport& rep, const GroupResult& g) {
-  const PointResult& p = rep.points[g.worst];
+std::string point_text(const PointResult& p) {
   if (p.bounded)
     return fmt::format("{} {:.3g} (bound {:.0e}){}{}{}{}", p.measure, p.estimate, p.bound,
                        p.params.empty() ? "" : " at ", params_text(p), p.detail.empty() ? "" : ": ", p.detail);
-  return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {:.1f}) vs {:g}{} at {}", p.estimate, p.stderr_, p.bias, p.z,
+  // a NaN or infinite mean says why; a z beyond 1e6 in 2 significant digits, not hundreds of digits
+  if (!std::isfinite(p.estimate) || !std::isfinite(p.stderr_))
+    return fmt::format(
+        "{} ± {} (some samples of the integrand were NaN or infinite; the check 'finite' or mfv "
+        "stability names such inputs) vs {:g}{} at {}",
+        p.estimate, p.stderr_, p.expected, p.upper_only ? " (max)" : "", params_text(p));
+  const std::string z = std::fabs(p.z) < 1e6 ? fmt::format("{:.1f}", p.z) : fmt::format("{:.1e}", p.z);
+  return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {}) vs {:g}{} at {}", p.estimate, p.stderr_, p.bias, z,
                      p.expected, p.upper_only ? " (max)" : "", params_text(p));
 }
+
+std::string worst_text(const SuiteReport& rep, const GroupResult& g) { return point_text(rep.points[g.worst]); }
 
 // The pooled test of a group, one line (stats/verdict.hpp).
 std::string pooled_text(const GroupResult& g) {
@@ -260,6 +268,15 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
   md += fmt::format("\nGate: **{}**\n", rep.gate_ok() ? "ok" : "FAILED");
   for (auto& line : rep.gate_failures()) md += fmt::format("\n- because {}", line);
   if (!rep.gate_ok()) md += "\n";
+  // every failing point of a failed group, not only its worst
+  std::string failing;
+  for (auto& g : rep.groups) {
+    if (g.verdict != Verdict::Fail) continue;
+    for (size_t i : g.points)
+      if (rep.points[i].failed)
+        failing += fmt::format("| {} | {} | {} |\n", g.check, g.model, point_text(rep.points[i]));
+  }
+  if (!failing.empty()) md += "\n## Every failing point\n\n| check | model | point |\n|---|---|---|\n" + failing;
 
   return {{dir + "/results.json", suite_json(rep, ctx, opt)},
           {dir + "/report.md", md},

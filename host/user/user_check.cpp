@@ -69,6 +69,16 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
       for (auto& s : u.sources)
         if (first.empty() && line.rfind(s.name + ":", 0) == 0) first = line;
     }
+    if (errors == 0) {
+      // no compile error at all: the build stopped before the source (a bad option)
+      std::string cause = log.substr(log.find("build log:") == std::string::npos ? 0 : log.find("build log:") + 11);
+      cause = cause.substr(0, cause.find('\n'));
+      while (!cause.empty() && std::isspace(static_cast<unsigned char>(cause.back()))) cause.pop_back();
+      throw Error(
+          fmt::format("the OpenCL build of {} failed before compiling it: {} (build options '{}'; "
+                      "MFV_CL_OPTIONS adds to them)\n{}",
+                      u.path, cause.empty() ? "no reason given" : cause, rt.base_options(), log));
+    }
     if (first.empty()) first = fmt::format("{} does not compile", u.path);
     throw Error(fmt::format("{} ({} error{}; the build log follows)\n{}", first, errors, errors == 1 ? "" : "s", log));
   }
@@ -208,10 +218,12 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
 
 // ---- reciprocity -------------------------------------------------------------
 
-void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep) {
+void run_user_reciprocity(Runtime& rt, const cl::Program& prog, Integrator& in, const UserBrdf& u,
+                          const UserCheckOptions& opt, SuiteReport& rep) {
   auto t0 = Clock::now();
   std::vector<IntegralSpec> specs;
   std::vector<PointResult> pts;
+  std::vector<Values> settings;
   for (auto& r : roughness_grid(u, {1e-4, 1e-2, 0.1, 0.3, 1.0}, 64))
     for (auto& v : corners(u, r))
       for (int ch : opt.channels) {
@@ -219,8 +231,20 @@ void run_user_reciprocity(Integrator& in, const UserBrdf& u, const UserCheckOpti
         PointResult p = point_of(u, "reciprocity", v);
         p.params["channel"] = ch;
         pts.push_back(p);
+        settings.push_back(v);
       }
+  const size_t first = rep.points.size();
   record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
+  // a failing point names its pair's directions and both values
+  std::vector<PointResult*> failing;
+  std::vector<Values> at;
+  for (size_t i = first; i < rep.points.size(); ++i)
+    if (!(rep.points[i].estimate <= rep.points[i].bound)) {
+      rep.points[i].params["stream"] = double(i - first);  // record_reciprocity numbers the streams so
+      failing.push_back(&rep.points[i]);
+      at.push_back(settings[i - first]);
+    }
+  if (!failing.empty()) describe_reciprocity(rt, prog, opt.seed, at, failing);
 }
 
 // Seconds per evaluation of the user's brdf, from a small launch of the
@@ -297,7 +321,7 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   // pointwise steps: a few thousand evaluations per setting (a bound of their count)
   const double settings = double(corners(u, u.defaults()).size()) * 16.0 * double(opt.channels.size());
   arm(settings * 4096 * 2, "the reciprocity pairs");
-  if (has("reciprocity")) run_user_reciprocity(in, u, opt, rep);
+  if (has("reciprocity")) run_user_reciprocity(rt, prog, in, u, opt, rep);
   arm(settings * 4096, "the finite census");
   if (has("finite")) run_census(rt, prog, u, opt, rep);
   arm(settings * 4096, "the agreement");

@@ -32,6 +32,11 @@ PointResult point_of(const UserBrdf& u, const std::string& check, const Values& 
 
 // The NaN/Inf census over the stability sweep's extremes (check 'finite').
 void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt, SuiteReport& rep);
+// The worst reciprocity pair of each point (params worst_pair, stream and
+// channel; values at settings[k] for pts[k]): both directions and both
+// values in its detail, the kernel's pair rounded to float.
+void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, const std::vector<Values>& settings,
+                          std::vector<PointResult*> pts);
 // Pointwise agreement with a claimed catalog model (check 'agree').
 void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const Claim& claim,
                    const UserCheckOptions& opt, SuiteReport& rep);

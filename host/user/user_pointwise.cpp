@@ -7,6 +7,7 @@
 
 #include "checks/pointwise.hpp"
 #include "checks/pointwise_inputs.hpp"
+#include "reference/estimators.hpp"
 #include "rng/philox.hpp"
 #include "util/float_round.hpp"
 
@@ -77,6 +78,26 @@ bool half_vector(const glm::dvec3& wi, const glm::dvec3& wo, glm::dvec3& h) {
 // ---- the NaN/Inf census over the stability sweep's extremes -----------------
 
 }  // namespace
+
+void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, const std::vector<Values>& settings,
+                          std::vector<PointResult*> pts) {
+  std::vector<Input> recs;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    glm::dvec3 a, b;
+    ref::reciprocity_pair(seed, uint32_t(pts[i]->params.at("stream")), uint32_t(pts[i]->params.at("worst_pair")), a, b);
+    recs.push_back({through_float(a), through_float(b), {0, 0, 1}, false, "", i});
+    recs.push_back({through_float(b), through_float(a), {0, 0, 1}, false, "", i});
+  }
+  std::vector<FloatRecord> out = eval_records(rt, prog, recs, settings);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const size_t ch = size_t(pts[i]->params.at("channel"));
+    pts[i]->params.erase("stream");
+    pts[i]->detail =
+        fmt::format("brdf(wi={}, wo={}).{} = {:.9g}, brdf(wi={}, wo={}).{} = {:.9g}", vec_text(recs[2 * i].wi),
+                    vec_text(recs[2 * i].wo), kChannel[ch], out[2 * i][PW_BRDF_R + ch], vec_text(recs[2 * i + 1].wi),
+                    vec_text(recs[2 * i + 1].wo), kChannel[ch], out[2 * i + 1][PW_BRDF_R + ch]);
+  }
+}
 
 void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt,
                 SuiteReport& rep) {
