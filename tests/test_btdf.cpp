@@ -13,6 +13,7 @@
 #include "numeric/quadrature.hpp"
 #include "reference/btdf.hpp"
 #include "reference/reference.hpp"
+#include "run_mfv.hpp"
 
 #include <catch2/catch.hpp>
 #include <glm/geometric.hpp>
@@ -232,3 +233,16 @@ TEST_CASE("Agreement catches a BTDF kernel whose Jacobian is off", "[device][agr
   test::check_every_case_fails(rep);
 }
 
+
+TEST_CASE("mfv eval evaluates a rough dielectric BTDF on the device and in the reference", "[cli][btdf]") {
+  if (!test::device_runtime()) return;
+  // i from above at 45 degrees, o its refraction through n at eta = 1.5 (sin 28.1 degrees)
+  const test::Run r = test::run_mfv(
+      "eval walter_ggx_correlated --alpha 0.3 --param eta=1.5 --wi 0.70710678,0,0.70710678 --wo -0.47140452,0,-0.88191710");
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("kernel") != std::string::npos);
+  CHECK(r.out.find("reference") != std::string::npos);
+  const test::Run bad = test::run_mfv("eval walter_ggx_correlated --param eta=20 --wi 0,0,1 --wo 0,0,-1");
+  CHECK(bad.code == 2);
+  CHECK(bad.out.find("mfv: error: walter_ggx_correlated.eta = 20 is out of range") != std::string::npos);
+}

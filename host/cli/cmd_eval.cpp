@@ -1,5 +1,6 @@
-// mfv eval: one term or one D/G/F BRDF at one point, on the device and in the
+// mfv eval: one term, one D/G/F BRDF, whole model or BTDF at one point, on the device and in the
 // double reference, and how far apart they are.
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "catalog/roughness.hpp"
@@ -128,7 +129,7 @@ struct EvalCommand : SharedValues {
     cmd->description("evaluate one term or one D/G/F BRDF at one point on the device and in the reference");
     cmd->add_option("spec", spec,
                     "a term id (ggx, smith_ggx, schlick...), a BRDF D/G/F (ggx/smith_ggx/schlick) or "
-                    "a whole model (lambert, eon, phong_004...)")
+                    "a whole model (lambert, eon, phong_004...) or a rough dielectric BTDF (walter_ggx_correlated...)")
         ->required();
     alpha_opt = cmd->add_option("--alpha", alpha, "shared width alpha, converted to each term's parameter");
     cmd->add_option("--param", params,
@@ -216,6 +217,20 @@ struct EvalCommand : SharedValues {
         validate_model_param(*m, i, v);
         ps.params[i] = static_cast<float>(v);
       }
+    } else if (const Bsdf* b = parts.size() == 1 ? try_find_bsdf(spec) : nullptr) {
+      // a rough dielectric BTDF (docs/transmission.md): wi incident, wo outgoing,
+      // on opposite sides; D's and G's widths as a BRDF's, and eta
+      ps.mode = EvalMode::Btdf;
+      ps.bsdf = b;
+      ps.d = b->d;
+      ps.g = b->g;
+      set_directions(ps);
+      ps.params[0] = static_cast<float>(term_param(*b->d, 0, given, alpha, alpha_given));
+      ps.params[1] = static_cast<float>(term_param(*b->g, 0, given, alpha, alpha_given));
+      double eta = b->eta.fallback;
+      if (const double* x = given.find(b->eta.name)) eta = *x;
+      validate_value(b->id, b->eta, eta);
+      ps.params[2] = static_cast<float>(eta);
     } else if (parts.size() == 1) {
       const Term& t = find_term(spec);
       if (t.kind == Kind::D) ps.d = &t;
