@@ -103,6 +103,12 @@ std::vector<Values> roughness_grid(const UserBrdf& u, const std::vector<double>&
     if (v >= p.lo && v <= p.hi) vals.push_back(v);
   }
   if (vals.empty()) vals = {p.lo, p.value, p.hi};
+  // the declared range's ends, where the suite's widths stop short of them
+  // (a file declaring alpha down to 1e-4 is tested there, issue 28); kept
+  // by the thinning below, which keeps the first and the last value
+  std::sort(vals.begin(), vals.end());
+  if (vals.front() > p.lo * 1.05) vals.insert(vals.begin(), p.lo);
+  if (vals.back() < p.hi / 1.05) vals.push_back(p.hi);
   vals.erase(std::unique(vals.begin(), vals.end()), vals.end());
   std::vector<Values> out;
   for (size_t k = 0; k < std::min(most, vals.size()); ++k) {
