@@ -38,8 +38,8 @@ static inline MFV_ALWAYS_INLINE real masking_value_c(int d, int g, real pd, real
   real mx, my, c, s2;
   sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
   real om = ox * mx + co * c;
-  if (om <= R(0.0)) return R(0.0);
-  return eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_mix(c, pdf_slope(c, s2, w)) * co);
+  real v = eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_mix(c, pdf_slope(c, s2, w)) * co);
+  return om <= R(0.0) ? R(0.0) : v;  // select form: see terms_d.cl
 }
 
 // One sample of the estimator of integral `s`.

@@ -5,15 +5,21 @@
 // float cannot hold 1 - NoH (it rounds to 0 below ~6e-8), but it holds sin²
 // to full relative precision, so peaks as narrow as alpha = 1e-7 resolve.
 // Every term returns 0 below the horizon and treats NoH above 1 as 1.
+// Select form: each term computes its value, then selects 0 below the
+// horizon (no early return). A return before the parameter is read leaves
+// that read (a load from the IntegralSpec) in a conditional block, and on
+// AVX2 targets (PoCL's haswell), which have no cheap masked gather, LLVM's
+// cost model then keeps the whole work-item loop scalar (docs/performance.md,
+// "AVX2"). The values are the same to the bit.
 // Reference twin: host/reference/terms_d.cpp.
 
 MFV_TERMS_BEGIN  // inlined where the host asks (common.cl)
 
 static inline real D_phong(real NoH, real sin2H, real alpha_p) {
   // seed 000 "Phong" and seed 003 "Blinn microfacet distribution": (ap+2)/(2π) (n·h)^ap
-  if (NoH <= R(0.0)) return R(0.0);
   // (n·h)^ap = exp(ap log cos): log_cos keeps the tiny sin² of a sharp lobe
-  return (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * mfv_exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
+  real d = (alpha_p + R(2.0)) * (R(0.5) * MFV_INV_PI) * mfv_exp(alpha_p * log_cos(min(NoH, R(1.0)), sin2H));
+  return NoH <= R(0.0) ? R(0.0) : d;  // below the horizon (select form: see MFV_TERMS_BEGIN)
 }
 
 // exp(-x) / s for the Beckmann lobes, without a subnormal intermediate: for
@@ -25,52 +31,49 @@ static inline real D_phong(real NoH, real sin2H, real alpha_p) {
 static inline real beckmann_exp_over(real x, real s) {
   // θ -> π/2: the exponential vanishes faster than cos⁴θ, so D -> 0; returning
   // here avoids 0/0 once cos⁴θ underflows (n·h below ~1e-10 in float).
-  if (x > R(64.0)) {
-    real e = mfv_exp(R(64.0) - x);
-    if (e == R(0.0)) return R(0.0);
-    return e * (R(1.603810890548638e-28) / s);  // exp(-64), rounded
-  }
-  real e = mfv_exp(-x);
-  if (e == R(0.0)) return R(0.0);
-  return e / s;
+  bool far = x > R(64.0);
+  real e = mfv_exp(far ? R(64.0) - x : -x);
+  real scaled = e * (R(1.603810890548638e-28) / s), plain = e / s;  // exp(-64), rounded
+  real r = far ? scaled : plain;
+  return e == R(0.0) ? R(0.0) : r;
 }
 
 static inline real D_beckmann(real NoH, real sin2H, real alpha) {
   // seed 000 "Beckman": exp(-tan²θ/α²) / (π α² cos⁴θ)
-  if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real a2 = alpha * alpha;
-  return beckmann_exp_over(sin2H / (c2 * a2), MFV_PI * a2 * c2 * c2);
+  real d = beckmann_exp_over(sin2H / (c2 * a2), MFV_PI * a2 * c2 * c2);
+  return NoH <= R(0.0) ? R(0.0) : d;
 }
 
 static inline real D_ggx(real NoH, real sin2H, real alpha) {
   // seed 000 "GGX", second form α²/(π((n·h)²(α²-1)+1)²), rewritten as
   // α²/(π(c²α² + s²)²) with s² = |n×h|²: no cancellation as c -> 1.
-  if (NoH <= R(0.0)) return R(0.0);
   real c = min(NoH, R(1.0));
   // divide by α² first so α⁴ never underflows: 1/(π α² (c² + s²/α²)²)
   real a2 = alpha * alpha;
   real k = c * c + sin2H / a2;
-  return R(1.0) / (MFV_PI * a2 * k * k);
+  real d = R(1.0) / (MFV_PI * a2 * k * k);
+  return NoH <= R(0.0) ? R(0.0) : d;  // below the horizon (select form: see MFV_TERMS_BEGIN)
 }
 
 static inline real D_blinn_rho(real NoH, real sin2H, real rho) {
   // seed 004 Cook-Torrance, "blinn version": (h·n)^(2/ρ² - 2) / (π ρ²)
-  if (NoH <= R(0.0)) return R(0.0);
   real r2 = rho * rho;
   // (h·n)^e = exp(e log cos), e = 2/ρ² - 2, as in D_phong
-  return mfv_exp((R(2.0) / r2 - R(2.0)) * log_cos(min(NoH, R(1.0)), sin2H)) / (MFV_PI * r2);
+  real d = mfv_exp((R(2.0) / r2 - R(2.0)) * log_cos(min(NoH, R(1.0)), sin2H)) / (MFV_PI * r2);
+  return NoH <= R(0.0) ? R(0.0) : d;
 }
 
 static inline real D_beckmann_ct82(real NoH, real sin2H, real m) {
   // seed 001 as written: exp(-(tanδ/m)²) / (4 m² cos⁴δ). Known bad: the 4 in
   // place of π makes ∫ D cos = π/4 (Cook and Torrance 1982 omit the π).
-  if (NoH <= R(0.0)) return R(0.0);
   real c2 = sqr(min(NoH, R(1.0)));
   real m2 = m * m;
   real e = mfv_exp(-sin2H / (c2 * m2));
-  if (e == R(0.0)) return R(0.0);               // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
-  return e / (R(4.0) * m2 * c2 * c2);
+  real d = e / (R(4.0) * m2 * c2 * c2);
+  d = e == R(0.0) ? R(0.0) : d;  // θ -> π/2: D -> 0, and no 0/0 (as D_beckmann)
+  return NoH <= R(0.0) ? R(0.0) : d;
 }
 
 // ---- Anisotropic D (tangent frame t = +x, b = +y, n = +z) ----------------

@@ -70,30 +70,31 @@ static inline real G1_smith_phong(real NoV, real alpha_p) {
 
 static inline real G_implicit(real NoL, real NoV, real NoH, real VoH, real unused) {
   // seed 000 "V(L,V) = 1": G = (n·l)(n·v)
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
-  return NoL * NoV;
+  // select form (terms_d.cl); fmin(a, b) <= 0 is a <= 0 || b <= 0, NaN
+  // included, without two compares SLP would pair into a <2 x i1>
+  return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : NoL * NoV;
 }
 
 static inline real G_kelemen(real NoL, real NoV, real NoH, real VoH, real unused) {
   // seed 000: G / ((L·N)(V·N)) ≈ 1 / (L·H)²  (Kelemen and Szirmay-Kalos 2001)
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
   // (n·l / l·h)(n·v / v·h): the same product, without the underflow of
   // (n·l)(n·v) and (l·h)² at grazing, where each quotient stays near 1.
-  return (NoL / VoH) * (NoV / VoH);
+  real g = (NoL / VoH) * (NoV / VoH);
+  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 static inline real G_cook_torrance(real NoL, real NoV, real NoH, real VoH, real unused) {
   // seeds 001, 003, 004 (V-cavity, Torrance-Sparrow 1967):
   // min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h)), using v·h = l·h
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
   real k = R(2.0) * NoH / VoH;
-  return min(R(1.0), k * min(NoV, NoL));
+  real g = min(R(1.0), k * min(NoV, NoL));
+  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 static inline real G_smith_beckmann_approx(real NoL, real NoV, real NoH, real VoH, real alpha) {
   // seed 000 Smith form G = G1(L) G1(V), rational Beckmann G1
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
-  return G1_smith_beckmann_approx(NoL, alpha) * G1_smith_beckmann_approx(NoV, alpha);
+  real g = G1_smith_beckmann_approx(NoL, alpha) * G1_smith_beckmann_approx(NoV, alpha);
+  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 static inline real G_smith_beckmann(real NoL, real NoV, real NoH, real VoH, real alpha) {
@@ -104,8 +105,8 @@ static inline real G_smith_beckmann(real NoL, real NoV, real NoH, real VoH, real
 
 static inline real G_smith_phong(real NoL, real NoV, real NoH, real VoH, real alpha_p) {
   // seed 000 "Phong": Smith form with the Phong G1
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
-  return G1_smith_phong(NoL, alpha_p) * G1_smith_phong(NoV, alpha_p);
+  real g = G1_smith_phong(NoL, alpha_p) * G1_smith_phong(NoV, alpha_p);
+  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 static inline real G_smith_ggx(real NoL, real NoV, real NoH, real VoH, real alpha) {
@@ -116,16 +117,16 @@ static inline real G_smith_ggx(real NoL, real NoV, real NoH, real VoH, real alph
 
 static inline real G_smith_ggx_correlated(real NoL, real NoV, real NoH, real VoH, real alpha) {
   // Heitz 2014 eq. 99 (height-correlated): 1 / (1 + Λ(L) + Λ(V))
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
-  return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));
+  real g = R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));
+  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 static inline real G_hammon_002(real NoL, real NoV, real NoH, real VoH, real alpha) {
   // seed 002 `geometry`: visibility V = 0.5 / max(0.01, mix(2 NoL NoV, NoL + NoV, α))
   // (Hammon 2017's approximation); G = 4 NoL NoV V.
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
   real v = R(0.5) / max(R(0.01), mix(R(2.0) * NoL * NoV, NoL + NoV, alpha));
-  return R(4.0) * NoL * NoV * v;
+  real g = R(4.0) * NoL * NoV * v;
+  return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 // ---- Anisotropic Smith (tangent frame t = +x, b = +y, n = +z) -----------
