@@ -122,6 +122,7 @@ std::string plan_hash(const SuitePlans& sp, const SuiteOptions& opt) {
   f.value(opt.family_alpha);
   f.value(opt.reference_samples);
   f.value(opt.reference_every);
+  f.value(opt.density);
   for (auto& c : opt.checks) f.text(c);
   f.text("|");
   for (auto& m : opt.models) f.text(m);

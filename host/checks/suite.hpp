@@ -106,6 +106,7 @@ struct SuiteOptions {
   // narrowest and most grazing, always); whole-model and d_norm integrals
   // are all compared (1 = all).
   uint32_t reference_every = 97;
+  int density = 1;  // grid density: mfv run --profile (checks/profile.hpp)
 };
 
 struct SuiteReport {

@@ -9,6 +9,7 @@
 #include "catalog/roughness.hpp"
 #include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
+#include "checks/profile.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -147,7 +148,7 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
       for (auto& c : m.cases) {
         const std::string name = model_case_name(m, c);
         if (!suite_model_wanted(opt.models, name)) continue;
-        for (double co : view_cosines(kModelLights)) {
+        for (double co : view_cosines(kModelLights * opt.density)) {
           const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
           if (exact && std::isnan(closed)) continue;
           p.specs.push_back(model_spec(IntegralKind::Albedo, m, c.p, co));
@@ -172,9 +173,11 @@ void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
 
 // The widths of a row: the D's own d_norm grid (n_alpha = 0: native
 // values in its range), else n_alpha of kAlphas, evenly thinned.
-std::vector<double> row_alphas(const CheckRow& row) {
+std::vector<double> row_alphas(const CheckRow& row, int density) {
+  const std::vector<double> all = densify(kAlphas, density);
+  const size_t n = std::min(all.size(), size_t(row.n_alpha * density));
   std::vector<double> out;
-  for (int ai = 0; ai < row.n_alpha; ++ai) out.push_back(kAlphas[size_t(ai) * kAlphas.size() / size_t(row.n_alpha)]);
+  for (size_t ai = 0; ai < n; ++ai) out.push_back(all[ai * all.size() / n]);
   return out;
 }
 
@@ -194,7 +197,7 @@ Plan d_norm_plan(const SuiteOptions& opt) {
     if (!suite_model_wanted(opt.models, d->id)) continue;
     p.terms.d.push_back(d);
     const Param& par = d->params[0];
-    for (double v : d->roughness == Roughness::PhongExponent ? kNormPhong : kNormAlphas) {
+    for (double v : densify(d->roughness == Roughness::PhongExponent ? kNormPhong : kNormAlphas, opt.density)) {
       if (v < par.lo || v > par.hi) continue;
       add_point(p, row.kind, d, nullptr, nullptr, alpha_from_native(d->roughness, v), v, 0, 0, 0, 0, 1, 1.0, false,
                 {{par.name, v}});
@@ -207,7 +210,7 @@ Plan d_norm_plan(const SuiteOptions& opt) {
 Plan dgf_plan(const CheckRow& row, const SuiteOptions& opt) {
   Plan p = new_plan(row.check, row.base_samples, opt.scale);
   const bool masking = row.kind == IntegralKind::Masking;
-  const std::vector<double> views = view_cosines(row.n_view);
+  const std::vector<double> views = view_cosines(row.n_view * opt.density);
   const std::vector<const Term*> fs = row_fs(row);
   p.terms.d = terms_of(Kind::D);
   p.terms.g = terms_of(Kind::G);
@@ -216,9 +219,9 @@ Plan dgf_plan(const CheckRow& row, const SuiteOptions& opt) {
     for (auto* g : p.terms.g)
       for (auto* f : fs) {
         if (!suite_model_wanted(opt.models, d->id + "/" + g->id + (masking ? "" : "/" + f->id))) continue;
-        for (double alpha : row_alphas(row)) {
+        for (double alpha : row_alphas(row, opt.density)) {
           const NativeWidths w = native_widths(*d, *g, alpha);
-          for (auto& fp : masking ? std::vector<ParamPoint>{{0, 0, ""}} : f->check_points)
+          for (auto& fp : masking ? std::vector<ParamPoint>{{0, 0, ""}} : densify_points(*f, opt.density))
             for (double kd : row.kds)
               for (double co : views) {
                 std::map<std::string, double> params{{"alpha", alpha}, {"cos_o", co}};

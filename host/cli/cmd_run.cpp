@@ -1,4 +1,5 @@
 // mfv run: the conformance suite and CI gate.
+#include "checks/profile.hpp"
 #include "checks/suite.hpp"
 #include "cli/run_shard.hpp"
 #include "cli/shared_options.hpp"
@@ -24,8 +25,9 @@ struct RunCommand : SharedValues {
   bool compare_full = false;
   double baseline_alpha = 1e-3;
   CLI::Option* every_opt = nullptr;
-  std::string shard;
+  std::string shard, profile = "default";
   uint32_t shard_count = 0;
+  bool dry = false;
 
   void add_options(CLI::App* cmd) {
     cmd->description(
@@ -54,12 +56,17 @@ struct RunCommand : SharedValues {
     cmd->add_option("--shard-count", shard_count,
                     "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--profile", profile,
+                    "default: the CI-sized run; deep: denser widths, views, lights and F parameters (over 10^6 "
+                    "integrals, docs/scale.md)");
+    cmd->add_flag("--dry-run", dry, "print the plan's integrals, samples and estimated time on this device; run nothing");
     cmd->add_flag("--compare-full", compare_full,
                   "with --scene: also run the full catalog and measure the time the scene saved");
   }
 
   int run(const Globals& g) {
     apply_samples(opt.scale);
+    opt.density = profile_density(profile);
     validate_suite_options(opt);
     if (compare_full && scene_path.empty()) throw Error("--compare-full needs --scene");
     const nlohmann::json base =
@@ -71,6 +78,9 @@ struct RunCommand : SharedValues {
       print_baseline_console(diff);
       return diff.moved.empty() ? 0 : 1;
     };
+    if (dry && !scene_path.empty()) throw Error("--dry-run does not apply to --scene");
+    if (opt.density > 1 && !scene_path.empty()) throw Error("--profile does not apply to --scene");
+    if (dry) return dry_run(g, opt, shard_of(shard, shard_count));
     if (std::optional<ShardSpec> s = shard_of(scene_path.empty() ? shard : "off", shard_count)) {
       if (!baseline.empty()) throw Error("--baseline applies to the merged run (mfv merge), not to a shard");
       return run_shard(g, opt, *s, out_dir);

@@ -17,4 +17,9 @@ std::optional<ShardSpec> shard_of(const std::string& option, uint32_t count);
 // Runs shard s of the plan of `opt` and writes out_dir/shard.json; exit code 0.
 int run_shard(const Globals& g, const SuiteOptions& opt, const ShardSpec& s, const std::string& out_dir);
 
+// mfv run --dry-run: prints "N integrals, M samples, estimated time on this
+// device" for the plan of `opt` (the shard's part where given), from a short
+// calibration launch (host/cli/dry_run.cpp); exit code 0.
+int dry_run(const Globals& g, const SuiteOptions& opt, const std::optional<ShardSpec>& shard);
+
 }  // namespace mfv::cli

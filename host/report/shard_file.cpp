@@ -122,7 +122,8 @@ json options_json(const SuiteOptions& opt) {
           {"checks", opt.checks},
           {"models", opt.models},
           {"reference_samples", opt.reference_samples},
-          {"reference_every", opt.reference_every}};
+          {"reference_every", opt.reference_every},
+          {"density", opt.density}};
 }
 
 SuiteOptions options_of(const json& j) {
@@ -134,6 +135,7 @@ SuiteOptions options_of(const json& j) {
   o.models = j.at("models").get<std::vector<std::string>>();
   o.reference_samples = j.at("reference_samples").get<uint32_t>();
   o.reference_every = j.at("reference_every").get<uint32_t>();
+  o.density = j.value("density", 1);
   return o;
 }
 
