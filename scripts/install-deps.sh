@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(cmake g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers
           catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
           libboost-math-dev libstb-dev
+          libpng-dev    # 16-bit PNG tables of mfv energy --layout
           gnuplot-nox   # gnuplot: optional at run time, for the plots
           python3-jsonschema python3-yaml)  # tests: outputs against schemas/, the CI snippets of docs/ci/
 missing=()

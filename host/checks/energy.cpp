@@ -9,6 +9,7 @@
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
+#include "util/error.hpp"
 #include "util/progress.hpp"
 
 #include <fmt/format.h>
@@ -141,6 +142,14 @@ class PilotThenFresh {
   std::vector<Progress> prog_;
 };
 
+// The integration program in double (MFV_DOUBLE, mfv energy --fp64): every
+// point's value in float64, summed in double. Integrator(rt, program) without
+// the fast paths, whose value buffers are float: the general `integrate`
+// kernel computes and sums each value in `real`.
+cl::Program build_energy_fp64_program(Runtime& rt, const TermSelection& sel) {
+  return rt.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(sel), kDispatchBefore);
+}
+
 // "D/G/F" or "model ID": what an integral integrates, for messages.
 std::string subject_of(const IntegralSpec& s) {
   if (const Model* m = model_by_number(s.model)) return "model " + m->id;
@@ -149,7 +158,8 @@ std::string subject_of(const IntegralSpec& s) {
 }
 
 // The double reference on the identical first samples of every k-th integral.
-void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units) {
+void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units,
+                                   bool fp64) {
   const EnergyOptions& opt = rep.opt;
   std::vector<IntegralSpec> subset;
   size_t k = 0;
@@ -163,7 +173,11 @@ void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std:
         }
       }
   in.stratify(subset, opt.min_points);  // E_avg's view cosines are spaced by the point count
-  auto agree = compare_with_reference(in, subset, opt.reference_samples, opt.seed);
+  auto agree =
+      fp64 ? agreement_with_reference(
+                 subset, program_sample_values<double>(in.runtime(), in.program(), subset, opt.reference_samples, opt.seed),
+                 opt.reference_samples, opt.seed)
+           : compare_with_reference(in, subset, opt.reference_samples, opt.seed);
   for (size_t j = 0; j < agree.size(); ++j) {
     rep.reference_compared++;
     if (agree[j].disagreement <= rep.reference_worst) continue;
@@ -183,21 +197,27 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   EnergyReport rep;
   rep.opt = opt;
   rep.device = rt.device().name;
-  rep.mu = energy_mu_grid(opt.n_mu);
-  rep.alpha = energy_alpha_grid(opt.n_alpha);
+  rep.mu = opt.mu_axis.empty() ? energy_mu_grid(opt.n_mu) : opt.mu_axis;
+  rep.alpha = opt.alpha_axis.empty() ? energy_alpha_grid(opt.n_alpha) : opt.alpha_axis;
+  rep.paired = opt.paired;
+  rep.midpoint_mu = !rep.paired && rep.mu == energy_mu_grid(int(rep.mu.size()));
+  if (opt.fp64 && !rt.device().fp64)
+    throw Error(fmt::format("--fp64: device '{}' has no cl_khr_fp64; run without --fp64 (float32 kernels) or pick "
+                            "a device with it (mfv list-devices)",
+                            rt.device().name));
   const TermSelection sel = add_energy_subjects(rep);
   const double b0 = rt.build_stats().seconds;
-  Integrator in(rt, sel);
+  Integrator in = opt.fp64 ? Integrator(rt, build_energy_fp64_program(rt, sel)) : Integrator(rt, sel);
   rep.build_seconds = rt.build_stats().seconds - b0;
 
   uint32_t stream = 0;
   const std::vector<EnergyUnit> units = energy_units(rep, stream);
   PilotThenFresh(rep, in, units).run(stream);
 
-  add_quadrature_cross_check(rep);
+  if (rep.midpoint_mu) add_quadrature_cross_check(rep);
   track_largest_error(rep);
   judge_model_gains(rep);
-  if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units);
+  if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units, opt.fp64);
 
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double run_s = std::max(1e-9, rep.seconds - rep.build_seconds);

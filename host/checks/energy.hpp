@@ -47,6 +47,14 @@ struct EnergyOptions {
   std::vector<ModelPoint> model_points;  // more whole-model points (mfv energy --scene)
   double gain_alpha = 1e-3;              // family-wise false-alarm rate of "gains energy" over every model cell
   int n_mu = 32, n_alpha = 32;
+  // Axes given by the caller (issue 33; checks/energy_axes.hpp): empty = the
+  // built-in grid above. `paired`: cell i is (mu[i], alpha[i]) (mfv energy
+  // --at), not the product of the two axes. `roughness`: the values the
+  // caller gave when alpha = roughness² (--roughness r2), else empty.
+  std::vector<double> mu_axis, alpha_axis, roughness;
+  bool paired = false;
+  std::string layout;  // a layout's name (checks/energy_layouts.hpp), or empty
+  bool fp64 = false;   // the energy kernels in double (cl_khr_fp64)
   double target = 1e-4;  // standard error per cell
   uint64_t seed = 1;
   int replicates = 8;               // randomizations per quantity (stderr has R-1 degrees of freedom)
@@ -58,6 +66,12 @@ struct EnergyOptions {
 
 struct Cell {
   double mean = 0, se = 0;
+};
+
+// One cell of a table: its width index a, view index m and cell index c
+// (a * n_mu + m on a grid; a = m = c on paired points).
+struct CellAt {
+  size_t a, m, c;
 };
 
 struct EnergyTable {
@@ -86,7 +100,12 @@ struct ModelEnergy {
 
 struct EnergyReport {
   EnergyOptions opt;
-  std::vector<double> mu, alpha;  // mu: midpoints (m + 1/2)/n; alpha: log-spaced 1e-3..1
+  std::vector<double> mu, alpha;  // default mu: midpoints (m + 1/2)/n; alpha: log-spaced 1e-3..1; or the caller's
+  bool paired = false;            // cell i = (mu[i], alpha[i]) (opt.paired)
+  bool midpoint_mu = true;        // mu is the midpoint grid: E_avg's quadrature cross-check applies
+  // Every table cell in record order; cells per table.
+  std::vector<CellAt> cells() const;
+  size_t n_cells() const { return paired ? alpha.size() : mu.size() * alpha.size(); }
   std::vector<EnergyTable> tables;
   std::vector<ModelEnergy> models;
   double seconds = 0, build_seconds = 0;
@@ -102,6 +121,18 @@ struct EnergyReport {
 };
 
 std::vector<double> energy_mu_grid(int n);
+// The width a table integrates at alpha: alpha itself, or D's smallest
+// declared width where alpha is below it (alpha = 0, a mirror, has no
+// microfacet integral; an engine layout's first roughness cells may lie below
+// a D's range, e.g. charlie's 1e-3). Outputs list such cells.
+double energy_min_alpha(const Term& d);
+// The view cosine a cell integrates at: mu, or the grazing limit's stand-in
+// kEnergyMuFloor where mu is below it (at mu = 0 exactly the view lies in the
+// surface and the integrand is 0/0; engines' edge tables hold the limit
+// mu -> 0+ there; docs/energy-layouts.md measures E's change below the floor).
+constexpr double kEnergyMuFloor = 1e-6;
+double energy_eval_mu(double mu);
+double energy_eval_alpha(const Term& d, double alpha);
 std::vector<double> energy_alpha_grid(int n);
 
 void validate_energy_options(const EnergyOptions& opt);  // throws mfv::Error

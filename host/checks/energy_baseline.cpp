@@ -34,8 +34,9 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
         if (std::fabs(a[i].get<double>() - b[i]) > 1e-9 * std::max(1.0, std::fabs(b[i]))) return false;
       return true;
     };
-    if (!same(grid.at("mu"), now.mu) || !same(grid.at("alpha"), now.alpha))
-      throw Error(fmt::format("--baseline has a {}x{} grid; this run has {}x{}: rerun with the same --grid",
+    const bool paired = grid.contains("points") && grid.at("points").get<bool>();
+    if (paired != now.paired || !same(grid.at("mu"), now.mu) || !same(grid.at("alpha"), now.alpha))
+      throw Error(fmt::format("--baseline has {}x{} (mu x alpha) values; this run has {}x{}: rerun on the same axes",
                               grid.at("mu").size(), grid.at("alpha").size(), now.mu.size(), now.alpha.size()));
     const double df_old = j.at("options").at("replicates").get<double>() - 1, df_new = now.opt.replicates - 1;
     std::vector<BaselineValue> tests;
@@ -49,18 +50,17 @@ BaselineDiff compare_energy_baseline(const EnergyReport& now, const std::string&
         continue;
       }
       const json& c = *it->second;
-      for (size_t a = 0; a < now.alpha.size(); ++a) {
-        for (size_t m = 0; m < nm; ++m) {
-          const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), now.alpha[a], now.mu[m]);
-          const size_t ci = a * nm + m;
-          tests.push_back(
-              {"E " + w, num(c.at("E")[a][m]), num(c.at("E_se")[a][m]), df_old, t.E[ci].mean, t.E[ci].se, df_new});
-          tests.push_back(
-              {"A " + w, num(c.at("A")[a][m]), num(c.at("A_se")[a][m]), df_old, t.A[ci].mean, t.A[ci].se, df_new});
-        }
+      for (const CellAt& cell : now.cells()) {
+        const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), now.alpha[cell.a], now.mu[cell.m]);
+        // a grid's arrays are [alpha][mu]; paired points' are flat
+        auto at = [&](const char* key) { return num(now.paired ? c.at(key)[cell.c] : c.at(key)[cell.a][cell.m]); };
+        const size_t ci = cell.c;
+        tests.push_back({"E " + w, at("E"), at("E_se"), df_old, t.E[ci].mean, t.E[ci].se, df_new});
+        tests.push_back({"A " + w, at("A"), at("A_se"), df_old, t.A[ci].mean, t.A[ci].se, df_new});
+      }
+      for (size_t a = 0; a < now.alpha.size(); ++a)
         tests.push_back({fmt::format("E_avg {} alpha={:.4g}", t.name(), now.alpha[a]), num(c.at("E_avg")[a]),
                          num(c.at("E_avg_se")[a]), df_old, t.eavg[a].mean, t.eavg[a].se, df_new});
-      }
     }
     for (auto& [name, c] : old)
       if (std::none_of(now.tables.begin(), now.tables.end(), [&](const EnergyTable& t) { return t.name() == name; }))

@@ -107,17 +107,17 @@ void track_largest_error(EnergyReport& rep) {
     }
   };
   const size_t nm = rep.mu.size();
-  for (auto& t : rep.tables)
-    for (size_t a = 0; a < rep.alpha.size(); ++a) {
-      for (size_t m = 0; m < nm; ++m) {
-        const size_t c = a * nm + m;
-        const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), rep.alpha[a], rep.mu[m]);
-        consider(t.E[c], "E " + w);
-        consider(t.A[c], "A " + w);
-        consider(t.B[c], "B " + w);
-      }
-      consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
+  const std::vector<CellAt> cells = rep.cells();
+  for (auto& t : rep.tables) {
+    for (const CellAt& c : cells) {
+      const std::string w = fmt::format("{} alpha={:.4g} mu={:.4g}", t.name(), rep.alpha[c.a], rep.mu[c.m]);
+      consider(t.E[c.c], "E " + w);
+      consider(t.A[c.c], "A " + w);
+      consider(t.B[c.c], "B " + w);
     }
+    for (size_t a = 0; a < rep.alpha.size(); ++a)
+      consider(t.eavg[a], fmt::format("E_avg {} alpha={:.4g}", t.name(), rep.alpha[a]));
+  }
   for (auto& me : rep.models) {
     for (size_t m = 0; m < nm; ++m) consider(me.E[m], fmt::format("E {} mu_l={:.4g}", me.point.name, rep.mu[m]));
     consider(me.eavg, "E_avg " + me.point.name);

@@ -3,6 +3,7 @@
 #include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
 #include "checks/suite.hpp"
+#include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -24,9 +25,38 @@ std::vector<double> energy_alpha_grid(int n) {
   return a;
 }
 
+double energy_min_alpha(const Term& d) {
+  if (d.params.empty()) return 0;
+  const Param& p = d.params[0];
+  const double lo = alpha_from_native(d.roughness, p.lo), hi = alpha_from_native(d.roughness, p.hi);
+  return std::min(lo, hi) > 0 ? std::min(lo, hi) : std::max(lo, hi);
+}
+
+double energy_eval_mu(double mu) { return std::max(mu, kEnergyMuFloor); }
+
+double energy_eval_alpha(const Term& d, double alpha) { return std::max(alpha, energy_min_alpha(d)); }
+
+std::vector<CellAt> EnergyReport::cells() const {
+  std::vector<CellAt> out;
+  if (paired)
+    for (size_t i = 0; i < alpha.size(); ++i) out.push_back({i, i, i});
+  else
+    for (size_t a = 0; a < alpha.size(); ++a)
+      for (size_t m = 0; m < mu.size(); ++m) out.push_back({a, m, a * mu.size() + m});
+  return out;
+}
+
 void validate_energy_options(const EnergyOptions& o) {
-  if (o.n_mu < 2 || o.n_mu > 256 || o.n_alpha < 2 || o.n_alpha > 256)
+  if (o.mu_axis.empty() != o.alpha_axis.empty()) throw Error("give both axes (--mu and --alpha), or neither");
+  if (o.mu_axis.empty() && (o.n_mu < 2 || o.n_mu > 256 || o.n_alpha < 2 || o.n_alpha > 256))
     throw Error(fmt::format("--grid {}x{}: each side must be 2..256", o.n_mu, o.n_alpha));
+  if (o.paired && o.mu_axis.size() != o.alpha_axis.size()) throw Error("points: as many mu as alpha values");
+  if (!o.paired && o.mu_axis.size() * o.alpha_axis.size() > 65536)
+    throw Error(fmt::format("{} x {} cells: at most 65536", o.mu_axis.size(), o.alpha_axis.size()));
+  for (double m : o.mu_axis)
+    if (!(m >= 0 && m <= 1)) throw Error(fmt::format("mu = {}: a view cosine must be in [0, 1]", m));
+  for (double a : o.alpha_axis)
+    if (!(a >= 0 && a <= 10)) throw Error(fmt::format("alpha = {}: must be in [0, 10]", a));
   if (!(o.target > 0) || !std::isfinite(o.target) || o.target >= 1)
     throw Error(fmt::format("--target {}: must be a standard error in (0, 1)", o.target));
   if (o.replicates < 2 || o.replicates > 256) throw Error(fmt::format("--replicates {}: must be 2..256", o.replicates));
@@ -72,20 +102,20 @@ std::vector<ModelPoint> model_points_of(const EnergyOptions& opt) {
 }
 
 // The table of D x G at every alpha of the grid, its cells not yet run.
-EnergyTable empty_table(const Term& d, const Term& g, const std::vector<double>& alpha, size_t nm) {
+EnergyTable empty_table(const Term& d, const Term& g, const std::vector<double>& alpha, size_t cells) {
   EnergyTable t;
   t.d = &d;
   t.g = &g;
   for (double a : alpha) {
-    const NativeWidths w = native_widths(d, g, a);
+    const NativeWidths w = native_widths(d, g, energy_eval_alpha(d, a));
     validate_param(d, 0, w.pd);
     t.pd.push_back(w.pd);
     t.pg.push_back(w.pg);
   }
   const size_t na = alpha.size();
-  t.E.resize(nm * na);
+  t.E.resize(cells);
   t.A = t.B = t.E;
-  t.points.assign(nm * na, 0);
+  t.points.assign(cells, 0);
   t.eavg.resize(na);
   t.eavg_quad.resize(na);
   return t;
@@ -108,7 +138,8 @@ void add_row_units(std::vector<EnergyUnit>& units, const CheckRow& row, const st
   const bool eavg = row.kind == IntegralKind::EavgRqmc;
   const std::vector<double> views = row_views(row, mu);
   for (size_t m = 0; m < views.size(); ++m) {
-    units.push_back({table, eavg ? first_index : first_index + m, eavg, spec_at(row.kind, views[m]), stream, model});
+    units.push_back(
+        {table, eavg ? first_index : first_index + m, eavg, spec_at(row.kind, energy_eval_mu(views[m])), stream, model});
     stream += uint32_t(R);
   }
 }
@@ -121,7 +152,7 @@ TermSelection add_energy_subjects(EnergyReport& rep) {
   TermSelection sel;
   for (auto [d, g] : energy_table_pairs()) {
     if (!opt.tables || !suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
-    rep.tables.push_back(empty_table(*d, *g, rep.alpha, nm));
+    rep.tables.push_back(empty_table(*d, *g, rep.alpha, rep.n_cells()));
     add_once(sel.d, d);
     add_once(sel.g, g);
     sel.specialized.push_back({term_index(*d), term_index(*g)});  // its kernels per term pair (runtime/specialize.hpp)
@@ -153,12 +184,14 @@ std::vector<EnergyUnit> energy_units(const EnergyReport& rep, uint32_t& next_str
         m.kind = kind;
         m.d = t.d, m.g = t.g, m.f = &none;
         m.pd = t.pd[a], m.pg = t.pg[a];
-        m.width = proposal_width(*t.d, rep.alpha[a]);
+        m.width = proposal_width(*t.d, energy_eval_alpha(*t.d, rep.alpha[a]));
         m.cos_o = cos_o;
         return spec_of(m);
       };
+      // a grid: every mu at this width; paired points: this point's mu
+      const std::vector<double> mus = rep.paired ? std::vector<double>{rep.mu[a]} : rep.mu;
       for (const CheckRow& row : energy_check_rows())
-        add_row_units(units, row, rep.mu, ti, row.n_view > 0 ? a * nm : a, false, R, stream, spec_at);
+        add_row_units(units, row, mus, ti, row.n_view > 0 && !rep.paired ? a * nm : a, false, R, stream, spec_at);
     }
   }
   for (size_t mi = 0; mi < rep.models.size(); ++mi) {

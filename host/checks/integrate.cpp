@@ -98,9 +98,15 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
 
 std::vector<Agreement> compare_with_reference(Integrator& in, const std::vector<IntegralSpec>& specs, uint32_t n,
                                               uint64_t seed) {
+  if (n == 0 || specs.empty()) return {};
+  const std::vector<float> kv = in.sample_values(specs, n, seed);
+  return agreement_with_reference(specs, std::vector<double>(kv.begin(), kv.end()), n, seed);
+}
+
+std::vector<Agreement> agreement_with_reference(const std::vector<IntegralSpec>& specs,
+                                                const std::vector<double>& kv, uint32_t n, uint64_t seed) {
   std::vector<Agreement> out;
   if (n == 0 || specs.empty()) return out;
-  std::vector<float> kv = in.sample_values(specs, n, seed);
   for (size_t j = 0; j < specs.size(); ++j) {
     const ref::IntegralRef r = reference_of(specs[j]);
     const uint64_t stride = r.strata >= n ? r.strata / n : 1;  // as kernels/integrate.cl sample_values

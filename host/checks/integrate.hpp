@@ -48,5 +48,9 @@ struct Agreement {
 };
 std::vector<Agreement> compare_with_reference(Integrator& in, const std::vector<IntegralSpec>& specs, uint32_t n,
                                               uint64_t seed);
+// The same from kernel values already read: n per integral, integral-major
+// (a float or, mfv energy --fp64, a double program's sample_values).
+std::vector<Agreement> agreement_with_reference(const std::vector<IntegralSpec>& specs,
+                                                const std::vector<double>& kernel_values, uint32_t n, uint64_t seed);
 
 }  // namespace mfv

@@ -1,6 +1,9 @@
 // mfv energy: energy-loss tables and Kulla-Conty compensation data.
 #include "checks/energy.hpp"
+#include "checks/energy_layouts.hpp"
 #include "cli/shared_options.hpp"
+#include "checks/energy_compare.hpp"
+#include "report/energy_layout_out.hpp"
 #include "report/energy_report.hpp"
 #include "scene/scene_filters.hpp"
 #include "util/error.hpp"
@@ -35,7 +38,9 @@ std::string written_list(const std::vector<std::pair<std::string, std::string>>&
 // mfv energy: its values, bound to its options, and its work.
 struct EnergyCommand : SharedValues {
   EnergyOptions opt;
-  std::string grid;
+  std::string grid, mu, alpha, roughness = "alpha", layout, compare;
+  CLI::Option* target_opt = nullptr;
+  std::vector<std::string> at;
   double alpha_fw = 1e-3;
 
   void add_options(CLI::App* cmd) {
@@ -46,7 +51,25 @@ struct EnergyCommand : SharedValues {
                     "only D/G combinations (d/g) and whole-model cases (model[case]) whose name contains one of "
                     "these, e.g. ggx/ or '[' for the whole models (default: every D x G and every whole-model case)");
     cmd->add_option("--grid", grid, "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
-    cmd->add_option("--target", opt.target,
+    cmd->add_option("--mu", mu,
+                    "view cosines, exactly these in this order: a list 0.1,0.5,1 or lin:A:B:N, centers:N ((i+1/2)/N), "
+                    "edges:N (i/(N-1)); with --alpha, in place of --grid");
+    cmd->add_option("--alpha", alpha,
+                    "widths, as --mu (read as --roughness says); alpha = 0 (a mirror) is evaluated at the D's "
+                    "smallest declared width");
+    cmd->add_option("--roughness", roughness,
+                    "how --alpha and --at read: alpha (the width, default) or r2 (perceptual roughness r, alpha = r^2)");
+    cmd->add_option("--at", at, "one point MU,ALPHA (repeatable): E, A, B and E_avg there, nothing else");
+    cmd->add_option("--layout", layout,
+                    "an engine's table layout, NAME or NAME:N (default N = 32): kulla-conty, split-sum, sheen "
+                    "(docs/energy-layouts.md); sets the axes and, without --models, the D/G");
+    cmd->add_flag("--fp64", opt.fp64,
+                  "the energy kernels in double (needs cl_khr_fp64; PoCL has it): no float32 rounding in the values");
+    cmd->add_option("--compare", compare,
+                    "a team's table (.csv, C/C++ array file, .png) in --layout's layout: each cell against mfv's in "
+                    "units of total uncertainty, Holm over the cells; exit 0 pass, 1 a cell deviates, 2 bad input "
+                    "(default --target 1e-5)");
+    target_opt = cmd->add_option("--target", opt.target,
                     "standard error per cell to reach (default 1e-4); cells above it get more points, up to the cap");
     cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 8)");
     cmd->add_option("--max-points", opt.max_points, "cap on points per replicate per value (default 16384)");
@@ -55,23 +78,63 @@ struct EnergyCommand : SharedValues {
         .out("energy.json, report.md, kulla_conty.h, csv/ and plots/")
         .baseline(
             "earlier energy.json: exit 1 if a value moved beyond its combined standard errors (Bonferroni over all "
-            "values)",
+            "values); --alpha-fw is also --compare's family-wise rate",
             "--alpha-fw", alpha_fw)
         .scene(
             "only what the materials of this scene use (.gltf, .glb, material .json): the glTF model at each "
             "material's parameters, the D x G tables of the others; prints each material's energy loss");
   }
 
+  // --mu/--alpha, --at or --layout: one way of giving the cells, each without --grid.
+  void set_axes() {
+    const int ways = int(!mu.empty() || !alpha.empty()) + int(!at.empty()) + int(!layout.empty()) + int(!grid.empty());
+    if (ways > 1) throw Error("give the cells one way: --grid, --mu with --alpha, --at, or --layout");
+    const RoughnessAxis param = parse_roughness_axis(roughness);
+    if (!layout.empty()) {
+      if (roughness != "alpha") throw Error("--layout sets the roughness parametrization; leave out --roughness");
+      apply_energy_layout(opt, parse_energy_layout(layout));
+    } else if (!at.empty()) {
+      std::vector<double> m, w;
+      for (auto& p : at) {
+        auto [pm, pw] = parse_energy_point(p);
+        m.push_back(pm);
+        w.push_back(pw);
+      }
+      set_energy_axes(opt, m, w, param, true);
+    } else if (!mu.empty() || !alpha.empty()) {
+      if (mu.empty() || alpha.empty()) throw Error("--mu and --alpha go together");
+      set_energy_axes(opt, parse_energy_axis("--mu", mu), parse_energy_axis("--alpha", alpha), param, false);
+    } else if (roughness != "alpha") {
+      throw Error("--roughness r2 reads --alpha or --at values; give one of them");
+    }
+  }
+
   int run(const Globals& g) {
     const Scene scene = load_scene_instead_of(!opt.models.empty(), "--models", "models");
     if (!scene_path.empty()) scene_energy_options(scene, opt);
     if (!grid.empty()) std::tie(opt.n_mu, opt.n_alpha) = parse_cells("--grid", grid, "MUxALPHA", "32x32");
+    set_axes();
+    const LayoutChoice lay = layout.empty() ? LayoutChoice{} : parse_energy_layout(layout);
+    if (!compare.empty() && lay.layout == nullptr) throw Error("--compare needs --layout NAME[:N] (its axes and order)");
+    if (!compare.empty() && target_opt->count() == 0) opt.target = 1e-5;
     validate_energy_options(opt);
+    // their table first: bad input stops before any work, never after a partial verdict
+    const std::vector<TheirTable> theirs =
+        compare.empty() ? std::vector<TheirTable>{}
+                        : read_their_table(compare, *lay.layout, opt.mu_axis, opt.alpha_axis, opt.roughness);
     const std::string base_text = baseline.empty() ? "" : read_text_file(baseline, "--baseline");
     prepare_out();
     Runtime rt(g.device, g.kernel_dir);
     EnergyReport rep = run_energy(rt, opt);
+    if (!compare.empty() && rep.tables.size() != 1)
+      throw Error(fmt::format("--compare: --models selects {} D/G tables; name one (e.g. ggx/smith_ggx_correlated)",
+                              rep.tables.size()));
     print_energy_console(rep);
+    CompareResult cmp;
+    if (!compare.empty()) {
+      cmp = compare_their_table(rep, theirs, alpha_fw);
+      print_compare_console(cmp);
+    }
     if (!scene_path.empty()) print_scene_energy(scene, rep);
     BaselineDiff diff;
     if (!baseline.empty()) {
@@ -79,11 +142,15 @@ struct EnergyCommand : SharedValues {
       print_baseline_console(diff);
     }
     if (!out_dir.empty()) {
-      const auto files = energy_outputs(rep, rt, out_dir, baseline.empty() ? nullptr : &diff);
+      auto files = energy_outputs(rep, rt, out_dir, baseline.empty() ? nullptr : &diff);
+      if (lay.layout != nullptr)
+        for (auto& f : energy_layout_files(rep, *lay.layout, out_dir)) files.push_back(f);
+      if (!compare.empty())
+        for (auto& f : compare_files(cmp, rep, out_dir)) files.push_back(f);
       write_files_atomically(files);
       fmt::print("wrote {}\n", written_list(files, out_dir));
     }
-    return (rep.reference_worst <= rep.reference_bound && diff.moved.empty()) ? 0 : 1;
+    return (rep.reference_worst <= rep.reference_bound && diff.moved.empty() && cmp.pass()) ? 0 : 1;
   }
 };
 

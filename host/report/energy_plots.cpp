@@ -16,18 +16,23 @@ std::string energy_file_stem(const EnergyTable& t) { return t.d->id + "__" + t.g
 namespace {
 
 // Per table: E over (θ, α) blocks (.dat) and E_avg over α (.avg).
+// The plots' width coordinate: the caller's roughness r where it gave r (alpha = r²), else alpha.
+double width_coord(const EnergyReport& rep, size_t a) {
+  return rep.opt.roughness.empty() ? rep.alpha[a] : rep.opt.roughness[a];
+}
+
 NamedBytes plot_data(const EnergyReport& rep) {
   NamedBytes data;
   const size_t nm = rep.mu.size(), na = rep.alpha.size();
   for (auto& t : rep.tables) {
     std::string f, e;
-    for (size_t a = 0; a < na; ++a) {
-      for (size_t m = 0; m < nm; ++m)
-        f += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[m]) * 180 / M_PI, rep.alpha[a],
-                         t.E[a * nm + m].mean, 1 - t.E[a * nm + m].mean);
-      f += "\n";
-      e += fmt::format("{:.9g} {:.9g} {:.3e}\n", rep.alpha[a], t.eavg[a].mean, t.eavg[a].se);
+    for (const CellAt& c : rep.cells()) {
+      f += fmt::format("{:.6f} {:.9g} {:.9g} {:.9g}\n", std::acos(rep.mu[c.m]) * 180 / M_PI, width_coord(rep, c.a),
+                       t.E[c.c].mean, 1 - t.E[c.c].mean);
+      if (!rep.paired && c.m + 1 == nm) f += "\n";  // one block per alpha
     }
+    for (size_t a = 0; a < na; ++a)
+      e += fmt::format("{:.9g} {:.9g} {:.3e}\n", width_coord(rep, a), t.eavg[a].mean, t.eavg[a].se);
     data.push_back({energy_file_stem(t) + ".dat", f});
     data.push_back({energy_file_stem(t) + ".avg", e});
   }
@@ -64,13 +69,17 @@ std::string d_plots(const EnergyReport& rep, const Term* d, const std::vector<si
                     cols_n, gnuplot_literal(d->id));
   // x spans the data: the view cosines are cell midpoints (m + 1/2)/MU, so
   // the first lies at θ = acos(1 - 1/(2 MU)) (10° for 32 cells), not at 0
-  gp +=
-      "set view map\nset logscale y\nset xlabel 'θ_{view} (deg)'\nset ylabel 'α'\nset cbrange [0:*]\n"
-      "set palette rgb 33,13,10\nset autoscale xfix\nset yrange [0.001:1]\n";
+  // the default grid: log alpha 1e-3..1; the caller's axes or points: as given (linear)
+  const bool given = !rep.opt.mu_axis.empty();
+  gp += fmt::format("set view map\n{}set xlabel 'θ_{{view}} (deg)'\nset ylabel '{}'\nset cbrange [0:*]\n"
+                    "set palette rgb 33,13,10\nset autoscale xfix\n{}",
+                    given ? "" : "set logscale y\n", rep.opt.roughness.empty() ? "α" : "r (α = r^2)",
+                    given ? "set autoscale yfix\n" : "set yrange [0.001:1]\n");
   for (auto* t : ts)
-    gp += fmt::format("set title 'G = {}' noenhanced\nsplot '{}.dat' using 1:2:4 with pm3d notitle\n", t->g->id,
-                      energy_file_stem(*t));
+    gp += fmt::format("set title 'G = {}' noenhanced\nsplot '{}.dat' using 1:2:4 with {} notitle\n", t->g->id,
+                      energy_file_stem(*t), rep.paired ? "points pt 7 ps 1.5 palette" : "pm3d");
   gp += "unset multiplot\nunset view\nunset logscale y\nunset cbrange\nunset yrange\nunset xrange\n";
+  if (rep.paired) return gp;  // points: the scatter above is the plot
   // E(theta) curves for a few alpha, comparing the G terms
   png = "curves_" + d->id + ".png";
   names.push_back(png);
@@ -97,7 +106,9 @@ std::string eavg_plot(const EnergyReport& rep, const std::vector<const Term*>& d
   const int n = int(ds.size()), pc = n > 1 ? 2 : 1, pr = (n + pc - 1) / pc;
   gp += fmt::format("set terminal pngcairo size {},{} font ',9'\nset output 'eavg.png'\n", 560 * pc, 400 * pr);
   gp += fmt::format("set multiplot layout {},{} title 'E_{{avg}}(α) = 2 ∫ E(μ) μ dμ, F = 1'\n", pr, pc);
-  gp += "set logscale x\nset key left bottom noenhanced font ',7'\nset xlabel 'α (= r^2)'\nset ylabel 'E_{avg}'\n";
+  gp += fmt::format("{}set key left bottom noenhanced font ',7'\nset xlabel '{}'\nset ylabel 'E_{{avg}}'\n",
+                    rep.opt.mu_axis.empty() ? "set logscale x\n" : "unset logscale x\n",
+                    rep.opt.roughness.empty() ? "α (= r^2)" : "r (α = r^2)");
   for (auto* d : ds) {
     gp += fmt::format("set title 'D = {}' noenhanced\nplot ", d->id);
     size_t i = 0;

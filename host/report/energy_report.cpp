@@ -24,15 +24,26 @@
 
 namespace mfv {
 
-namespace {
-
-const char* kParam =
+const char* const kEnergyParam =
     "alpha = microfacet width (GGX/Beckmann slope scale); perceptual roughness r = sqrt(alpha), i.e. alpha = r^2; "
     "a D or G with another native parameter gets it from alpha (Phong: alpha_p = 2/alpha^2 - 2; blinn_rho: rho = "
     "alpha; beckmann_ct82: m = alpha)";
-const char* kGrid =
-    "mu = cos(theta_view) at cell midpoints (m + 1/2)/N_MU, m = 0..N_MU-1; alpha = 10^(-3 + 3a/(N_ALPHA-1)), "
-    "a = 0..N_ALPHA-1 (log spacing, 1e-3..1)";
+
+std::string energy_grid_text(const EnergyReport& rep) {
+  if (rep.opt.mu_axis.empty())
+    return "mu = cos(theta_view) at cell midpoints (m + 1/2)/N_MU, m = 0..N_MU-1; alpha = 10^(-3 + 3a/(N_ALPHA-1)), "
+           "a = 0..N_ALPHA-1 (log spacing, 1e-3..1)";
+  std::string s = rep.paired ? "points given one by one: value i at (mu[i], alpha[i])"
+                             : "the caller's axes: mu[m] and alpha[a] as given, in the given order";
+  if (!rep.opt.roughness.empty()) s += "; alpha = r^2 of the given perceptual roughness r";
+  if (!rep.opt.layout.empty()) s += "; engine layout " + rep.opt.layout + " (docs/energy-layouts.md)";
+  if (std::find(rep.alpha.begin(), rep.alpha.end(), 0.0) != rep.alpha.end())
+    s += "; alpha = 0 (a mirror) is evaluated at the D's smallest declared width";
+  return s;
+}
+
+namespace {
+
 const char* kMethod =
     "E = directional albedo with F = 1; A, B: Schlick split sum E_F = F0*A + F90*B (B = albedo with F = (1-o.h)^5, "
     "A = E - B on the same points); E_avg = 2*int E(mu) mu dmu as its own integral (mu^2 stratified). "
@@ -41,19 +52,16 @@ const char* kMethod =
     "(2D Kronecker sequence of the plastic number, R random shifts); standard error = spread of the R replicate "
     "means / sqrt(R)";
 
-std::string ident(const std::string& s) {
-  std::string o;
-  for (char c : s) o += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return o;
-}
-
 }  // namespace
 
 void print_energy_console(const EnergyReport& rep) {
   const auto& o = rep.opt;
   const size_t nm = rep.mu.size(), na = rep.alpha.size();
-  fmt::print("mfv energy: {} D x G combinations, {}x{} (mu x alpha) grid, F = none; {}; {} whole-model points\n",
-             rep.tables.size(), nm, na, "alpha log-spaced 1e-3..1, perceptual r = sqrt(alpha)", rep.models.size());
+  fmt::print("mfv energy: {} D x G combinations, {} F = none; {}; {} whole-model points{}\n", rep.tables.size(),
+             rep.paired ? fmt::format("{} points,", na) : fmt::format("{}x{} (mu x alpha) grid,", nm, na),
+             o.mu_axis.empty() ? "alpha log-spaced 1e-3..1, perceptual r = sqrt(alpha)" : energy_grid_text(rep),
+             rep.models.size(), o.fp64 ? "; kernels in double (--fp64)" : "");
+  if (!o.mu_axis.empty()) print_energy_cells(rep);
   const std::vector<double> show = {0.01, 0.1, 0.3, 1.0};
   std::vector<size_t> cols;
   for (double s : show) {
@@ -64,8 +72,8 @@ void print_energy_console(const EnergyReport& rep) {
   }
   std::string head = fmt::format("{:<40}", "E_avg(alpha)");
   for (size_t c : cols) head += fmt::format(" {:>18}", fmt::format("alpha={:.3g}", rep.alpha[c]));
-  if (!rep.tables.empty()) fmt::print("{}\n", head);
-  for (auto& t : rep.tables) {
+  if (!rep.tables.empty() && o.mu_axis.empty()) fmt::print("{}\n", head);
+  for (auto& t : o.mu_axis.empty() ? rep.tables : std::vector<EnergyTable>{}) {
     std::string line = fmt::format("{:<40}", t.name());
     for (size_t c : cols) line += fmt::format(" {:>18}", fmt::format("{:.5f}±{:.1e}", t.eavg[c].mean, t.eavg[c].se));
     fmt::print("{}\n", line);
@@ -119,12 +127,17 @@ void print_baseline_console(const BaselineDiff& d) {
 
 namespace {
 
-// One D/G table: [alpha index][mu index] arrays of E, A, B and their errors, E_avg per alpha.
-nlohmann::json table_json(const EnergyTable& t, size_t nm) {
+// One D/G table: [alpha index][mu index] arrays of E, A, B and their errors
+// (paired points: flat arrays, one value per point), E_avg per alpha.
+nlohmann::json table_json(const EnergyReport& rep, const EnergyTable& t) {
   using nlohmann::json;
-  const size_t na = t.eavg.size();
+  const size_t nm = rep.mu.size(), na = t.eavg.size();
   auto grid = [&](const std::vector<Cell>& v, bool se) {
     json rows = json::array();
+    if (rep.paired) {
+      for (auto& c : v) rows.push_back(se ? c.se : c.mean);
+      return rows;
+    }
     for (size_t a = 0; a < na; ++a) {
       json row = json::array();
       for (size_t m = 0; m < nm; ++m) row.push_back(se ? v[a * nm + m].se : v[a * nm + m].mean);
@@ -138,24 +151,30 @@ nlohmann::json table_json(const EnergyTable& t, size_t nm) {
     return row;
   };
   json pts = json::array();
-  for (size_t a = 0; a < na; ++a)
-    pts.push_back(std::vector<uint64_t>(t.points.begin() + long(a * nm), t.points.begin() + long((a + 1) * nm)));
-  return json{{"d", t.d->id},
-              {"g", t.g->id},
-              {"f", "none"},
-              {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
-              {"g_param", t.g->params.empty() ? json(nullptr) : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
-              {"E", grid(t.E, false)},
-              {"E_se", grid(t.E, true)},
-              {"A", grid(t.A, false)},
-              {"A_se", grid(t.A, true)},
-              {"B", grid(t.B, false)},
-              {"B_se", grid(t.B, true)},
-              {"points_per_replicate", pts},
-              {"E_avg", line(t.eavg, false)},
-              {"E_avg_se", line(t.eavg, true)},
-              {"E_avg_quadrature", line(t.eavg_quad, false)},
-              {"E_avg_quadrature_se", line(t.eavg_quad, true)}};
+  if (rep.paired)
+    pts = t.points;
+  else
+    for (size_t a = 0; a < na; ++a)
+      pts.push_back(std::vector<uint64_t>(t.points.begin() + long(a * nm), t.points.begin() + long((a + 1) * nm)));
+  json j{{"d", t.d->id},
+         {"g", t.g->id},
+         {"f", "none"},
+         {"d_param", {{"name", t.d->params[0].name}, {"values", t.pd}}},
+         {"g_param", t.g->params.empty() ? json(nullptr) : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
+         {"E", grid(t.E, false)},
+         {"E_se", grid(t.E, true)},
+         {"A", grid(t.A, false)},
+         {"A_se", grid(t.A, true)},
+         {"B", grid(t.B, false)},
+         {"B_se", grid(t.B, true)},
+         {"points_per_replicate", pts},
+         {"E_avg", line(t.eavg, false)},
+         {"E_avg_se", line(t.eavg, true)}};
+  if (rep.midpoint_mu) {  // the midpoint rule over mu applies to the midpoint grid only
+    j["E_avg_quadrature"] = line(t.eavg_quad, false);
+    j["E_avg_quadrature_se"] = line(t.eavg_quad, true);
+  }
+  return j;
 }
 
 // One whole-model point: E over the light cosines mu, E_avg, its gains and the catalog's expectation.
@@ -174,7 +193,7 @@ nlohmann::json model_json(const ModelEnergy& me, const std::vector<double>& mu) 
               {"points_per_replicate", me.points},
               {"E_avg", me.eavg.mean},
               {"E_avg_se", me.eavg.se},
-              {"E_avg_quadrature", me.eavg_quad.mean},
+              {"E_avg_quadrature", me.eavg_quad.mean},  // NaN (null) where mu is not the midpoint grid
               {"E_avg_quadrature_se", me.eavg_quad.se},
               {"energy_loss", me.loss()},
               {"max_E", me.E[me.max_at].mean},
@@ -201,15 +220,20 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                  {"fp64", rt.device().fp64}};
   j["build_options"] = rt.base_options();
   j["date"] = utc_timestamp();
-  j["parameterization"] = kParam;
+  j["parameterization"] = kEnergyParam;
   j["method"] = kMethod;
   std::vector<double> r;
   for (double a : rep.alpha) r.push_back(perceptual_from_alpha(a));
-  j["grid"] = {{"definition", kGrid},
+  j["grid"] = {{"definition", rep.opt.mu_axis.empty() ? energy_grid_text(rep) : "the caller's axes (mfv energy --mu/--alpha/--at)"},
                {"mu", rep.mu},
                {"alpha", rep.alpha},
                {"perceptual_r", r},
-               {"layout", "arrays are [alpha index][mu index]"}};
+               {"layout", rep.paired ? "points: value i at (mu[i], alpha[i]), flat arrays"
+                                     : "arrays are [alpha index][mu index]"}};
+  if (rep.paired) j["grid"]["points"] = true;
+  if (!rep.opt.roughness.empty()) j["grid"]["roughness"] = rep.opt.roughness;  // the given r, alpha = r²
+  if (!rep.opt.layout.empty()) j["grid"]["engine_layout"] = rep.opt.layout;
+
   const auto& o = rep.opt;
   j["options"] = {{"seed", o.seed},
                   {"target_se", o.target},
@@ -219,6 +243,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                   {"models", o.models},
                   {"reference_samples", o.reference_samples},
                   {"reference_every", o.reference_every}};
+  if (o.fp64) j["options"]["fp64"] = true;  // the kernels in double
   j["summary"] = {{"max_se", rep.max_se},
                   {"max_se_at", rep.max_se_at},
                   {"values_above_target", rep.above_target},
@@ -232,7 +257,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
                     {"worst_at", rep.reference_worst_at},
                     {"ok", rep.reference_worst <= rep.reference_bound}};
   j["combinations"] = json::array();
-  for (auto& t : rep.tables) j["combinations"].push_back(table_json(t, rep.mu.size()));
+  for (auto& t : rep.tables) j["combinations"].push_back(table_json(rep, t));
   j["models"] = json::array();
   for (auto& me : rep.models) j["models"].push_back(model_json(me, rep.mu));
   return j.dump(1);
@@ -280,20 +305,19 @@ std::string csv_of(const EnergyReport& rep, const EnergyTable& t) {
   const size_t nm = rep.mu.size();
   std::string s = fmt::format("# mfv energy {}: D = {}, G = {}, F = none; seed {}; commit {}\n", MFV_VERSION, t.d->id,
                               t.g->id, rep.opt.seed, MFV_GIT_COMMIT);
-  s += fmt::format("# parameterization: {}\n# grid: {} ({} x {})\n# method: {}\n", kParam, kGrid, nm, rep.alpha.size(),
+  s += fmt::format("# parameterization: {}\n# grid: {} ({} x {})\n# method: {}\n", kEnergyParam, energy_grid_text(rep), nm, rep.alpha.size(),
                    kMethod);
   s += fmt::format("# accuracy: target standard error {:.1e}; *_se columns are each value's standard error\n",
                    rep.opt.target);
   s += fmt::format("alpha_index,alpha,perceptual_r,{},{},mu_index,mu,theta_deg,E,E_se,A,A_se,B,B_se,points\n",
                    "d_" + t.d->params[0].name, t.g->params.empty() ? "g_param" : "g_" + t.g->params[0].name);
-  for (size_t a = 0; a < rep.alpha.size(); ++a)
-    for (size_t m = 0; m < nm; ++m) {
-      const size_t c = a * nm + m;
-      s += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{:.3e},{:.9g},{:.3e},{}\n",
-                       a, rep.alpha[a], std::sqrt(rep.alpha[a]), t.pd[a], t.pg[a], m, rep.mu[m],
-                       std::acos(rep.mu[m]) * 180 / M_PI, t.E[c].mean, t.E[c].se, t.A[c].mean, t.A[c].se, t.B[c].mean,
-                       t.B[c].se, t.points[c]);
-    }
+  for (const CellAt& cell : rep.cells()) {
+    const size_t a = cell.a, m = cell.m, c = cell.c;
+    s += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.6f},{:.9g},{:.3e},{:.9g},{:.3e},{:.9g},{:.3e},{}\n", a,
+                     rep.alpha[a], std::sqrt(rep.alpha[a]), t.pd[a], t.pg[a], m, rep.mu[m],
+                     std::acos(rep.mu[m]) * 180 / M_PI, t.E[c].mean, t.E[c].se, t.A[c].mean, t.A[c].se, t.B[c].mean,
+                     t.B[c].se, t.points[c]);
+  }
   return s;
 }
 
@@ -302,47 +326,13 @@ std::string eavg_csv(const EnergyReport& rep) {
       "# mfv energy {}: average albedo E_avg(alpha) = 2 int E(mu) mu dmu, F = none\n# "
       "parameterization: {}\n# grid: {}\n# E_avg: own integral; E_avg_quadrature: midpoint "
       "rule over the mu grid (cross-check)\n",
-      MFV_VERSION, kParam, kGrid);
+      MFV_VERSION, kEnergyParam, energy_grid_text(rep));
   s += "d,g,alpha_index,alpha,perceptual_r,E_avg,E_avg_se,E_avg_quadrature,E_avg_quadrature_se\n";
   for (auto& t : rep.tables)
     for (size_t a = 0; a < rep.alpha.size(); ++a)
       s += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.3e},{:.9g},{:.3e}\n", t.d->id, t.g->id, a, rep.alpha[a],
                        std::sqrt(rep.alpha[a]), t.eavg[a].mean, t.eavg[a].se, t.eavg_quad[a].mean, t.eavg_quad[a].se);
   return s;
-}
-
-std::string header_of(const EnergyReport& rep) {
-  const size_t nm = rep.mu.size(), na = rep.alpha.size();
-  auto arr = [](const std::vector<double>& v) {
-    std::string s;
-    for (size_t i = 0; i < v.size(); ++i) s += fmt::format("{}{:.8g}f", i ? ", " : "", v[i]);
-    return s;
-  };
-  std::string s = fmt::format(
-      "/* Kulla-Conty energy compensation data, generated by mfv energy {} (commit {}, seed {}).\n"
-      " * Parameterization: {}.\n * Grid: {}.\n * MFV_E_<d>_<g>[a][m] = E(mu[m], alpha[a]), directional albedo with F "
-      "= "
-      "1;\n * MFV_EAVG_<d>_<g>[a] = E_avg(alpha[a]) = 2 int E(mu) mu dmu.\n * Kulla & Conty 2017: f_ms(i,o) = (1 - "
-      "E(mu_i))(1 - E(mu_o)) / (pi (1 - E_avg)).\n * Standard error per value <= {:.2e} (max achieved), see "
-      "energy.json. C and C++. */\n#ifndef MFV_KULLA_CONTY_H\n#define MFV_KULLA_CONTY_H\n\n#define MFV_ENERGY_N_MU "
-      "{}\n#define MFV_ENERGY_N_ALPHA {}\nstatic const float MFV_ENERGY_MU[{}] = {{{}}};\nstatic const float "
-      "MFV_ENERGY_ALPHA[{}] = {{{}}};\n",
-      MFV_VERSION, MFV_GIT_COMMIT, rep.opt.seed, kParam, kGrid, rep.max_se, nm, na, nm, arr(rep.mu), na,
-      arr(rep.alpha));
-  for (auto& t : rep.tables) {
-    const std::string id = ident(t.d->id + "_" + t.g->id);
-    s +=
-        fmt::format("\n/* D = {}, G = {} */\nstatic const float MFV_E_{}[{}][{}] = {{\n", t.d->id, t.g->id, id, na, nm);
-    for (size_t a = 0; a < na; ++a) {
-      std::vector<double> row;
-      for (size_t m = 0; m < nm; ++m) row.push_back(t.E[a * nm + m].mean);
-      s += "  {" + arr(row) + "},\n";
-    }
-    std::vector<double> e;
-    for (auto& c : t.eavg) e.push_back(c.mean);
-    s += fmt::format("}};\nstatic const float MFV_EAVG_{}[{}] = {{{}}};\n", id, na, arr(e));
-  }
-  return s + "\n#endif /* MFV_KULLA_CONTY_H */\n";
 }
 
 std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vector<std::string>& plots,
@@ -352,7 +342,7 @@ std::string report_md(const EnergyReport& rep, const Runtime& rt, const std::vec
   std::string s = "# mfv energy: energy loss of single-scattering microfacet BRDFs\n\n";
   s += fmt::format("mfv {} (commit {}), seed {}, device {} ({}), {}.\n\n", MFV_VERSION, MFV_GIT_COMMIT, o.seed,
                    rt.device().name, rt.device().platform, utc_timestamp());
-  s += fmt::format("- **Parameterization:** {}.\n- **Grid:** {} ({} x {}).\n- **Method:** {}.\n", kParam, kGrid,
+  s += fmt::format("- **Parameterization:** {}.\n- **Grid:** {} ({} x {}).\n- **Method:** {}.\n", kEnergyParam, energy_grid_text(rep),
                    rep.mu.size(), na, kMethod);
   s += fmt::format(
       "- **Accuracy:** target standard error {:.1e} per value (R = {} replicates of {}..{} points, "
@@ -437,8 +427,9 @@ std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyRepo
   std::vector<std::string> names;
   if (!rep.tables.empty()) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
     files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
-    files.push_back({dir + "/kulla_conty.h", header_of(rep)});
-    const std::string sheen = sheen_table_block(rep);  // KHR_materials_sheen's E_sheen (kernels/abi/sheen_table.h)
+    files.push_back({dir + "/kulla_conty.h", energy_c_header(rep)});
+    // KHR_materials_sheen's E_sheen (kernels/abi/sheen_table.h), on the default grid only
+    const std::string sheen = rep.opt.mu_axis.empty() ? sheen_table_block(rep) : "";
     if (!sheen.empty()) files.push_back({dir + "/sheen_table.h", sheen});
     for (auto& [n, png] : energy_plots(rep, names)) files.push_back({dir + "/plots/" + n, png});
   }
