@@ -44,8 +44,8 @@ TEST_CASE("float64 kernels agree with the reference to double-precision budgets"
 
 TEST_CASE("Agreement catches a kernel term that is off by one part in ten thousand", "[device][agree][planted]") {
   if (!test::device_runtime()) return;
-  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                   "return R(1.0001) / (MFV_PI * a2 * k * k);");
+  const test::PlantedKernelDir dir("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "real d = R(1.0001) / (MFV_PI * a2 * k * k);");
   Runtime rt = dir.runtime();
   AgreeReport rep = run_agree(rt, test::agree_options({"D ggx", "BRDF ggx/smith_ggx/none"}, 5000));
   REQUIRE(rep.results.size() == 2);

@@ -149,9 +149,9 @@ TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that canc
   SuiteReport good = run_suite(*rt, opt);
   CHECK(test::verdict_of(good, "furnace", "ggx/smith_ggx_correlated/none") == Verdict::Pass);
   CHECK(test::verdict_of(good, "masking", "ggx/smith_ggx_correlated") == Verdict::Pass);
-  const char* ggx_d = "return R(1.0) / (MFV_PI * a2 * k * k);";
+  const char* ggx_d = "real d = R(1.0) / (MFV_PI * a2 * k * k);";
   // D without its 1/pi: the albedo is pi times too large
-  test::check_planted_fails("terms_d.cl", ggx_d, "return R(1.0) / (a2 * k * k);", opt, "furnace",
+  test::check_planted_fails("terms_d.cl", ggx_d, "real d = R(1.0) / (a2 * k * k);", opt, "furnace",
                             "ggx/smith_ggx_correlated/none");
   // Lambda with alpha for alpha^2: masking fails (the albedo only loses energy, which the upper-only furnace allows)
   test::check_planted_fails("terms_g.cl", "real x = alpha * alpha * tan2_from_cos(NoV);",
@@ -160,5 +160,5 @@ TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that canc
   SuiteOptions norm = opt;
   norm.checks = {"d_norm"};
   norm.models = {"ggx"};
-  test::check_planted_fails("terms_d.cl", ggx_d, "return R(1.001) / (MFV_PI * a2 * k * k);", norm, "d_norm", "ggx");
+  test::check_planted_fails("terms_d.cl", ggx_d, "real d = R(1.001) / (MFV_PI * a2 * k * k);", norm, "d_norm", "ggx");
 }

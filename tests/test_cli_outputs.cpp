@@ -109,8 +109,8 @@ TEST_CASE("mfv run --baseline passes an unchanged model under another seed and c
   // each integral move by ~7 combined standard errors (and the furnace's
   // two-sided pool against the quadrature truth fails the gate as well)
   const mfv::test::PlantedKernelDir dir("terms_g.cl",
-                                        "return R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
-                                        "return R(0.9) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));");
+                                        "real g = R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));",
+                                        "real g = R(0.9) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));");
   // the plant is in the kernel only: leave out the same-sample reference
   // comparison, which would catch it, to test the baseline alone
   auto moved = run_mfv("--kernel-dir " + dir.path() + " " + args + "--reference-samples 0" + base);

@@ -242,8 +242,8 @@ TEST_CASE("the baseline gate flags a D scaled by 1.02 and passes an unchanged re
   INFO(same.out);
   CHECK(same.code == 0);
   CHECK(same.out.find("0 moved") != std::string::npos);
-  const test::PlantedKernelDir k("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                 "return R(1.02) / (MFV_PI * a2 * k * k);");
+  const test::PlantedKernelDir k("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                 "real d = R(1.02) / (MFV_PI * a2 * k * k);");
   Run planted = run_mfv("--kernel-dir " + k.path() + " " + common + " --seed 3" + base);
   INFO(planted.out);
   CHECK(planted.code == 1);

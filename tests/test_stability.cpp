@@ -159,8 +159,8 @@ TEST_CASE("The stability gate fails on a planted GGX D without the sin2 form", "
   if (!test::device_runtime()) return;
   // seed 000's second GGX form: at n.h = 1 and alpha^2 below half an ulp of 1
   // the bracket is 0 and D = inf.
-  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                   "return a2 / (MFV_PI * sqr(c * c * (a2 - R(1.0)) + R(1.0)));");
+  const test::PlantedKernelDir dir("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "real d = a2 / (MFV_PI * sqr(c * c * (a2 - R(1.0)) + R(1.0)));");
   Runtime rt = dir.runtime();
   StabilityOptions opt;
   opt.combinations = false;

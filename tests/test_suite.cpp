@@ -45,8 +45,8 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
   CHECK(verdict_of(good, "d_norm", "ggx") == Verdict::Pass);
   CHECK(good.gate_ok());
 
-  SuiteReport bad = test::planted_suite("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                        "return R(1.01) / (MFV_PI * a2 * k * k);", opt);
+  SuiteReport bad = test::planted_suite("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                        "real d = R(1.01) / (MFV_PI * a2 * k * k);", opt);
   CHECK(verdict_of(bad, "d_norm", "ggx") == Verdict::Fail);
   CHECK_FALSE(bad.gate_ok());
   // the reference still evaluates the true D, so the same-sample comparison
@@ -56,8 +56,8 @@ TEST_CASE("d_norm fails on a D scaled by 1.01 and passes on the correct one", "[
   // the stratified d_norm integrals resolve far smaller errors: 1e-4 fails too
   auto opt2 = opt;
   opt2.reference_samples = 0;
-  CHECK(verdict_of(test::planted_suite("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                       "return R(1.0001) / (MFV_PI * a2 * k * k);", opt2),
+  CHECK(verdict_of(test::planted_suite("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                       "real d = R(1.0001) / (MFV_PI * a2 * k * k);", opt2),
                    "d_norm", "ggx") == Verdict::Fail);
 }
 
@@ -175,8 +175,8 @@ TEST_CASE("mfv run exits 1 on a planted failure, 0 on the correct model, and wri
   CHECK(junit.find("</testsuites>") != std::string::npos);
   CHECK(slurp(out / "report.md").find("Gate: **ok**") != std::string::npos);
 
-  const test::PlantedKernelDir dir("terms_d.cl", "return R(1.0) / (MFV_PI * a2 * k * k);",
-                                   "return R(1.01) / (MFV_PI * a2 * k * k);");
+  const test::PlantedKernelDir dir("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                   "real d = R(1.01) / (MFV_PI * a2 * k * k);");
   Run bad = run_mfv("--kernel-dir " + dir.path() + " run --check d_norm --model ggx --out " + out.string());
   CAPTURE(bad.out);
   CHECK(bad.code == 1);

@@ -26,8 +26,8 @@ TEST_CASE("Planted: GGX D without its horizon test fails the stability gate and 
           "[device][stability][agree][planted]") {
   if (!test::device_runtime()) return;
   const test::PlantedKernelDir dir("terms_d.cl",
-                                   "  if (NoH <= R(0.0)) return R(0.0);\n  real c = min(NoH, R(1.0));\n  // divide",
-                                   "  real c = min(NoH, R(1.0));\n  // divide");
+                                   "(MFV_PI * a2 * k * k);\n  return NoH <= R(0.0) ? R(0.0) : d;",
+                                   "(MFV_PI * a2 * k * k);\n  return d;");
   Runtime rt = dir.runtime();
   StabilityReport rep = run_stability(rt, test::one_term("D ggx"));
   CHECK_FALSE(rep.gate_pass());
