@@ -3,6 +3,8 @@
 // ICD folder, for the `portability` tests.
 #pragma once
 
+#include "skip.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -23,8 +25,8 @@ inline std::string vendor_dir(const std::string& name) {
   std::string lib;
   if (std::ifstream in(icd); in) std::getline(in, lib);
   if (lib.empty() || !fs::exists(lib)) {
-    WARN(name << " OpenCL implementation not installed (" << icd.string()
-              << "); run scripts/install-ocl-extras.sh; its portability tests are skipped");
+    skip(name + " OpenCL implementation not installed (" + icd.string() +
+         "); run scripts/install-ocl-extras.sh to run its portability tests");
     return "";
   }
   return dir.string();
