@@ -341,6 +341,11 @@ TEST_CASE("stability --scene differs between scenes with different materials", "
   };
   REQUIRE_FALSE(model_line(a.out).empty());
   CHECK(model_line(a.out) != model_line(b.out));  // the model swept at each scene's own points
+  // plain metallic-roughness materials: no clearcoat or sheen model is swept (issue 27)
+  for (const char* other : {"MODEL gltf_clearcoat", "MODEL gltf_sheen"}) {
+    CHECK(a.out.find(other) == std::string::npos);
+    CHECK(b.out.find(other) == std::string::npos);
+  }
   CHECK(a.out.find("material 'textured roughness': 4 points") != std::string::npos);
 }
 

@@ -21,8 +21,11 @@ struct StabilityOptions {
   bool combinations = true;       // the D x G x F BRDFs besides terms and variants
   bool models = true;             // the catalog's whole models (catalog/models.hpp)
   std::vector<std::string> only;  // keep cases whose name contains one of these
+  bool only_may_match_none = false;  // mfv run --model: `only` matching no case leaves none (else an error)
   // mfv stability --scene (issue 21): whole models at these parameter points
-  // (the scene's materials) instead of their catalog cases; model id -> points
+  // (the scene's materials) instead of their catalog cases; model id ->
+  // points. Non-empty: no other model is swept (issue 27: a scene of plain
+  // metallic-roughness materials sweeps no clearcoat or sheen model).
   std::vector<std::pair<std::string, std::vector<std::array<double, 7>>>> model_points;
 };
 

@@ -143,10 +143,13 @@ std::vector<std::string> scene_stability_cases(const Scene& scene) {
     if (!g->g1_kernel_fn.empty())  // smith_ggx_correlated shares smith_ggx's G1
       add_unique(out, "G1 " + (g->id == "smith_ggx_correlated" ? std::string("smith_ggx") : g->id));
     add_unique(out, "F " + f->id);
-    // glTF: the model itself (its Fresnel mix and metal/dielectric blend) besides its terms' product
-    // ("MODEL gltf" also names "MODEL gltf_clearcoat": the filter matches substrings)
-    add_unique(out, m.gltf ? (m.coat_checked ? "MODEL gltf_clearcoat" : "MODEL gltf")
-                           : "BRDF " + d->id + "/" + g->id + "/" + f->id);
+    // glTF: the models the material evaluates (gltf, and gltf_clearcoat or
+    // gltf_sheen where it has those lobes) besides their terms' product; the
+    // sweep takes only models with the scene's points (scene_stability_options)
+    if (m.gltf)
+      for (auto& w : m.whole_points()) add_unique(out, "MODEL " + w.model->id);
+    else
+      add_unique(out, "BRDF " + d->id + "/" + g->id + "/" + f->id);
   }
   return out;
 }
