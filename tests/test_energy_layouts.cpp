@@ -183,7 +183,7 @@ TEST_CASE("16-bit PNG tables read back to their quantization", "[energy][compare
     }
 }
 
-TEST_CASE("--compare passes mfv's own table in each layout, as CSV, C array and PNG", "[device][energy][compare]") {
+TEST_CASE("mfv energy --compare passes mfv's own table in each layout, as CSV, C array and PNG", "[device][energy][compare]") {
   if (!test::device_runtime()) return;
   for (std::string layout : {"split-sum:4", "kulla-conty:4", "sheen:4"}) {
     Scratch s;
@@ -201,7 +201,7 @@ TEST_CASE("--compare passes mfv's own table in each layout, as CSV, C array and 
   }
 }
 
-TEST_CASE("--compare flags a planted 1e-4 error in one cell, naming it, and a transposition of the axes",
+TEST_CASE("mfv energy --compare flags a planted 1e-4 error in one cell, naming it, and a transposition of the axes",
           "[device][energy][compare]") {
   if (!test::device_runtime()) return;
   Scratch s;
@@ -245,7 +245,7 @@ TEST_CASE("--compare flags a planted 1e-4 error in one cell, naming it, and a tr
   CHECK(r.out.find("FAIL: ") != std::string::npos);
 }
 
-TEST_CASE("--compare refuses a bad table with one line naming the file, row and field, exit 2", "[energy][compare]") {
+TEST_CASE("mfv energy --compare refuses a bad table with one line naming the file, row and field, exit 2", "[energy][compare]") {
   Scratch s;
   const std::string head = "mu,roughness,A,B\n";
   std::string good_rows;

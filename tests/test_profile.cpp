@@ -29,7 +29,7 @@ TEST_CASE("densified grids keep every point and put density - 1 more between nei
   CHECK_THROWS_AS(profile_density("huge"), Error);
 }
 
-TEST_CASE("--profile deep plans over a million integrals; the default profile is the default plan", "[profile]") {
+TEST_CASE("mfv run --profile deep plans over a million integrals; the default profile is the default plan", "[profile]") {
   SuiteOptions opt;
   const size_t def = plan_integrals(make_suite_plans(opt));
   opt.density = profile_density("default");
@@ -43,7 +43,7 @@ TEST_CASE("--profile deep plans over a million integrals; the default profile is
   for (const char* c : {"d_norm", "masking", "furnace", "energy", "energy_diffuse", "closed_form"}) CHECK(checks.count(c));
 }
 
-TEST_CASE("--dry-run prints integrals, samples and the estimated time on this device, and runs nothing",
+TEST_CASE("mfv run --dry-run prints integrals, samples and the estimated time on this device, and runs nothing",
           "[profile][device]") {
   if (!device_runtime()) return;
   auto r = run_mfv("--quiet run --dry-run --check masking --model ggx/smith_ggx --out /nonexistent/never");

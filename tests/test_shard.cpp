@@ -80,7 +80,7 @@ void require_equal_runs(const std::string& single, const std::string& merged) {
 
 }  // namespace
 
-TEST_CASE("--shard reads K/N from 1 to N and refuses anything else", "[shard]") {
+TEST_CASE("mfv run --shard reads K/N from 1 to N and refuses anything else", "[shard]") {
   ShardSpec s = parse_shard_option("2/5");
   CHECK(s.index == 1);
   CHECK(s.count == 5);
