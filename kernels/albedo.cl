@@ -20,7 +20,7 @@ static inline real energy_weight(__global const IntegralSpec* s, real3 m, real3 
   return spec_brdf(s, i, o) * i.z / vis_pdf_i(hz, hx * hx + hy * hy, o.z, so2, w);
 }
 
-static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, 2, 0); }
+static inline uint4 rqmc_shift(__global const IntegralSpec* s, ulong seed) { return mfv_philox(seed, s->stream, spec_draw(s, 2u), 0); }
 
 // The isotropic microfacet integrals that the component-wise fast paths take
 // (see albedo_value_microfacet below).
@@ -28,7 +28,7 @@ static inline bool spec_is_microfacet(__global const IntegralSpec* s) {
 #ifdef MFV_USER_BRDF
   return false;
 #else
-  return s->model == 0u && !spec_aniso(s) && s->phi_o == 0.0f && s->width > 0.0f;
+  return s->model == 0u && !spec_aniso(s) && !spec_stretched(s) && s->phi_o == 0.0f && s->width > 0.0f;
 #endif
 }
 
@@ -134,7 +134,7 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 // f(i,o) (n·i) / (Σ_t c_t p_t(i)), whichever proposal drew it, and the mean
 // is unbiased. A wrong D or G under test only enters the numerator, so it
 // cannot cancel (tests/test_suite.cpp plants three).
-// Points: index = r n + k with n = strata points per replicate; replicate r
+// Points: index = r n + k with n = `points` per replicate; replicate r
 // has its own Cranley-Patterson shift (Philox draw 3, counter r); k < n/2
 // takes proposal (a), k < 3n/4 (b), the rest (c), each on its own run
 // j = 0, 1, ... of the 2D Kronecker sequence (RQMC_G1, RQMC_G2). Replicates
@@ -146,7 +146,9 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 #define MIS_C_COS R(0.25)
 #define MIS_DRAW 3u  // the Philox draw of the replicates' shifts
 
-static inline uint4 mis_shift(uint stream, ulong seed, uint replicate) { return mfv_philox(seed, stream, MIS_DRAW, replicate); }
+static inline uint4 mis_shift(__global const IntegralSpec* s, ulong seed, uint replicate) {
+  return mfv_philox(seed, s->stream, spec_draw(s, MIS_DRAW), replicate);
+}
 
 // Point k of n of a replicate with shift `shift`, by components and with
 // selects (no branch, no float3: albedo_mis_values vectorizes, see
@@ -181,9 +183,9 @@ static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, 
 #ifdef MFV_USER_BRDF
   return NAN;  // the host sends no AlbedoMis integral to user code (mfv check)
 #else
-  uint n = s->strata;
+  uint n = s->points;
   return albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o,
-                               mis_shift(s->stream, seed, (uint)(index / n)), (uint)(index % n), n);
+                               mis_shift(s, seed, (uint)(index / n)), (uint)(index % n), n);
 #endif
 }
 
@@ -200,7 +202,7 @@ static inline real albedo_value(__global const IntegralSpec* s, real u_branch, r
     i = (real3)(ix, iy, iz);
   } else {
     real c, s2;
-    real3 m = spec_aniso(s) ? sample_m_aniso(u_pick, u_phi, u_r, w, s->pd2, &c, &s2)
+    real3 m = spec_stretched(s) ? sample_m_aniso(u_pick, u_phi, u_r, w, s->width_y, &c, &s2)
                             : sample_m(u_pick, u_phi, u_r, w, &c, &s2);
     real om2 = R(2.0) * (o.x * m.x + o.y * m.y + o.z * m.z);
     i = (real3)(om2 * m.x - o.x, om2 * m.y - o.y, om2 * m.z - o.z);

@@ -50,7 +50,7 @@ static inline real convergence_value(__global const IntegralSpec* s, ulong seed,
     u_phi = u01_open(shift.x + k * RQMC_G1);
     u_r = u01_open(shift.y + k * RQMC_G2);
   } else {
-    uint4 r = mfv_philox(seed, s->stream, 0, index);
+    uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), index);
     u_phi = u01_open(r.z);
     u_r = u01_open(r.w);
   }

@@ -19,9 +19,13 @@
                      __global float* restrict values) {                                                          \
     size_t k = get_global_id(0), j = get_global_id(1);                                                           \
     __global const IntegralSpec* s = specs + j;                                                                  \
-    uint4 r = mfv_philox(seed, s->stream, 0, first + k);                                                         \
+    uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);                                                       \
     values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
   }
+
+// Counter word 3 of integral s's Philox draw `draw` (< 256): the draw with
+// the stream's high bits above it (rng.cl). Host twin: ref::draw_word.
+static inline uint spec_draw(__global const IntegralSpec* s, uint draw) { return draw | (s->stream_hi << 8); }
 
 #define MIX_COS R(0.25)   // share of the cosine lobe in the microfacet proposal (a power of 2: see d_norm)
 #define MIX_I_COS R(0.2)  // share of cosine-weighted light directions (albedo)
@@ -35,15 +39,17 @@ static inline real user_D_adapter(__global const IntegralSpec* s, real3 m);
 static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m);
 #endif
 
-// Anisotropic integrals (pd2 > 0; 0 is every isotropic spec, untouched):
+// Anisotropic terms (model 0, pd2 > 0; 0 is every isotropic spec, untouched):
 // D and an anisotropic G take the widths (pd, pd2) and (pg, pg2) along t = +x
-// and b = +y, the view lies at azimuth phi_o, and the proposals are stretched to (width, pd2).
+// and b = +y, and the view lies at azimuth phi_o.
 static inline bool spec_aniso(__global const IntegralSpec* s) { return s->pd2 > 0.0f; }
+// A stretched proposal (width_y > 0: the Cauchy slopes of widths (width,
+// width_y); the host sets it for anisotropic terms and stretched whole models).
+static inline bool spec_stretched(__global const IntegralSpec* s) { return s->width_y > 0.0f; }
 
 // The BRDF integral `s` checks: model 0 is the microfacet D×G×F BRDF of
 // brdf.cl (with kd/π); whole models and user code plug in here, reading their
-// parameters p[0..6] from pd, pg, f0, f1, kd, p5, pd2 (pd2 > 0 also stretches
-// the proposals to (width, pd2), as for an anisotropic D).
+// parameters p[0..6] from IntegralSpec::p.
 static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
 #ifdef MFV_USER_BRDF
   return user_brdf_adapter(s, i, o);
@@ -53,7 +59,7 @@ static inline real spec_brdf(__global const IntegralSpec* s, real3 i, real3 o) {
     // the estimator's fixed direction o is the light, the sampled i the
     // view, and the integral is E(l) = ∫ f(l, v) (n·v) dv, the energy a beam
     // from l reflects (twin: spec_brdf in host/reference/estimators.cpp).
-    real p[7] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5, s->pd2};  // p[6]: a second width (0: isotropic)
+    real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};  // p[6]: a second width (0: isotropic)
     return eval_model((int)s->model, o, i, p);
   }
   if (spec_aniso(s)) return brdf_eval_aniso(s->d, s->g, s->f, i, o, s->pd, s->pd2, s->pg, s->pg2, s->f0, s->f1, s->kd);
@@ -229,7 +235,7 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
   real hx, hy, hz;
   real oh = R(0.5) * normalize_sum(i.x + o.x, i.y + o.y, i.z + o.z, &hx, &hy, &hz);  // o·h, as in brdf_eval
   real hs2 = hx * hx + hy * hy;
-  real pm = spec_aniso(s) ? pdf_m_aniso((real3)(hx, hy, hz), w, s->pd2) : pdf_m(hz, hs2, w);
+  real pm = spec_stretched(s) ? pdf_m_aniso((real3)(hx, hy, hz), w, s->width_y) : pdf_m(hz, hs2, w);
   return spec_brdf(s, i, o) * i.z / albedo_pdf(i.z, oh, pm);
 }
 

@@ -33,7 +33,7 @@ static inline MFV_ALWAYS_INLINE real model_albedo_value_c(int model, __global co
   real oh = R(0.5) * normalize_sum(ix + ox, iy + oy, iz + oz, &hx, &hy, &hz);  // as albedo_weight
   real pm = pdf_mix(hz, pdf_slope(hz, hx * hx + hy * hy, w));
   // spec_brdf: the fixed direction o is the light, the sampled i the view
-  real p[7] = {s->pd, s->pg, s->f0, s->f1, s->kd, s->p5, s->pd2};
+  real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};
   return eval_model(model, (real3)(ox, oy, oz), (real3)(ix, iy, iz), p) * iz / albedo_pdf(iz, oh, pm);
 }
 

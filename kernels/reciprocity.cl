@@ -9,7 +9,7 @@
 // near-retro/mirror offsets normalised with rsqrt, both sides selected.
 static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay,
                                       real* az, real* bx, real* by, real* bz) {
-  uint4 r = mfv_philox(seed, s->stream, 1, index);
+  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 1u), index);
   uint kind = index % 4u;
   real scale = kind == 1u ? R(1e-3) : R(1.0);  // both grazing
   real ca = u01_open(r.x) * scale, cb = u01_open(r.z) * scale, u_w = u01_open(r.w);

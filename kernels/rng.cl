@@ -1,6 +1,8 @@
 // Philox4x32-10 (Salmon et al. 2011, "Parallel random numbers: as easy as
 // 1, 2, 3"): key = run seed, counter = (sample index low, high, stream,
-// draw). The host's host/rng/philox.hpp runs Random123's own code with the
+// draw | stream_hi << 8): an integral's 56-bit stream (IntegralSpec::stream,
+// stream_hi: a hash of its identity, host/checks/streams.hpp) and the draw
+// (0..255) that says what the uniforms are for. The host's host/rng/philox.hpp runs Random123's own code with the
 // same layout, so a counter gives the same bits on both sides;
 // tests/test_philox.cpp checks this kernel against Random123's published
 // known answers. The rounds are written out on uint values (Random123's

@@ -26,14 +26,9 @@ static inline void user_poison(float* p) {
   for (int k = MFV_USER_NPARAMS; k < MFV_USER_SLOTS; ++k) p[k] = NAN;
 }
 
-// The parameters of integral `s`: p[0..5] from pd, pg, f0, f1, kd, p5.
+// The parameters of integral `s`: p[0..5] from IntegralSpec::p.
 static inline void user_params(__global const IntegralSpec* s, float* p) {
-  p[0] = s->pd;
-  p[1] = s->pg;
-  p[2] = s->f0;
-  p[3] = s->f1;
-  p[4] = s->kd;
-  p[5] = s->p5;
+  for (int k = 0; k < 6; ++k) p[k] = s->p[k];
   user_poison(p);
 }
 

@@ -28,7 +28,7 @@ TermSelection model_selection(std::vector<IntegralSpec>& specs) {
   for (const Model& m : models()) {
     if (m.cases.empty()) continue;
     const IntegralSpec s = model_spec(IntegralKind::Albedo, m, m.cases.front().p, 0.9);
-    if (!(s.width > 0) || s.pd2 > 0) continue;
+    if (!(s.width > 0) || s.width_y > 0) continue;
     for (double co : {0.9, 0.05}) {
       specs.push_back(model_spec(IntegralKind::Albedo, m, m.cases.front().p, co));
       specs.back().stream = stream++;

@@ -146,7 +146,7 @@ double reference_integral(const std::string& name, const IntegralSpec& spec, uin
     double worst = 0;
     for (uint64_t k = 0; k < n; ++k) {
       glm::dvec3 a, b;
-      ref::reciprocity_pair(seed, spec.stream, uint32_t(k), a, b);
+      ref::reciprocity_pair(seed, spec.stream, spec.stream_hi, uint32_t(k), a, b);
       const double f1 = ref::brdf(r.brdf, a, b), f2 = ref::brdf(r.brdf, b, a), m = std::max(f1, f2);
       const double asym = m > 0 ? std::fabs(f1 - f2) / m : 0.0;
       if (!(asym <= worst)) worst = asym;

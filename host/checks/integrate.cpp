@@ -21,6 +21,7 @@ IntegralSpec spec_of(const MicrofacetIntegral& m) {
   s.pg = float(m.pg);
   s.pd2 = float(m.pd2);
   s.pg2 = float(m.pg2);
+  s.width_y = m.pd2 > 0 ? float(m.pd2) : 0.f;  // anisotropic terms: the proposal stretched as D
   s.f0 = float(m.f0);
   s.f1 = float(m.f1);
   s.kd = float(m.kd);
@@ -34,14 +35,9 @@ IntegralSpec model_spec(IntegralKind kind, const Model& m, const ModelParams& p,
   IntegralSpec s;
   s.check = static_cast<int32_t>(kind);
   s.model = m.number();
-  s.pd = float(p[0]);
-  s.pg = float(p[1]);
-  s.f0 = float(p[2]);
-  s.f1 = float(p[3]);
-  s.kd = float(p[4]);
-  s.p5 = float(p[5]);
-  s.pd2 = float(p[6]);  // a second width (gltf: alpha_b); 0 leaves the integral isotropic
+  for (size_t k = 0; k < 7; ++k) s.p[k] = float(p[k]);
   s.width = float(m.proposal_width(p.data()));
+  s.width_y = p[6] > 0 ? float(p[6]) : 0.f;  // a second width (gltf: alpha_b) stretches the proposal
   s.cos_o = float(cos_o);
   return s;
 }
@@ -71,20 +67,24 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.brdf.d = reference_term(s.d);
   r.brdf.g = reference_term(s.g);
   r.brdf.f = reference_term(s.f);
-  r.brdf.pd = s.pd;
-  r.brdf.pg = s.pg;
-  r.brdf.f0 = s.f0;
-  r.brdf.f1 = s.f1;
-  r.brdf.kd = s.kd;
-  r.brdf.p5 = s.p5;
-  r.brdf.pd2 = s.pd2;  // the second widths of an anisotropic D and G (kernels/abi/integral.h)
-  r.brdf.pg2 = s.pg2;
+  const bool whole = s.model != MFV_MODEL_MICROFACET;  // a whole model's p[0..6] (BrdfSpec keeps them in its slots)
+  r.brdf.pd = whole ? s.p[0] : s.pd;
+  r.brdf.pg = whole ? s.p[1] : s.pg;
+  r.brdf.f0 = whole ? s.p[2] : s.f0;
+  r.brdf.f1 = whole ? s.p[3] : s.f1;
+  r.brdf.kd = whole ? s.p[4] : s.kd;
+  r.brdf.p5 = whole ? s.p[5] : 0.0;
+  r.brdf.pd2 = whole ? s.p[6] : s.pd2;  // the second widths of an anisotropic D and G (kernels/abi/integral.h)
+  r.brdf.pg2 = whole ? 0.0 : s.pg2;
   r.phi_o = s.phi_o;
   r.brdf.model = model_by_number(s.model);  // whole models 1..999; nullptr for 0
   r.width = s.width;
   r.cos_o = s.cos_o;
+  r.width_y = s.width_y;
   r.stream = s.stream;
+  r.stream_hi = s.stream_hi;
   r.strata = s.strata;
+  r.points = s.points;
   r.estimator = s.estimator;
   if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmcB)) {
     // B by its definition: the albedo with Schlick's F at F0 = 0 (the

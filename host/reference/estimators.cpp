@@ -1,6 +1,9 @@
 #include "reference/estimators.hpp"
 
 #include "rng/philox.hpp"
+#include "util/error.hpp"
+
+#include <fmt/format.h>
 
 #include <glm/geometric.hpp>
 
@@ -83,13 +86,14 @@ double spec_brdf(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o) {
 }
 
 // f(i,o) cos / pdf(i), pdf = kMixICos cosine lobe + (1 - kMixICos) o reflected about m ~ pdf_m.
-double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o, double w) {
+// wy > 0: the Cauchy slopes stretched to (w, wy) (IntegralSpec::width_y).
+double albedo_weight(const BrdfSpec& b, const glm::dvec3& i, const glm::dvec3& o, double w, double wy) {
   if (i.z <= 0.0) return 0.0;
   const glm::dvec3 h = glm::normalize(i + o);
   const double oh = glm::dot(o, h);
   if (oh <= 0.0) return 0.0;
   const double hs2 = h.x * h.x + h.y * h.y;
-  const double pm = b.aniso() ? pdf_m_aniso(h, w, b.pd2) : pdf_m(h.z, hs2, w);
+  const double pm = wy > 0 ? pdf_m_aniso(h, w, wy) : pdf_m(h.z, hs2, w);
   const double pdf = kMixICos * i.z / M_PI + (1.0 - kMixICos) * pm / (4.0 * oh);
   return spec_brdf(b, i, o) * i.z / pdf;
 }
@@ -137,7 +141,7 @@ double energy_weight(const BrdfSpec& b, const glm::dvec3& m, const glm::dvec3& o
 
 // One point of AlbedoRqmc / EavgRqmc.
 double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  const auto shift = philox(seed, s.stream, 2, 0);
+  const auto shift = philox(seed, s.stream, draw_word(s, 2), 0);
   const uint32_t k = static_cast<uint32_t>(index);
   const double u_phi = u01_open(shift[0] + k * kRqmcG[0]), u_r = u01_open(shift[1] + k * kRqmcG[1]);
   double cos_o = s.cos_o;
@@ -157,8 +161,8 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 // Cauchy slope of width w, else the cosine lobe. Balance heuristic over the
 // three (Veach 1997 eq. 9.13): f cos / (½ p_vis + ¼ p_slope + ¼ cos/π).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  const uint32_t n = s.strata, k = uint32_t(index % n), half = n / 2, quarter = n / 4;
-  const auto shift = philox(seed, s.stream, 3, index / n);
+  const uint32_t n = s.points, k = uint32_t(index % n), half = n / 2, quarter = n / 4;
+  const auto shift = philox(seed, s.stream, draw_word(s, 3), index / n);
   const bool vis = k < half, cosine = k >= half + quarter;
   const uint32_t j = vis ? k : cosine ? k - half - quarter : k - half;
   const double u_phi = u01_open(shift[0] + j * kRqmcG[0]), u_r = u01_open(shift[1] + j * kRqmcG[1]);
@@ -183,8 +187,9 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
 }  // namespace
 
 // Twin of the pair draw in kernels/reciprocity.cl reciprocity_pair_c.
-void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b) {
-  const auto r = philox(seed, stream, 1, index);
+void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t stream_hi, uint32_t index, glm::dvec3& a,
+                      glm::dvec3& b) {
+  const auto r = philox(seed, stream, 1u | stream_hi << 8, index);
   double ca = u01_open(r[0]), cb = u01_open(r[2]);
   const double pa = 2.0 * M_PI * u01_open(r[1]), pb = 2.0 * M_PI * u01_open(r[3]);
   const uint32_t kind = index % 4;
@@ -227,12 +232,12 @@ double convergence_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   double u_phi, u_r;
   if (est == Estimator::Rqmc) {
     if (s.kind != Integral::DNorm) return albedo_rqmc(s, seed, index);
-    const auto shift = philox(seed, s.stream, 2, 0);
+    const auto shift = philox(seed, s.stream, draw_word(s, 2), 0);
     const uint32_t k = static_cast<uint32_t>(index);
     u_phi = u01_open(shift[0] + k * kRqmcG[0]);
     u_r = u01_open(shift[1] + k * kRqmcG[1]);
   } else {
-    const auto r = philox(seed, s.stream, 0, index);
+    const auto r = philox(seed, s.stream, draw_word(s, 0), index);
     u_phi = u01_open(r[2]);
     u_r = u01_open(r[3]);
   }
@@ -279,15 +284,16 @@ double convergence_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
 
 }  // namespace
 
-double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  if (s.estimator != 0) return convergence_value(s, seed, index);
-  if (s.kind == Integral::AlbedoRqmc || s.kind == Integral::EavgRqmc) return albedo_rqmc(s, seed, index);
-  if (s.kind == Integral::AlbedoMis) return albedo_mis(s, seed, index);
-  auto r = philox(seed, s.stream, 0, index);
+namespace {
+
+// d_norm, masking and the iid albedo from Philox draw 0 (twin of iid_sample_value in kernels/integrate.cl).
+double iid_sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  auto r = philox(seed, s.stream, draw_word(s, 0), index);
   const double u_branch = u01_open(r[0]), u_phi = u01_open(r[2]);
   double u_pick = u01_open(r[1]), u_r = u01_open(r[3]);
-  const double w = s.width;
+  const double w = s.width, wy = s.width_y;
   const BrdfSpec& b = s.brdf;
+  const bool stretched = wy > 0;
   if (s.kind == Integral::DNorm) {
     // stratified radial uniform, as in the kernel: stratum `index` of `strata`
     // picks the component and, rescaled, drives it
@@ -297,7 +303,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
       const bool cosine = index < n_cos;
       const uint64_t k = cosine ? index : index - n_cos, n = cosine ? n_cos : s.strata - n_cos;
       u_pick = cosine ? 0.0 : 1.0;
-      if (b.aniso()) {
+      if (stretched) {
         // n_phi columns x n / n_phi rows of equal cells (twin of stratum_2d)
         uint64_t n_phi = 1;
         while (4 * n_phi * n_phi <= n && n % (2 * n_phi) == 0) n_phi *= 2;
@@ -307,9 +313,9 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
         u_r = std::min((double(k) + u_r) / double(n), 1.0 - 0x1p-24);
       }
     }
-    if (b.aniso()) {
-      const glm::dvec3 m = sample_m_aniso(u_pick, u_phi_s, u_r, w, b.pd2);
-      return eval_d(b, m) * m.z / pdf_m_aniso(m, w, b.pd2);
+    if (stretched) {
+      const glm::dvec3 m = sample_m_aniso(u_pick, u_phi_s, u_r, w, wy);
+      return eval_d(b, m) * m.z / pdf_m_aniso(m, w, wy);
     }
     double c, s2;
     sample_m(u_pick, u_phi, u_r, w, c, s2);
@@ -317,12 +323,12 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   }
   const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
   const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
-  if (s.kind == Integral::Masking && b.aniso()) {
+  if (s.kind == Integral::Masking && stretched) {
     // Heitz 2014 eq. 19 with the view's own Smith G1(o), Λ at α(φ_o)
-    const glm::dvec3 m = sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2);
+    const glm::dvec3 m = sample_m_aniso(u_pick, u_phi, u_r, w, wy);
     const double om = glm::dot(o, m);
     if (om <= 0.0) return 0.0;
-    return eval_g1(b, o) * eval_d(b, m) * om / (pdf_m_aniso(m, w, b.pd2) * s.cos_o);
+    return eval_g1(b, o) * eval_d(b, m) * om / (pdf_m_aniso(m, w, wy) * s.cos_o);
   }
   if (s.kind == Integral::Masking) {
     // Heitz 2014 eq. 19 with G1(o,m) = G2(n, o, m)
@@ -340,10 +346,28 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
   } else {
     double c, s2;
     const glm::dvec3 m =
-        b.aniso() ? sample_m_aniso(u_pick, u_phi, u_r, w, b.pd2) : sample_m(u_pick, u_phi, u_r, w, c, s2);
+        stretched ? sample_m_aniso(u_pick, u_phi, u_r, w, wy) : sample_m(u_pick, u_phi, u_r, w, c, s2);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
-  return albedo_weight(b, i, o, w);
+  return albedo_weight(b, i, o, w, wy);
+}
+
+}  // namespace
+
+// A closed dispatch (twin of sample_value in kernels/integrate.cl): no
+// default, so that -Werror=switch refuses a kind without its case, and an id
+// outside the enum (a planted one, tests/test_checks_complete.cpp) throws.
+double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  if (s.estimator != 0) return convergence_value(s, seed, index);
+  switch (s.kind) {
+    case Integral::DNorm:
+    case Integral::Masking:
+    case Integral::Albedo: return iid_sample_value(s, seed, index);
+    case Integral::AlbedoRqmc:
+    case Integral::EavgRqmc: return albedo_rqmc(s, seed, index);
+    case Integral::AlbedoMis: return albedo_mis(s, seed, index);
+  }
+  throw Error(fmt::format("reference: check id {} has no integrand (ref::sample_value)", int(s.kind)));
 }
 
 }  // namespace mfv::ref

@@ -31,8 +31,11 @@ struct IntegralRef {
   double width = 0.1;      // proposal width (equivalent alpha)
   double cos_o = 1.0;      // view for masking and albedo, at azimuth phi_o about n
   double phi_o = 0.0;      // (0: in the xz-plane); twin of IntegralSpec::phi_o
-  uint32_t stream = 0;     // Philox stream = integral id
-  uint32_t strata = 0;     // d_norm: stratified over this many samples (0 = iid); AlbedoMis: points per replicate
+  double width_y = 0;      // > 0: the proposal stretched to (width, width_y) (twin of IntegralSpec::width_y)
+  uint32_t stream = 0;     // Philox stream, low and high words (twin of IntegralSpec::stream, stream_hi)
+  uint32_t stream_hi = 0;
+  uint32_t strata = 0;     // d_norm, E_avg: stratified over this many samples (0 = iid)
+  uint32_t points = 0;     // AlbedoMis: points per replicate
   uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
 };
 
@@ -62,6 +65,11 @@ glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, do
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
 
 // Reciprocity pair `index` of integral `stream` (twin of the `reciprocity` kernel).
-void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t index, glm::dvec3& a, glm::dvec3& b);
+void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t stream_hi, uint32_t index, glm::dvec3& a,
+                      glm::dvec3& b);
+
+// Counter word 3 of integral s's Philox draw `draw` (< 256): the draw with the
+// stream's high bits above it (twin of spec_draw in kernels/estimators.cl).
+inline uint32_t draw_word(const IntegralRef& s, uint32_t draw) { return draw | s.stream_hi << 8; }
 
 }  // namespace mfv::ref

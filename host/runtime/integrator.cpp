@@ -97,6 +97,26 @@ uint32_t Integrator::mis_points(uint64_t requested) const {
   return uint32_t(std::max<uint64_t>(4, (n + 3) / 4 * 4));
 }
 
+namespace {
+// How the integrator samples each kind: a closed switch (compiled with
+// -Werror=switch, CMakeLists.txt), so that a new IntegralKind states its
+// sampling here or does not build; an id outside the enum is an error.
+enum class Sampling { Iid, Stratified, Replicates };
+Sampling sampling_of(int32_t check) {
+  switch (static_cast<IntegralKind>(check)) {
+    case IntegralKind::DNorm:     // stratified radius (where the proposal has one width)
+    case IntegralKind::EavgRqmc:  // stratified view cosine²
+      return Sampling::Stratified;
+    case IntegralKind::AlbedoMis: return Sampling::Replicates;  // points per RQMC replicate
+    case IntegralKind::Masking:
+    case IntegralKind::Albedo:
+    case IntegralKind::AlbedoRqmc:
+    case IntegralKind::AlbedoRqmcB: return Sampling::Iid;
+  }
+  throw Error(fmt::format("internal: check id {} has no integrand (runtime/integrator.cpp sampling_of)", check));
+}
+}  // namespace
+
 void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const {
   const uint64_t n = samples_used(samples);
   if (n > UINT32_MAX) throw Error(fmt::format("{} samples per stratified integral is too many", n));
@@ -104,14 +124,15 @@ void Integrator::stratify(std::vector<IntegralSpec>& specs, uint64_t samples) co
   // point count fixes the spacing, see kernels/integrate.cl). A mixture of
   // widths (width <= 0) draws its component from u_pick, which
   // stratification fixes: those d_norm integrals stay iid.
-  const uint32_t mis = mis_points(samples);  // AlbedoMis: points per replicate
-  for (auto& s : specs)
-    s.strata = s.check == static_cast<int32_t>(IntegralKind::AlbedoMis) ? mis
-               : s.estimator != 0 ? 0u  // mfv convergence's estimators are iid or RQMC
-               : (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.width > 0) ||
-                       s.check == static_cast<int32_t>(IntegralKind::EavgRqmc)
-                   ? uint32_t(n)
-                   : 0u;
+  const uint32_t mis = mis_points(samples);
+  for (auto& s : specs) {
+    const Sampling how = sampling_of(s.check);
+    s.points = how == Sampling::Replicates ? mis : 0u;
+    // mfv convergence's estimators are iid or RQMC; a mixture of widths stays iid (above)
+    const bool stratified = how == Sampling::Stratified && s.estimator == 0 &&
+                            (s.check != static_cast<int32_t>(IntegralKind::DNorm) || s.width > 0);
+    s.strata = stratified ? uint32_t(n) : 0u;
+  }
 }
 
 // kernels/aniso_values.cl spec_is_aniso_microfacet: anisotropic d_norm
@@ -127,7 +148,7 @@ static const char* aniso_values_kernel(const IntegralSpec& s) {
 // proposal, light in the xz-plane (width > 0 is checked by the caller).
 static const char* model_values_kernel(const IntegralSpec& s) {
   const bool albedo = s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0;
-  if (!albedo || s.model >= MFV_MODEL_CATALOG_END || s.pd2 > 0 || s.phi_o != 0) return nullptr;
+  if (!albedo || s.model >= MFV_MODEL_CATALOG_END || s.width_y > 0 || s.phi_o != 0) return nullptr;
   return "model_albedo_values";
 }
 
@@ -138,8 +159,8 @@ static const char* model_values_kernel(const IntegralSpec& s) {
 static const char* values_kernel(const IntegralSpec& s) {
   if (s.estimator != 0 || !(s.width > 0)) return nullptr;
   if (s.model != 0) return model_values_kernel(s);
-  if (s.pd2 > 0) return aniso_values_kernel(s);
-  if (s.phi_o != 0) return nullptr;
+  if (s.pd2 > 0) return s.width_y > 0 ? aniso_values_kernel(s) : nullptr;
+  if (s.phi_o != 0 || s.width_y > 0) return nullptr;
   if (s.check == static_cast<int32_t>(IntegralKind::Albedo) && s.strata == 0) return "albedo_values";
   if (s.check == static_cast<int32_t>(IntegralKind::Masking) && s.strata == 0) return "masking_values";
   if (s.check == static_cast<int32_t>(IntegralKind::DNorm) && s.strata > 0) return "d_norm_values";
@@ -264,9 +285,9 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   const size_t rows = specs.size() * kMisReplicates;
   std::vector<Sums> out(rows);
   if (specs.empty()) return out;
-  const uint32_t n = specs.front().strata;  // points per replicate, the same for every spec of a run
+  const uint32_t n = specs.front().points;  // points per replicate, the same for every spec of a run
   for (const auto& s : specs)
-    if (s.strata != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
+    if (s.points != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
   const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
   const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
   cl::Kernel k = launched(kernel);
@@ -331,7 +352,7 @@ void Integrator::add_sums(const cl::Buffer& sums, size_t count, uint32_t slices,
   for (size_t i = 0; i < count; ++i)
     for (uint32_t j = 0; j < slices; ++j) {
       out[i].sum += host[MFV_SUM_SLOTS * (i * slices + j) + MFV_SLOT_SUM];
-      out[i].sumsq += host[MFV_SUM_SLOTS * (i * slices + j) + MFV_SLOT_SUMSQ];
+      out[i].sumsq += host[MFV_SUM_SLOTS * (i * slices + j) + MFV_SLOT_SECOND];
     }
   if (task_) task_->advance(groups * group_samples_);
 }
@@ -352,7 +373,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   std::map<std::pair<std::string, std::string>, std::vector<size_t>> fast_at;  // by values kernel, specialized
   for (size_t j = 0; j < specs.size(); ++j) {
     if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
-      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) ||
+      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].width_y > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) ||
           !fast_albedo_available_)
         throw Error("internal: AlbedoMis takes isotropic microfacet integrals of the catalog's program only");
       mis.push_back(specs[j]);
@@ -390,7 +411,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   for (size_t j = 0; j < mis.size(); ++j) {
     std::vector<double> rep(kMisReplicates);
     for (uint32_t r = 0; r < kMisReplicates; ++r) rep[r] = ms[j * kMisReplicates + r].sum;
-    out[mis_at[j]] = replicate_estimate(rep.data(), kMisReplicates, mis[j].strata);
+    out[mis_at[j]] = replicate_estimate(rep.data(), kMisReplicates, mis[j].points);
   }
   for (size_t i = 0; i < specs.size(); ++i) {
     if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) continue;

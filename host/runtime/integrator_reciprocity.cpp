@@ -51,7 +51,7 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
     microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
   std::vector<size_t> fast, slow;
   for (size_t i = 0; i < specs.size(); ++i)
-    (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) ? fast : slow).push_back(i);
+    (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) && !(specs[i].width_y > 0) ? fast : slow).push_back(i);
   if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
   if (!slow.empty()) worst_of(generic, specs, slow, pairs, seed, out);
   return out;

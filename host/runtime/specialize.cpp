@@ -44,7 +44,7 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
   // as Integrator's values_kernel and AlbedoMis: catalog terms (model 0),
   // isotropic (no second width, view in the xz-plane), one width
   for (const auto& s : specs)
-    if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && s.phi_o == 0 && s.width > 0)
+    if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && s.width > 0)
       pairs.insert({s.d, s.check == MFV_CHECK_D_NORM ? kNoG : s.g});
   return {pairs.begin(), pairs.end()};
 }

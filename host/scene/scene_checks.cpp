@@ -321,7 +321,6 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
   SceneRun run;
   run.scene = scene;
   SceneSets sets = make_sets(scene, opt);
-  uint32_t stream = 0;
   const int builds0 = rt.build_stats().builds;
   std::map<std::string, size_t> stat_of;  // check -> index in rep.stats
   for (const std::string& check : suite_checks()) {
@@ -331,7 +330,7 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     if (check == "reciprocity")
       run_reciprocity(rt, plan, opt, run.rep);
     else
-      run_plan(rt, plan, opt, stream, run.rep);
+      run_plan(rt, plan, opt, run.rep);
     stat_of[check] = run.rep.stats.size() - 1;
   }
   const bool any_checked =

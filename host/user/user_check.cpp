@@ -152,7 +152,7 @@ std::string named_text(const UserBrdf& u, const Values& v) {
 IntegralSpec user_spec(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel) {
   IntegralSpec s;
   s.check = static_cast<int32_t>(kind);
-  float* p[kUserMaxParams] = {&s.pd, &s.pg, &s.f0, &s.f1, &s.kd, &s.p5};
+  float* p[kUserMaxParams] = {&s.p[0], &s.p[1], &s.p[2], &s.p[3], &s.p[4], &s.p[5]};
   for (size_t i = 0; i < v.size(); ++i) *p[i] = float(v[i]);
   s.width = float(u.width(v));
   s.cos_o = float(cos_o);
@@ -318,10 +318,9 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   auto arm = [&](double evals, const std::string& step) {
     watchdog_arm(std::max(kMinStepSeconds, 100.0 * per_eval * evals), step);
   };
-  uint32_t stream = 0;
   for (auto& plan : make_plans(u, opt, checks)) {
     arm(double(plan.samples) * double(plan.specs.size()), "the " + plan.check + " integrals");
-    run_plan(in, plan, sopt, stream, rep);
+    run_plan(in, plan, sopt, rep);
   }
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
   // pointwise steps: a few thousand evaluations per setting (a bound of their count)

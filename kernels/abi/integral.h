@@ -46,37 +46,56 @@ namespace mfv {
 #define MFV_MODEL_CATALOG_END 1000u
 
 /* The sums an integration kernel leaves per work-group (integrate,
- * sum_values, sum_pairs): MFV_SUM_SLOTS acc_t values, group-major. The
- * second holds the sum of squares (iid), of squared differences of
- * neighbouring strata (stratified), or the split sum's B (ALBEDO_RQMC). */
+ * sum_values, sum_pairs, sum_rqmc): MFV_SUM_SLOTS acc_t values, group-major.
+ * MFV_SLOT_SUM is the sum of the samples. What MFV_SLOT_SECOND holds depends
+ * on the check, one meaning each:
+ *   D_NORM (stratified), EAVG_RQMC:  Σ (x_2i - x_2i+1)², neighbouring strata
+ *   MASKING, ALBEDO (iid):           Σ x², the sum of squares
+ *   ALBEDO_RQMC:                     Σ B, the split sum's B on the same points
+ *   ALBEDO_MIS:                      Σ x² of one replicate (the host uses only
+ *                                    the replicates' sums: their spread)
+ * A new check states its own here (docs/adding-a-check.md). */
 #define MFV_SLOT_SUM 0
-#define MFV_SLOT_SUMSQ 1
+#define MFV_SLOT_SECOND 1
 #define MFV_SUM_SLOTS 2
 
-/* One integral: twenty 4-byte fields, no padding. */
+/* IntegralSpec::side: which side of the surface the fixed direction is on. */
+#define MFV_SIDE_ABOVE 1   /* above (n·o > 0): reflection, or transmission entering */
+#define MFV_SIDE_BELOW (-1) /* below (n·o < 0): transmission leaving the medium */
+
+/* One integral: thirty-one 4-byte words, no padding. Every field has one
+ * meaning; a check that needs another quantity gets a field of its own
+ * (tests/test_abi.cpp lists every field once and checks its offset on the
+ * device). */
 typedef struct IntegralSpec IntegralSpec;
 struct IntegralSpec {
-  mfv_i32 check MFV_INIT(0);  /* MFV_CHECK_* */
-  mfv_i32 d MFV_INIT(0), g MFV_INIT(0), f MFV_INIT(0);  /* catalog term ids (term_index); model 0 only */
-  /* D's and G's native parameter, F's two, the Lambertian kd; a whole model
-   * (or user code) reads its p[0..6] from pd, pg, f0, f1, kd, p5, pd2. */
-  float pd MFV_INIT(0), pg MFV_INIT(0), f0 MFV_INIT(0), f1 MFV_INIT(0);
-  float kd MFV_INIT(0);
-  float width MFV_INIT(0.1f);  /* the proposal's width (an alpha; <= 0: a mixture of widths) */
-  float cos_o MFV_INIT(1);     /* the fixed direction's cosine (view; a whole model's light) */
-  float p5 MFV_INIT(0);        /* the sixth parameter of a whole model or user BRDF */
-  mfv_u32 stream MFV_INIT(0);  /* Philox stream: the integral's id in its run */
-  mfv_u32 strata MFV_INIT(0);  /* samples of a stratified integral (set by the integrator); 0 = iid;
-                                  ALBEDO_MIS: points per replicate */
-  mfv_u32 model MFV_INIT(0);   /* MFV_MODEL_MICROFACET, a catalog model, or user code */
-  mfv_u32 channel MFV_INIT(0); /* mfv check: the RGB channel (0..2) of the user's BRDF */
-  /* Anisotropic integrals (pd2 > 0; 0 leaves every isotropic one untouched):
-   * D's second width alpha_y (a whole model's p[6]); the proposals are then
-   * stretched to (width, pd2). */
-  float pd2 MFV_INIT(0);
-  float phi_o MFV_INIT(0);     /* the view's azimuth about n (0: in the xz-plane) */
+  /* -- what is integrated -- */
+  mfv_i32 check MFV_INIT(0);      /* MFV_CHECK_* */
+  mfv_u32 model MFV_INIT(0);      /* MFV_MODEL_MICROFACET, a catalog model (1..999), or user code */
   mfv_u32 estimator MFV_INIT(0);  /* MFV_EST_* */
-  float pg2 MFV_INIT(0);       /* an anisotropic G's second width alpha_y */
+  mfv_u32 channel MFV_INIT(0);    /* mfv check: the RGB channel (0..2) of the user's BRDF */
+  /* -- the microfacet D x G x F BRDF (model 0 only; 0 for every other model) -- */
+  mfv_i32 d MFV_INIT(0), g MFV_INIT(0), f MFV_INIT(0);  /* catalog term ids (term_index) */
+  float pd MFV_INIT(0), pg MFV_INIT(0);  /* D's and G's native parameter (alpha_x where anisotropic) */
+  float pd2 MFV_INIT(0), pg2 MFV_INIT(0); /* an anisotropic D's and G's alpha_y (0: isotropic) */
+  float f0 MFV_INIT(0), f1 MFV_INIT(0);  /* F's two parameters */
+  float kd MFV_INIT(0);                  /* the Lambertian albedo added (kd/pi) */
+  /* -- a whole model's or user code's parameters p[0..6] (model > 0 only) -- */
+  float p[7] MFV_INIT({0});
+  /* -- the interface (transmission checks; reflection leaves the defaults) -- */
+  float eta MFV_INIT(1);          /* relative IOR eta_t / eta_i, seen from the fixed direction's side */
+  mfv_i32 side MFV_INIT(1);       /* MFV_SIDE_ABOVE or MFV_SIDE_BELOW: the fixed direction's side */
+  /* -- the fixed direction (the view; a whole model's light) -- */
+  float cos_o MFV_INIT(1);        /* its cosine to n (> 0; `side` says which hemisphere) */
+  float phi_o MFV_INIT(0);        /* its azimuth about n (0: in the xz-plane) */
+  /* -- the proposal -- */
+  float width MFV_INIT(0.1f);     /* its width along x (an alpha; <= 0: a mixture of widths) */
+  float width_y MFV_INIT(0);      /* its width along y: > 0 stretches it to (width, width_y); 0: isotropic */
+  /* -- the samples -- */
+  mfv_u32 stream MFV_INIT(0);     /* Philox counter word 2: the low 32 bits of the integral's stream */
+  mfv_u32 stream_hi MFV_INIT(0);  /* the stream's high bits (< 2^24), in counter word 3 above the draw (rng.cl) */
+  mfv_u32 strata MFV_INIT(0);     /* samples of a stratified integral (set by the integrator); 0 = iid */
+  mfv_u32 points MFV_INIT(0);     /* ALBEDO_MIS: points per RQMC replicate (set by the integrator) */
 };
 
 #ifndef __OPENCL_C_VERSION__
