@@ -94,7 +94,7 @@ std::vector<Case> make_cases(const AgreeOptions& opt) {
           kept.push_back(c);
           break;
         }
-    if (kept.empty()) throw Error("--only matches no agreement case (see 'mfv list')");
+    if (kept.empty() && !opt.only_may_match_none) throw Error("--only matches no agreement case (see 'mfv list')");
     cases = kept;
   }
   return cases;
@@ -339,6 +339,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   auto cases = make_cases(opt);
 
   AgreeReport rep;
+  if (cases.empty()) return rep;  // only_may_match_none
   auto build0 = rt.build_stats().seconds;
   cl::Program prog = build_agree_program(rt, opt.fp64);
   rep.build_seconds = rt.build_stats().seconds - build0;

@@ -17,6 +17,7 @@ struct AgreeOptions {
   bool fp64 = false;              // run the kernel in double (needs cl_khr_fp64)
   bool combinations = true;       // all D x G x F BRDFs, besides the single terms
   std::vector<std::string> only;  // restrict to cases whose name contains one of these
+  bool only_may_match_none = false;  // mfv run --model: `only` matching no case leaves none (else an error)
 };
 
 struct AgreeResult {

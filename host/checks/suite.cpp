@@ -5,6 +5,7 @@
 #include "checks/furnace_truth.hpp"
 #include "checks/integrate.hpp"
 #include "checks/reference_compare.hpp"
+#include "checks/streams.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/specialize.hpp"
@@ -41,12 +42,6 @@ bool SuiteReport::gate_ok() const {
   for (auto& g : groups)
     if (g.verdict == Verdict::Fail || g.verdict == Verdict::XPass) return false;
   return true;
-}
-
-const std::vector<std::string>& suite_checks() {
-  static const std::vector<std::string> c = {"d_norm",         "masking",     "furnace",    "energy",
-                                             "energy_diffuse", "reciprocity", "closed_form"};
-  return c;
 }
 
 std::vector<size_t> reference_subset(const Plan& plan, uint32_t every) {
@@ -141,8 +136,7 @@ void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::ve
   if (!(64 * scale <= double(UINT32_MAX / 64)))
     throw Error(fmt::format("--samples/--scale ask for {:.3g} reciprocity pairs per integral: too many", 4096 * scale));
   const uint32_t pairs = 64 * std::max<uint32_t>(1, uint32_t(64 * scale));
-  if (!streams_set)
-    for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
+  if (!streams_set) assign_streams("reciprocity", specs);  // by identity (checks/streams.hpp)
   const WorstPairs w = in.reciprocity(specs, pairs, seed);  // one pair per work-item
   for (size_t i = 0; i < specs.size(); ++i) {
     pts[i].estimate = w.worst[i];
@@ -157,10 +151,9 @@ void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::ve
   rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(pairs) * 2, secs});
 }
 
-void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
   if (plan.specs.empty()) return;
-  if (!plan.streams_set)
-    for (auto& s : plan.specs) s.stream = stream++;
+  if (!plan.streams_set) assign_streams(plan.check, plan.specs);  // by identity (checks/streams.hpp), not by place
   in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
@@ -177,21 +170,19 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& str
   rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
 }
 
-void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep) {
+void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
   if (plan.specs.empty()) return;
   double b0 = rt.build_stats().seconds;
   plan.terms.specialized = fast_path_pairs(plan.specs);  // kernels per term pair (runtime/specialize.hpp)
   Integrator in(rt, plan.terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
-  run_plan(in, plan, opt, stream, rep);
+  run_plan(in, plan, opt, rep);
 }
 
 void validate_suite_options(const SuiteOptions& opt) {
   for (auto& c : opt.checks)
     if (std::find(suite_checks().begin(), suite_checks().end(), c) == suite_checks().end())
-      throw Error(fmt::format(
-          "unknown check '{}' (checks: d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)",
-          c));
+      throw Error(fmt::format("unknown check '{}' (checks: {})", c, suite_check_list()));
   validate_scale(opt.scale);
   if (!(opt.family_alpha > 0 && opt.family_alpha < 1)) throw Error("--alpha-fw must be in (0, 1)");
   bool any = opt.models.empty();
@@ -213,12 +204,12 @@ SuitePlans make_suite_plans(const SuiteOptions& opt) {
   SuitePlans sp;
   sp.plans = make_plans(opt);
   if (suite_check_wanted(opt, "reciprocity")) sp.reciprocity = reciprocity_plan(opt);
-  uint32_t stream = 0;
+  // every integral's stream from its identity (checks/streams.hpp), before a shard cuts the plans
   for (auto& p : sp.plans) {
-    for (auto& s : p.specs) s.stream = stream++;
+    assign_streams(p.check, p.specs);
     p.streams_set = true;
   }
-  for (size_t i = 0; i < sp.reciprocity.specs.size(); ++i) sp.reciprocity.specs[i].stream = uint32_t(i);
+  assign_streams("reciprocity", sp.reciprocity.specs);
   sp.reciprocity.streams_set = true;
   return sp;
 }
@@ -237,11 +228,10 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
   const double b0 = rt.build_stats().seconds;
   Integrator in(rt, terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
-  uint32_t stream = 0;  // unused: make_suite_plans numbered the streams
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
-    if (plans[i].check == "furnace") attach_furnace_truth(plans[i]);  // its pooled test is two-sided
-    run_plan(in, plans[i], opt, stream, rep);
+    if (check_kind(plans[i].check).truth) attach_furnace_truth(plans[i]);  // its pooled test is two-sided
+    run_plan(in, plans[i], opt, rep);
   }
   if (!rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
@@ -255,6 +245,8 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
   SuiteReport rep;
   SuitePlans sp = make_suite_plans(opt);
   run_suite_plans(rt, sp, opt, rep);
+  // the pointwise kinds (agree, stability) run whole, never in a shard (docs/scale.md)
+  run_pointwise_kinds(rt, opt, rep);
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);
   return rep;

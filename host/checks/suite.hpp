@@ -5,7 +5,7 @@
 
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
-#include "checks/check_table.hpp"
+#include "checks/registry.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
@@ -141,7 +141,6 @@ struct SuiteReport {
   std::vector<std::string> gate_failures() const;
 };
 
-const std::vector<std::string>& suite_checks();
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
 
@@ -183,27 +182,23 @@ std::vector<double> view_cosines(int n);
 // An empty plan of `check` whose integrals take scaled_samples(base_samples, scale).
 Plan new_plan(const std::string& check, uint64_t base_samples, double scale);
 
-// Runs the plan's integrals (streams numbered on from `stream`), records
-// estimates, timing and, when opt.reference_samples > 0, the same-sample
-// reference comparison into `rep`.
-void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+// Runs the plan's integrals (each on the stream of its identity,
+// checks/streams.hpp), records estimates, timing and, when
+// opt.reference_samples > 0, the same-sample reference comparison into `rep`.
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 // The same through a program built here with plan.terms (its build time goes to rep.build_seconds).
-void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, uint32_t& stream, SuiteReport& rep);
+void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 
 // ---- Pieces mfv run --scene (host/scene/) shares with mfv run -------------
 
-// The catalog's prediction for one point of a D/G/F model: alpha is the
-// shared width, f0 the first F parameter, kd the diffuse albedo.
-struct Expectation {
-  Expect expect = Expect::Hold;
-  std::string reason;
-  double tolerance = 0;
-};
-Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd);
+// expect(check, d, g, alpha, f0, kd): the registry's (checks/registry.hpp).
 std::vector<Plan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog, filtered by opt
 Plan reciprocity_plan(const SuiteOptions& opt);         // every reciprocity batch, filtered by opt.models
 // Builds the plan's program (terms without G1) and records one bounded point per batch.
 void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
+// The pointwise kinds (agree, stability) at mfv run's budget, one bounded
+// point per case, filtered by opt.checks and opt.models (checks/suite_pointwise.cpp).
+void run_pointwise_kinds(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep);
 
 // Integrator::reciprocity over `specs`, 64 x per_item pairs each (per_item from the scale): one bounded point per spec
 // (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)

@@ -127,7 +127,7 @@ void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
         add_views(p, IntegralKind::Masking, *d, g, nullptr, [&](PointResult& pt, const glm::dvec3& o, const Widths& w) {
           // the expectation from the closed form
           const double dev = std::fabs(masking_closed_form(*d, *g, o, w) - 1.0);
-          if (dev > 0.25) {  // ~10 standard errors of a default-size integral
+          if (dev > kClosedFormMustFail) {
             pt.expect = Expect::Fail;
             pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})", g->id,
                                     d->id, dev);

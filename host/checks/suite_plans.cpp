@@ -1,5 +1,5 @@
 // The plan builder: "what to check" (the catalog's D x G x F grid by the
-// table of checks, checks/check_table.hpp; whole models; reciprocity
+// registry of check kinds, checks/registry.hpp; whole models; reciprocity
 // batches) into integrals (IntegralSpec) and the points that describe them,
 // each with the verdict the catalog expects. mfv run --scene
 // (scene/scene_checks.cpp), mfv check (user/user_check.cpp) and the
@@ -7,7 +7,7 @@
 #include "checks/suite.hpp"
 
 #include "catalog/roughness.hpp"
-#include "checks/check_table.hpp"
+#include "checks/registry.hpp"
 #include "checks/integrate.hpp"
 #include "checks/profile.hpp"
 #include "util/error.hpp"
@@ -53,49 +53,6 @@ std::vector<double> view_cosines(int n) {
   std::vector<double> c;
   for (int i = 0; i < n; ++i) c.push_back(std::pow(10.0, -4.0 * double(n - 1 - i) / double(n - 1)));
   return c;
-}
-
-// ---- expectations --------------------------------------------------------
-// Which models must fail which check, and why, from catalog properties.
-
-// The catalog's prediction for one point. alpha is the shared width, f0 the
-// first F parameter, kd the diffuse albedo.
-Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd) {
-  if (check == "reciprocity") return {};
-  if (d && !d->known_bad.empty() && (check == "d_norm" || check == "masking"))
-    return {Expect::Fail, "D " + d->id + ": " + d->known_bad, 0};
-  if (check == "d_norm") return {};
-  if (check == "energy_diffuse") {
-    // kd/pi + specular, no (1 - F) weight: at kd = 1 and F0 = 1 the albedo is
-    // 1 + the specular albedo; at smaller kd or F0 it may or may not pass 1.
-    std::string why = "seed 000's kd/pi + specular adds the diffuse albedo to the specular one with no (1-F) weight";
-    return {kd >= 1.0 && f0 >= 1.0 ? Expect::Fail : Expect::May, why, 0};
-  }
-  const SmithFit* fit = g->fit_for(d->id);
-  const bool is_smith = !g->smith_for.empty();
-  const bool beyond_fit = fit && alpha > fit->alpha_max;
-  const bool under_masks = std::find(g->under_masks.begin(), g->under_masks.end(), d->id) != g->under_masks.end();
-  if (check == "masking") {
-    if (!is_smith) {
-      if (!g->masking_exact.empty()) return {Expect::Hold, "", 0};
-      return {Expect::Fail, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved",
-              0};
-    }
-    if (!fit) return {Expect::Fail, g->id + "'s G1 belongs to " + g->smith_for.front().d + ", not to " + d->id, 0};
-    if (beyond_fit) return {Expect::Fail, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
-    return {Expect::Hold, "", fit->tol};
-  }
-  // furnace (F = 1) and energy (F <= 1): a G1 that masks less than D's own
-  // lets the albedo exceed 1; one that masks more only loses energy.
-  if (!is_smith) return {};
-  const Expect broken = check == "furnace" ? Expect::Fail : Expect::May;
-  if (under_masks)
-    return {broken,
-            g->id + "'s G1 (of " + g->smith_for.front().d + ") under-masks " + d->id +
-                "'s heavier tails, so the albedo exceeds 1 at grazing view",
-            0};
-  if (beyond_fit) return {broken, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
-  return {Expect::Hold, "", fit ? fit->tol : 0.0};
 }
 
 namespace {
@@ -251,8 +208,8 @@ std::vector<Plan> make_plans(const SuiteOptions& opt) {
   std::vector<Plan> plans;
   if (suite_check_wanted(opt, "d_norm")) plans.push_back(d_norm_plan(opt));
   add_model_plans(plans, opt);
-  for (const CheckRow& row : dgf_check_rows())
-    if (row.kind != IntegralKind::DNorm && suite_check_wanted(opt, row.check)) plans.push_back(dgf_plan(row, opt));
+  for (const CheckKind* k : grid_kinds())
+    if (k->kind != IntegralKind::DNorm && suite_check_wanted(opt, k->check)) plans.push_back(dgf_plan(*k, opt));
   add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
   add_sheen_plans(plans, opt);  // the sheen D and its visibility (suite_sheen.cpp)
   return plans;

@@ -127,7 +127,7 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
         PointResult pt = sheen_point("masking", &d, &g, nullptr, a);
         pt.params["cos_o"] = co;
         const double dev = std::fabs(closed[k] - 1.0);
-        if (dev > 0.25) {  // ~10 standard errors of a default-size integral
+        if (dev > kClosedFormMustFail) {
           pt.expect = Expect::Fail;
           pt.reason = fmt::format("{}'s G1 is off the Smith G1 of {} by {:.2g} here (closed form)", g.id, d.id, dev);
         } else {

@@ -43,8 +43,7 @@ struct RunCommand : SharedValues {
             "earlier results.json: exit 1 if an estimate moved beyond its combined standard errors (Welch t, "
             "Bonferroni over all integrals, as mfv energy)",
             "--baseline-alpha-fw", baseline_alpha);
-    cmd->add_option("--check", opt.checks,
-                    "only these checks (d_norm, masking, furnace, energy, energy_diffuse, reciprocity, closed_form)");
+    cmd->add_option("--check", opt.checks, "only these checks (" + suite_check_list() + ")");
     cmd->add_option("--model", opt.models, "only models whose D/G/F or model[case] name contains one of these");
     cmd->add_option("--reference-samples", opt.reference_samples, "samples compared with the reference per integral");
     every_opt = cmd->add_option("--reference-every", opt.reference_every,

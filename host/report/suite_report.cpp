@@ -255,10 +255,12 @@ std::vector<std::pair<std::string, std::string>> suite_output_files(const SuiteR
       "half to each family, so a deviation must exceed {:.2f} standard errors plus its bias bound "
       "(float rounding and the model's documented tolerance) to fail.\n\n",
       rep.tests, rep.pooled_tests, opt.family_alpha, rep.z_threshold);
-  md += "| check | integrals | samples | seconds | samples/s |\n|---|---:|---:|---:|---:|\n";
-  for (auto& c : rep.stats)
-    md += fmt::format("| {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, c.integrals, c.samples, c.seconds,
-                      c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
+  md += "| check | what it tests | integrals | samples | seconds | samples/s |\n|---|---|---:|---:|---:|---:|\n";
+  for (auto& c : rep.stats) {
+    const CheckKind* kind = find_check_kind(c.check);  // the registry's report line
+    md += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.3g} |\n", c.check, kind ? kind->summary : "", c.integrals,
+                      c.samples, c.seconds, c.seconds > 0 ? double(c.samples) / c.seconds : 0.0);
+  }
   md += fmt::format("\nKernel builds: {:.2f} s. ", rep.build_seconds);
   md += (!rep.reference_note.empty() ? rep.reference_note : reference_line(rep)) + "\n\n";
   md += "| verdict | check | model | worst case | expected failure because |\n|---|---|---|---|---|\n";

@@ -1,0 +1,274 @@
+#include "checks/registry.hpp"
+
+#include "catalog/roughness.hpp"
+#include "util/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace mfv {
+
+namespace {
+
+// ---- expectations: which models must fail which kind, and why, from catalog properties
+
+Expectation expect_d_norm(const ExpectPoint& p) {
+  if (p.d && !p.d->known_bad.empty()) return {Expect::Fail, "D " + p.d->id + ": " + p.d->known_bad, 0};
+  return {};
+}
+
+Expectation expect_masking(const ExpectPoint& p) {
+  if (p.d && !p.d->known_bad.empty()) return {Expect::Fail, "D " + p.d->id + ": " + p.d->known_bad, 0};
+  const Term *d = p.d, *g = p.g;
+  const SmithFit* fit = g->fit_for(d->id);
+  if (g->smith_for.empty()) {
+    if (!g->masking_exact.empty()) return {Expect::Hold, "", 0};
+    return {Expect::Fail, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved", 0};
+  }
+  if (!fit) return {Expect::Fail, g->id + "'s G1 belongs to " + g->smith_for.front().d + ", not to " + d->id, 0};
+  if (p.alpha > fit->alpha_max) return {Expect::Fail, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
+  return {Expect::Hold, "", fit->tol};
+}
+
+// furnace (F = 1) and energy (F <= 1): a G1 that masks less than D's own lets
+// the albedo exceed 1; one that masks more only loses energy. `broken`: what
+// such a point must do (furnace: fail; energy: F <= 1 may hide the gain).
+Expectation expect_albedo(const ExpectPoint& p, Expect broken) {
+  const Term *d = p.d, *g = p.g;
+  if (g->smith_for.empty()) return {};
+  const SmithFit* fit = g->fit_for(d->id);
+  if (std::find(g->under_masks.begin(), g->under_masks.end(), d->id) != g->under_masks.end())
+    return {broken,
+            g->id + "'s G1 (of " + g->smith_for.front().d + ") under-masks " + d->id +
+                "'s heavier tails, so the albedo exceeds 1 at grazing view",
+            0};
+  if (fit && p.alpha > fit->alpha_max)
+    return {broken, fmt::format("beyond alpha = {}: {}", fit->alpha_max, fit->why), 0};
+  return {Expect::Hold, "", fit ? fit->tol : 0.0};
+}
+Expectation expect_furnace(const ExpectPoint& p) { return expect_albedo(p, Expect::Fail); }
+Expectation expect_energy(const ExpectPoint& p) { return expect_albedo(p, Expect::May); }
+
+// kd/pi + specular, no (1 - F) weight: at kd = 1 and F0 = 1 the albedo is
+// 1 + the specular albedo; at smaller kd or F0 it may or may not pass 1.
+Expectation expect_energy_diffuse(const ExpectPoint& p) {
+  std::string why = "seed 000's kd/pi + specular adds the diffuse albedo to the specular one with no (1-F) weight";
+  return {p.kd >= 1.0 && p.f0 >= 1.0 ? Expect::Fail : Expect::May, why, 0};
+}
+
+std::vector<CheckKind> make_kinds() {
+  std::vector<CheckKind> k;
+  auto add = [&](const char* name) -> CheckKind& {
+    k.emplace_back();
+    k.back().check = name;
+    return k.back();
+  };
+  {
+    CheckKind& c = add("d_norm");
+    c.kind = IntegralKind::DNorm;
+    c.terms_read = 1;
+    c.base_samples = 256 * kSuiteBaseSamples;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceScene | kSourceUser;
+    c.not_taken = "a whole model has no D of its own to integrate";
+    c.expect = expect_d_norm;
+    c.verdict = "holds for every D but those the catalog marks known_bad";
+    c.summary = "D is normalized: the integral of D(m)(m.n) over the hemisphere is 1 (two-sided)";
+  }
+  {
+    CheckKind& c = add("masking");
+    c.kind = IntegralKind::Masking;
+    c.terms_read = 2;
+    c.base_samples = kSuiteBaseSamples;
+    c.n_alpha = 12;
+    c.n_view = 32;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceScene | kSourceUser;
+    c.not_taken = "a whole model has no separate D and G1";
+    c.expect = expect_masking;
+    c.verdict =
+        "holds where G's Smith G1 belongs to D (Term::smith_for, within its tolerance and alpha_max) or G is "
+        "normalised against every D (masking_exact); fails otherwise";
+    c.summary = "G1 is D's Smith masking: the weak white furnace integrates to 1 (Heitz 2014 eq. 19, two-sided)";
+  }
+  {
+    CheckKind& c = add("furnace");
+    c.kind = IntegralKind::AlbedoMis;
+    c.base_samples = kSuiteBaseSamples;
+    c.n_alpha = 12;
+    c.n_view = 32;
+    c.upper_only = true;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceScene | kSourceUser;
+    c.not_taken = "a whole model's white furnace is its energy check";
+    c.expect = expect_furnace;
+    c.truth = true;
+    c.verdict =
+        "holds for Smith Gs (and non-Smith Gs); fails where G's G1 under-masks D's tails (under_masks) or beyond "
+        "the fit's alpha_max";
+    c.summary = "the white furnace (F = 1): the albedo is at most 1 (one-sided; pooled against quadrature)";
+  }
+  {
+    CheckKind& c = add("energy");
+    c.kind = IntegralKind::AlbedoMis;
+    c.base_samples = kSuiteBaseSamples / 2;
+    c.n_alpha = 6;
+    c.n_view = 24;
+    c.fs = FSet::Real;
+    c.upper_only = true;
+    c.sources = kSourceGrid | kSourceModels | kSourceScene | kSourceUser;
+    c.not_taken = "the anisotropic and sheen pairs are checked with F = 1 only (furnace)";
+    c.expect = expect_energy;
+    c.verdict = "as furnace, but F <= 1 may hide a gain: may fail where furnace must";
+    c.summary = "energy with every F (and whole models at 10 lights): the albedo is at most 1 (one-sided)";
+  }
+  {
+    CheckKind& c = add("energy_diffuse");
+    c.kind = IntegralKind::AlbedoMis;
+    c.base_samples = kSuiteBaseSamples / 2;
+    c.n_alpha = 3;
+    c.n_view = 8;
+    c.fs = FSet::Schlick;
+    c.kds = {0.5, 1.0};
+    c.upper_only = true;
+    c.sources = kSourceGrid | kSourceScene;
+    c.not_taken = "only seed 000's kd/pi + specular sum (the grid, a scene's kd material) has a diffuse term";
+    c.expect = expect_energy_diffuse;
+    c.verdict = "seed 000's kd/pi + specular: fails at kd = 1 and F0 = 1, may fail below";
+    c.summary = "diffuse + specular (seed 000): the albedo is at most 1 (one-sided)";
+  }
+  {
+    CheckKind& c = add("reciprocity");
+    c.runner = Runner::Pairs;
+    c.domain = Domain::Hemisphere;
+    c.base_samples = 64;  // pairs per work-item at scale 1 (record_reciprocity)
+    c.expected = 0.0;
+    c.sources = kSourceGrid | kSourceModels | kSourceScene | kSourceUser;
+    c.not_taken = "the anisotropic and sheen pairs' terms are reciprocal by their form (agree compares them)";
+    c.verdict = "holds for every D x G x F; whole models from their cases (ModelCase::reciprocity)";
+    c.summary = "f(i,o) = f(o,i) to float rounding over sampled pairs (a bounded maximum)";
+  }
+  {
+    CheckKind& c = add("closed_form");
+    c.kind = IntegralKind::Albedo;
+    c.base_samples = kSuiteBaseSamples * kClosedFormFactor;
+    c.n_view = kModelLights;
+    c.sources = kSourceModels;
+    c.not_taken = "only a whole model has an exact albedo of its own (Model::ref_albedo)";
+    c.verdict = "holds for every whole model with a closed-form albedo";
+    c.summary = "a whole model's albedo equals its closed form (two-sided): model and estimator agree";
+  }
+  {
+    CheckKind& c = add("agree");
+    c.runner = Runner::Pointwise;
+    c.base_samples = 4096;  // inputs per term or BRDF at scale 1 (mfv agree's default: 10^6)
+    c.expected = 0.0;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels;
+    c.not_taken = "a scene's and a user's code are compared by mfv check and mfv agree --scene";
+    c.verdict = "holds for every term, BRDF and model: kernel and reference agree within the ULP table";
+    c.summary = "kernel and double reference agree on identical inputs within each term's ULP budget";
+  }
+  {
+    CheckKind& c = add("stability");
+    c.runner = Runner::Pointwise;
+    c.base_samples = 0;  // a fixed deterministic sweep (mfv stability's)
+    c.expected = 0.0;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels;
+    c.not_taken = "a scene's models are swept by mfv stability --scene";
+    c.verdict = "holds for every case the catalog marks stable; the others are reported by mfv stability";
+    c.summary = "no NaN, Inf or out-of-domain value on in-domain extreme inputs (stable terms and BRDFs)";
+  }
+  {
+    CheckKind& c = add("energy_mu");
+    c.runner = Runner::Table;
+    c.kind = IntegralKind::AlbedoRqmc;
+    c.base_samples = 1024;  // points per replicate of the first pass (--min-points)
+    c.n_alpha = 32;
+    c.n_view = 32;
+    c.upper_only = true;
+    c.in_run = false;
+    c.sources = kSourceGrid | kSourceModels | kSourceScene;
+    c.not_taken = "mfv energy tabulates the catalog's and a scene's models";
+    c.verdict =
+        "tables: measured, no verdict; whole models: E(mu) <= 1 beyond noise and float rounding (ModelCase::energy)";
+    c.summary = "mfv energy: E(mu) and the split sum's B per width and view (RQMC replicates)";
+  }
+  {
+    CheckKind& c = add("energy_avg");
+    c.runner = Runner::Table;
+    c.kind = IntegralKind::EavgRqmc;
+    c.base_samples = 1024;
+    c.n_alpha = 32;
+    c.n_view = 0;
+    c.upper_only = true;
+    c.in_run = false;
+    c.sources = kSourceGrid | kSourceModels | kSourceScene;
+    c.not_taken = "mfv energy tabulates the catalog's and a scene's models";
+    c.verdict = "measured, no verdict (cross-checked by the midpoint rule over energy_mu)";
+    c.summary = "mfv energy: E_avg, the albedo averaged with density 2 mu (RQMC replicates)";
+  }
+  return k;
+}
+
+}  // namespace
+
+const std::vector<CheckKind>& check_kinds() {
+  static const std::vector<CheckKind> kinds = make_kinds();
+  return kinds;
+}
+
+const CheckKind* find_check_kind(const std::string& check) {
+  for (const CheckKind& k : check_kinds())
+    if (check == k.check) return &k;
+  return nullptr;
+}
+
+const CheckKind& check_kind(const std::string& check) {
+  if (const CheckKind* k = find_check_kind(check)) return *k;
+  throw Error(fmt::format("internal: no check kind named '{}' (checks/registry.cpp)", check));
+}
+
+const std::vector<std::string>& suite_checks() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const CheckKind& k : check_kinds())
+      if (k.in_run) out.push_back(k.check);
+    return out;
+  }();
+  return names;
+}
+
+std::string suite_check_list() {
+  std::string out;
+  for (const std::string& c : suite_checks()) out += (out.empty() ? "" : ", ") + c;
+  return out;
+}
+
+std::vector<const CheckKind*> grid_kinds() {
+  std::vector<const CheckKind*> out;
+  for (const CheckKind& k : check_kinds())
+    if (k.runner == Runner::Integral && k.in_run && (k.sources & kSourceGrid)) out.push_back(&k);
+  return out;
+}
+
+const std::vector<CheckKind>& energy_check_rows() {
+  static const std::vector<CheckKind> rows = [] {
+    std::vector<CheckKind> out;
+    for (const CheckKind& k : check_kinds())
+      if (k.runner == Runner::Table) out.push_back(k);
+    return out;
+  }();
+  return rows;
+}
+
+Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd) {
+  const CheckKind& k = check_kind(check);
+  return k.expect ? k.expect({d, g, alpha, f0, kd}) : Expectation{};
+}
+
+NativeWidths native_widths(const Term& d, const Term& g, double alpha) {
+  NativeWidths w;
+  w.pd = native_from_alpha(d.roughness, alpha);
+  w.pg = g.params.empty() ? 0.0 : std::min(native_from_alpha(g.roughness, alpha), g.params[0].hi);
+  return w;
+}
+
+}  // namespace mfv
