@@ -1,5 +1,5 @@
 // mfv run --shard K/N: a deterministic part of the whole run's plan
-// (docs/scale.md). Streams are numbered over the whole run and the
+// (docs/scale.md). Streams are keyed by identity (checks/streams.hpp) and the
 // reference's integrals picked over each whole plan before the plan is cut,
 // so a shard computes, integral for integral, what the whole run computes;
 // mfv merge (host/cli/cmd_merge.cpp) judges the merged records once.

@@ -154,7 +154,7 @@ struct Plan {
   std::vector<PointResult> points;
   uint64_t samples = 0;
   TermSelection terms;
-  // Sharded runs (checks/shard.hpp): streams numbered over the whole run
+  // Sharded runs (checks/shard.hpp): streams set (by identity) over the whole run
   // before the plan was cut, and the integrals the reference compares, picked
   // over the whole plan (positions in this plan); unset: run_plan numbers and picks.
   bool streams_set = false;
