@@ -21,8 +21,8 @@ struct Plant {
 // agree and stability, see it).
 inline const Plant kGgxNoHorizon = {
     "D_ggx without its horizon test", "terms_d.cl",
-    "  if (NoH <= R(0.0)) return R(0.0);\n  real c = min(NoH, R(1.0));\n  // divide by α² first",
-    "  real c = min(fabs(NoH), R(1.0));\n  // divide by α² first"};
+    "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return NoH <= R(0.0) ? R(0.0) : d;",
+    "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return d;"};
 
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
