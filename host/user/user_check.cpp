@@ -1,6 +1,7 @@
 #include "user/user_check.hpp"
 
 #include "catalog/roughness.hpp"
+#include "checks/streams.hpp"
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
 #include "user/time_limit.hpp"
@@ -240,13 +241,15 @@ void run_user_reciprocity(Runtime& rt, const cl::Program& prog, Integrator& in, 
         settings.push_back(v);
       }
   const size_t first = rep.points.size();
-  record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep);
+  assign_streams("reciprocity", specs);  // by identity (checks/streams.hpp): kept for describe_reciprocity
+  record_reciprocity(in, specs, pts, kUserReciprocityBound, opt.scale, opt.seed, t0, rep, true);
   // a failing point names its pair's directions and both values
   std::vector<PointResult*> failing;
   std::vector<Values> at;
   for (size_t i = first; i < rep.points.size(); ++i)
     if (!(rep.points[i].estimate <= rep.points[i].bound)) {
-      rep.points[i].params["stream"] = double(i - first);  // record_reciprocity numbers the streams so
+      rep.points[i].params["stream"] = double(specs[i - first].stream);  // the pair's Philox stream
+      rep.points[i].params["stream_hi"] = double(specs[i - first].stream_hi);
       failing.push_back(&rep.points[i]);
       at.push_back(settings[i - first]);
     }

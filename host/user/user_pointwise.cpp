@@ -84,7 +84,8 @@ void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, c
   std::vector<Input> recs;
   for (size_t i = 0; i < pts.size(); ++i) {
     glm::dvec3 a, b;
-    ref::reciprocity_pair(seed, uint32_t(pts[i]->params.at("stream")), uint32_t(pts[i]->params.at("worst_pair")), a, b);
+    ref::reciprocity_pair(seed, uint32_t(pts[i]->params.at("stream")), uint32_t(pts[i]->params.at("stream_hi")),
+                          uint32_t(pts[i]->params.at("worst_pair")), a, b);
     recs.push_back({through_float(a), through_float(b), {0, 0, 1}, false, "", i});
     recs.push_back({through_float(b), through_float(a), {0, 0, 1}, false, "", i});
   }
@@ -92,6 +93,7 @@ void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, c
   for (size_t i = 0; i < pts.size(); ++i) {
     const size_t ch = size_t(pts[i]->params.at("channel"));
     pts[i]->params.erase("stream");
+    pts[i]->params.erase("stream_hi");
     pts[i]->detail =
         fmt::format("brdf(wi={}, wo={}).{} = {:.9g}, brdf(wi={}, wo={}).{} = {:.9g}", vec_text(recs[2 * i].wi),
                     vec_text(recs[2 * i].wo), kChannel[ch], out[2 * i][PW_BRDF_R + ch], vec_text(recs[2 * i + 1].wi),
