@@ -21,13 +21,6 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The --model filter as mfv agree's and stability's --only: the same substrings.
-bool any_case(const std::vector<std::string>& names, const std::vector<std::string>& filter) {
-  for (auto& n : names)
-    if (suite_model_wanted(filter, n)) return true;
-  return false;
-}
-
 void run_agree_pass(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep) {
   const auto t0 = std::chrono::steady_clock::now();
   AgreeOptions ao;
