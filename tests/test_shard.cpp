@@ -141,9 +141,12 @@ TEST_CASE("shards cover every integral of the run exactly once, each a like shar
       for (size_t p : pos) CHECK(seen.insert(p).second);
       for (auto& p : cut.plans) cost[k] += double(p.specs.size()) * double(integral_cost(p, opt.scale));
       cost[k] += double(cut.reciprocity.specs.size()) * double(integral_cost(cut.reciprocity, opt.scale));
-      // streams are those of the whole run, not renumbered
-      if (!cut.plans.front().specs.empty())
-        CHECK(cut.plans.front().specs.front().stream == uint32_t(shard_positions(sp, {k, n, ""}).front()));
+      // streams are those of the whole run (keyed by identity before the cut), not renumbered
+      if (!cut.plans.front().specs.empty()) {
+        const IntegralSpec& whole = sp.plans.front().specs.at(pos.front());
+        CHECK(cut.plans.front().specs.front().stream == whole.stream);
+        CHECK(cut.plans.front().specs.front().stream_hi == whole.stream_hi);
+      }
     }
     CHECK(seen.size() == total);
     const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / n;
