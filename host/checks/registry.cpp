@@ -259,6 +259,25 @@ const std::vector<CheckKind>& energy_check_rows() {
   return rows;
 }
 
+Shape shape_of(const CheckKind& k) {
+  if (k.runner == Runner::Pairs) return Shape::Pairs;
+  if (k.runner != Runner::Integral) return Shape::None;
+  switch (k.kind) {
+    case IntegralKind::DNorm: return Shape::DNorm;
+    case IntegralKind::Masking: return Shape::Masking;
+    case IntegralKind::Albedo:
+    case IntegralKind::AlbedoMis:
+    case IntegralKind::AlbedoRqmc:
+      if (!k.upper_only) return Shape::Exact;
+      return k.fs == FSet::None ? Shape::Furnace : Shape::Energy;
+    default: return Shape::None;
+  }
+}
+
+bool diffuse_of(const CheckKind& k) {
+  return shape_of(k) == Shape::Energy && std::any_of(k.kds.begin(), k.kds.end(), [](double kd) { return kd > 0; });
+}
+
 Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd) {
   const CheckKind& k = check_kind(check);
   return k.expect ? k.expect({d, g, alpha, f0, kd}) : Expectation{};

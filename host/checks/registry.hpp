@@ -108,6 +108,16 @@ const CheckKind* find_check_kind(const std::string& check);  // nullptr for anot
 const std::vector<std::string>& suite_checks();
 std::string suite_check_list();
 
+// What a point source builds for a kind, read from its integrand and fields
+// (never its name): D's normalisation at each width; the weak white furnace
+// of D and G1 at each width and view; an albedo with F = 1 (FSet::None,
+// one-sided); an albedo with the Fs of `fs` (one-sided; with a Lambert kd
+// where `kds` has one, diffuse_of); an albedo against the model's own exact
+// value (two-sided); reciprocity pairs; none (pointwise passes, tables).
+enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, None };
+Shape shape_of(const CheckKind& k);
+bool diffuse_of(const CheckKind& k);  // an Energy kind whose points add a Lambert kd > 0
+
 // The grid kinds of the D x G x F source (kSourceGrid, Runner::Integral), in plan order.
 std::vector<const CheckKind*> grid_kinds();
 // mfv energy's kinds (Runner::Table), in record order: energy_mu, E(mu) and

@@ -47,10 +47,12 @@ bool SuiteReport::gate_ok() const {
 std::vector<size_t> reference_subset(const Plan& plan, uint32_t every) {
   std::vector<size_t> which;
   std::map<std::string, uint32_t> seen;  // points so far per model
+  const CheckKind* kind = find_check_kind(plan.check);
+  const bool all = kind && shape_of(*kind) == Shape::DNorm;
   for (size_t i = 0; i < plan.specs.size(); ++i) {
     const PointResult& p = plan.points[i];
     uint32_t& k = seen[model_name(p)];
-    if (!p.model.empty() || plan.check == "d_norm" || k % std::max<uint32_t>(1, every) == 0) which.push_back(i);
+    if (!p.model.empty() || all || k % std::max<uint32_t>(1, every) == 0) which.push_back(i);
     ++k;
   }
   return which;
@@ -203,7 +205,9 @@ void validate_suite_options(const SuiteOptions& opt) {
 SuitePlans make_suite_plans(const SuiteOptions& opt) {
   SuitePlans sp;
   sp.plans = make_plans(opt);
-  if (suite_check_wanted(opt, "reciprocity")) sp.reciprocity = reciprocity_plan(opt);
+  for (const CheckKind& k : check_kinds())  // the pairs kind (reciprocity): one plan of every source's batches
+    if (shape_of(k) == Shape::Pairs && k.in_run && suite_check_wanted(opt, k.check))
+      sp.reciprocity = reciprocity_plan(k, opt);
   // every integral's stream from its identity (checks/streams.hpp), before a shard cuts the plans
   for (auto& p : sp.plans) {
     assign_streams(p.check, p.specs);

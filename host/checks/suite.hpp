@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -193,7 +194,8 @@ void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep
 
 // expect(check, d, g, alpha, f0, kd): the registry's (checks/registry.hpp).
 std::vector<Plan> make_plans(const SuiteOptions& opt);  // every integral check of the catalog, filtered by opt
-Plan reciprocity_plan(const SuiteOptions& opt);         // every reciprocity batch, filtered by opt.models
+// The batches of the pairs kind k (Shape::Pairs) of every source that takes it, filtered by opt.models.
+Plan reciprocity_plan(const CheckKind& k, const SuiteOptions& opt);
 // Builds the plan's program (terms without G1) and records one bounded point per batch.
 void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 // The pointwise kinds (agree, stability) at mfv run's budget, one bounded
@@ -212,17 +214,38 @@ constexpr double kReciprocityBound = 1e-4;  // float rounding of the two evaluat
 bool suite_check_wanted(const SuiteOptions& opt, const std::string& check);
 bool suite_model_wanted(const std::vector<std::string>& filter, const std::string& name);
 
+// ---- Point sources crossed with the registry (docs/adding-a-check.md step 6)
+
+// A point source: the plans it builds for one kind that it takes
+// (CheckKind::sources), read from the kind's shape (shape_of) and fields,
+// never from its name. `add` returns false where the source has no points of
+// that shape: the registry then names a source that cannot take the kind.
+struct PointSource {
+  Source source = kSourceGrid;
+  const char* name = "";
+  std::function<bool(const CheckKind&, std::vector<Plan>&)> add;
+};
+// The one place kinds meet sources: every kind of the registry that `wanted`
+// selects, in registry order, at every source that takes it, in the order
+// given. Throws mfv::Error naming the kind and the source where a source the
+// registry names for a kind builds nothing for its shape.
+std::vector<Plan> cross_sources(const std::vector<PointSource>& sources,
+                                const std::function<bool(const CheckKind&)>& wanted);
+// mfv run's sources: the D x G x F grid, whole models, the anisotropic pairs,
+// the sheen lobes.
+std::vector<PointSource> suite_sources(const SuiteOptions& opt);
+
 // The sheen lobes (Term::own_lobe, host/checks/suite_sheen.cpp): d_norm,
 // masking and furnace of the Charlie D with its visibility; their names for
 // the --model filter; the masking closed form G1(o)(1 + Λ_D(o)) with Λ_D by
 // quadrature of the reference D.
-void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt);
+PointSource sheen_source(const SuiteOptions& opt);
 std::vector<std::string> sheen_model_names();
 double sheen_masking_closed_form(const Term& d, const Term& g, double alpha, double cos_o);
 
 // The anisotropic D and Smith G cases (host/checks/suite_aniso.cpp): d_norm,
 // masking and furnace plans, and the model names they use.
-void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt);
+PointSource aniso_source(const SuiteOptions& opt);
 std::vector<std::string> aniso_model_names();
 
 // z-test verdicts for every point, then one verdict per model x check: a

@@ -102,57 +102,64 @@ std::vector<std::string> aniso_model_names() {
   return out;
 }
 
-void add_aniso_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
-  const Term* none = try_find_term("none", Kind::F);
-  if (suite_check_wanted(opt, "d_norm")) {
-    // ∫ D(m) (m·n) dm = 1, stratified in (stretched radius, azimuth)
-    Plan p = new_plan("d_norm", check_row("d_norm").base_samples, opt.scale);
-    for (auto* d : aniso_terms_of(Kind::D)) {
-      if (!suite_model_wanted(opt.models, d->id)) continue;
-      p.terms.d.push_back(d);
-      for (auto& w : kPairs) {
-        p.specs.push_back(aniso_spec(IntegralKind::DNorm, *d, nullptr, nullptr, w, 1.0, 0.0));
-        p.points.push_back(aniso_point("d_norm", *d, nullptr, nullptr, w));
-      }
-    }
-    plans.push_back(p);
-  }
-  if (suite_check_wanted(opt, "masking")) {
-    Plan p = new_plan("masking", check_row("masking").base_samples, opt.scale);
-    p.terms.d = aniso_terms_of(Kind::D);
-    p.terms.g = masking_gs();
-    for (auto* d : p.terms.d)
-      for (auto* g : p.terms.g) {
-        if (!suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
-        add_views(p, IntegralKind::Masking, *d, g, nullptr, [&](PointResult& pt, const glm::dvec3& o, const Widths& w) {
-          // the expectation from the closed form
-          const double dev = std::fabs(masking_closed_form(*d, *g, o, w) - 1.0);
-          if (dev > kClosedFormMustFail) {
-            pt.expect = Expect::Fail;
-            pt.reason = fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})", g->id,
+PointSource aniso_source(const SuiteOptions& opt) {
+  return {
+      kSourceAniso, "the anisotropic pairs", [&opt](const CheckKind& k, std::vector<Plan>& plans) {
+        const Term* none = try_find_term("none", Kind::F);
+        Plan p = new_plan(k.check, k.base_samples, opt.scale);
+        switch (shape_of(k)) {
+          case Shape::DNorm:
+            // ∫ D(m) (m·n) dm = 1, stratified in (stretched radius, azimuth)
+            for (auto* d : aniso_terms_of(Kind::D)) {
+              if (!suite_model_wanted(opt.models, d->id)) continue;
+              p.terms.d.push_back(d);
+              for (auto& w : kPairs) {
+                p.specs.push_back(aniso_spec(k.kind, *d, nullptr, nullptr, w, 1.0, 0.0));
+                p.points.push_back(aniso_point(k.check, *d, nullptr, nullptr, w));
+              }
+            }
+            break;
+          case Shape::Masking:
+            p.terms.d = aniso_terms_of(Kind::D);
+            p.terms.g = masking_gs();
+            for (auto* d : p.terms.d)
+              for (auto* g : p.terms.g) {
+                if (!suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
+                add_views(p, k.kind, *d, g, nullptr, [&](PointResult& pt, const glm::dvec3& o, const Widths& w) {
+                  // the expectation from the closed form
+                  const double dev = std::fabs(masking_closed_form(*d, *g, o, w) - 1.0);
+                  if (dev > kClosedFormMustFail) {
+                    pt.expect = Expect::Fail;
+                    pt.reason =
+                        fmt::format("{}'s G1 is not the Smith G1 of {} at this view (closed form off by {:.2g})", g->id,
                                     d->id, dev);
-          } else if (dev > 1e-4) {
-            pt.expect = Expect::May;
-            pt.reason = fmt::format("{}'s G1 is off by {:.2g} at this view (closed form), near the noise", g->id, dev);
-          }
-        });
-      }
-    plans.push_back(p);
-  }
-  if (suite_check_wanted(opt, "furnace")) {
-    // white furnace (F = 1): albedo <= 1 for the matched anisotropic pairs
-    Plan p = new_plan("furnace", check_row("furnace").base_samples, opt.scale);
-    p.terms.d = aniso_terms_of(Kind::D);
-    p.terms.g = aniso_terms_of(Kind::G);
-    p.terms.f = {none};
-    for (auto* d : p.terms.d)
-      for (auto* g : p.terms.g) {
-        if (!g->fit_for(d->id) || !suite_model_wanted(opt.models, d->id + "/" + g->id + "/none")) continue;
-        add_views(p, IntegralKind::Albedo, *d, g, none,
-                  [](PointResult& pt, const glm::dvec3&, const Widths&) { pt.upper_only = true; });
-      }
-    plans.push_back(p);
-  }
+                  } else if (dev > 1e-4) {
+                    pt.expect = Expect::May;
+                    pt.reason =
+                        fmt::format("{}'s G1 is off by {:.2g} at this view (closed form), near the noise", g->id, dev);
+                  }
+                });
+              }
+            break;
+          case Shape::Furnace:
+            // white furnace (F = 1): albedo <= 1 for the matched anisotropic pairs, with the
+            // defensive mixture (Albedo): albedo_mis_microfacet takes isotropic terms only
+            // (docs/adding-a-check.md, What remains)
+            p.terms.d = aniso_terms_of(Kind::D);
+            p.terms.g = aniso_terms_of(Kind::G);
+            p.terms.f = {none};
+            for (auto* d : p.terms.d)
+              for (auto* g : p.terms.g) {
+                if (!g->fit_for(d->id) || !suite_model_wanted(opt.models, d->id + "/" + g->id + "/none")) continue;
+                add_views(p, IntegralKind::Albedo, *d, g, none,
+                          [&k](PointResult& pt, const glm::dvec3&, const Widths&) { pt.upper_only = k.upper_only; });
+              }
+            break;
+          default: return false;
+        }
+        plans.push_back(p);
+        return true;
+      }};
 }
 
 }  // namespace mfv

@@ -91,41 +91,42 @@ std::map<std::string, double> case_params(const Model& m, const ModelCase& c) {
   return out;
 }
 
-// energy: E(l) = ∫ f(l, v)(n·v) dv <= 1 at every light direction, with the
-// catalog's expectation per case; closed_form: E(l) equals the model's exact
-// albedo wherever it has one (evidence that model and estimator are right).
-void add_model_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
-  for (const char* check : {"energy", "closed_form"}) {
-    if (!suite_check_wanted(opt, check)) continue;
-    const bool exact = std::string(check) == "closed_form";
-    Plan p = new_plan(check, kSuiteBaseSamples, opt.scale);
-    p.samples *= exact ? kClosedFormFactor : kModelEnergyFactor;  // scaled first, as the records were taken
-    for (auto& m : models()) {
-      bool used = false;
-      for (auto& c : m.cases) {
-        const std::string name = model_case_name(m, c);
-        if (!suite_model_wanted(opt.models, name)) continue;
-        for (double co : view_cosines(kModelLights * opt.density)) {
-          const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
-          if (exact && std::isnan(closed)) continue;
-          p.specs.push_back(model_spec(IntegralKind::Albedo, m, c.p, co));
-          PointResult r;
-          r.check = check;
-          r.model = name;
-          r.params = case_params(m, c);
-          r.params["cos_l"] = co;
-          r.expected = exact ? closed : 1.0;
-          r.upper_only = !exact;
-          r.expect = exact ? Expect::Hold : c.energy;
-          r.reason = exact ? "" : c.energy_why;
-          p.points.push_back(r);
-          used = true;
-        }
+// Whole models' albedo kinds (the source kSourceModels): an Energy kind,
+// E(l) = ∫ f(l, v)(n·v) dv <= 1 at every light direction, with the catalog's
+// expectation per case; an Exact kind, E(l) equals the model's exact albedo
+// wherever it has one (evidence that model and estimator are right).
+bool add_model_plans(const CheckKind& k, const SuiteOptions& opt, std::vector<Plan>& plans) {
+  const Shape shape = shape_of(k);
+  if (shape != Shape::Energy && shape != Shape::Exact) return false;
+  const bool exact = shape == Shape::Exact;
+  Plan p = new_plan(k.check, kSuiteBaseSamples, opt.scale);
+  p.samples *= exact ? kClosedFormFactor : kModelEnergyFactor;  // scaled first, as the records were taken
+  for (auto& m : models()) {
+    bool used = false;
+    for (auto& c : m.cases) {
+      const std::string name = model_case_name(m, c);
+      if (!suite_model_wanted(opt.models, name)) continue;
+      for (double co : view_cosines(kModelLights * opt.density)) {
+        const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
+        if (exact && std::isnan(closed)) continue;
+        p.specs.push_back(model_spec(IntegralKind::Albedo, m, c.p, co));
+        PointResult r;
+        r.check = k.check;
+        r.model = name;
+        r.params = case_params(m, c);
+        r.params["cos_l"] = co;
+        r.expected = exact ? closed : 1.0;
+        r.upper_only = !exact;
+        r.expect = exact ? Expect::Hold : c.energy;
+        r.reason = exact ? "" : c.energy_why;
+        p.points.push_back(r);
+        used = true;
       }
-      if (used) p.terms.models.push_back(&m);
     }
-    plans.push_back(p);
+    if (used) p.terms.models.push_back(&m);
   }
+  plans.push_back(p);
+  return true;
 }
 
 // The widths of a row: the D's own d_norm grid (n_alpha = 0: native
@@ -146,9 +147,8 @@ std::vector<const Term*> row_fs(const CheckRow& row) {
   return out;
 }
 
-// d_norm: every D at the values of its grid within its range.
-Plan d_norm_plan(const SuiteOptions& opt) {
-  const CheckRow& row = check_row("d_norm");
+// A DNorm kind: every D at the values of its grid within its range.
+Plan d_norm_plan(const CheckKind& row, const SuiteOptions& opt) {
   Plan p = new_plan(row.check, row.base_samples, opt.scale);
   for (auto* d : terms_of(Kind::D)) {
     if (!suite_model_wanted(opt.models, d->id)) continue;
@@ -195,46 +195,10 @@ Plan dgf_plan(const CheckRow& row, const SuiteOptions& opt) {
   return p;
 }
 
-}  // namespace
-
-Plan new_plan(const std::string& check, uint64_t base_samples, double scale) {
-  Plan p;
-  p.check = check;
-  p.samples = scaled_samples(base_samples, scale);
-  return p;
-}
-
-std::vector<Plan> make_plans(const SuiteOptions& opt) {
-  std::vector<Plan> plans;
-  if (suite_check_wanted(opt, "d_norm")) plans.push_back(d_norm_plan(opt));
-  add_model_plans(plans, opt);
-  for (const CheckKind* k : grid_kinds())
-    if (k->kind != IntegralKind::DNorm && suite_check_wanted(opt, k->check)) plans.push_back(dgf_plan(*k, opt));
-  add_aniso_plans(plans, opt);  // anisotropic D and G: two widths (suite_aniso.cpp)
-  add_sheen_plans(plans, opt);  // the sheen D and its visibility (suite_sheen.cpp)
-  return plans;
-}
-
-uint64_t scaled_samples(uint64_t n, double scale) {
-  const double x = double(n) * scale;
-  if (!(x < 0x1p64))  // also NaN
-    throw Error(fmt::format("--samples/--scale ask for {:.3g} samples per integral: too many", x));
-  return std::max<uint64_t>(64, uint64_t(x));
-}
-
-void validate_scale(double scale) {
-  if (!(scale > 0) || !std::isfinite(scale)) throw Error("--scale must be a positive number");
-  if (scale > 0x1p26)
-    throw Error(
-        fmt::format("--scale {:g} (or --samples {:.0f}) is too large: at most 2^26 = 67108864 (--samples "
-                    "2^38)",
-                    scale, scale * double(kSuiteBaseSamples)));
-}
-
-Plan reciprocity_plan(const SuiteOptions& opt) {
-  // every D x G x F (the kernel dispatches on ids) and the models with a case
+// Reciprocity batches (Shape::Pairs) of every D x G x F (the kernel dispatches on ids).
+Plan grid_reciprocity(const CheckKind& k, const SuiteOptions& opt) {
   Plan plan;
-  plan.check = "reciprocity";
+  plan.check = k.check;
   plan.terms.d = terms_of(Kind::D);
   plan.terms.g = terms_of(Kind::G);
   plan.terms.f = terms_of(Kind::F);
@@ -258,7 +222,7 @@ Plan reciprocity_plan(const SuiteOptions& opt) {
           s.kd = 0.2f;
           specs.push_back(s);
           PointResult p;
-          p.check = "reciprocity";
+          p.check = k.check;
           p.d = d;
           p.g = g;
           p.f = f;
@@ -267,6 +231,15 @@ Plan reciprocity_plan(const SuiteOptions& opt) {
           pts.push_back(p);
         }
       }
+  return plan;
+}
+
+// Reciprocity batches of the whole models with a case.
+Plan model_reciprocity(const CheckKind& k, const SuiteOptions& opt) {
+  Plan plan;
+  plan.check = k.check;
+  std::vector<IntegralSpec>& specs = plan.specs;
+  std::vector<PointResult>& pts = plan.points;
   for (auto& m : models()) {
     bool used = false;
     for (auto& c : m.cases) {
@@ -274,7 +247,7 @@ Plan reciprocity_plan(const SuiteOptions& opt) {
       if (!suite_model_wanted(opt.models, name)) continue;
       specs.push_back(model_spec(IntegralKind::DNorm, m, c.p, 1.0));  // the reciprocity kernel ignores the kind
       PointResult p;
-      p.check = "reciprocity";
+      p.check = k.check;
       p.model = name;
       p.params = case_params(m, c);
       p.expect = c.reciprocity;
@@ -283,6 +256,84 @@ Plan reciprocity_plan(const SuiteOptions& opt) {
       used = true;
     }
     if (used) plan.terms.models.push_back(&m);
+  }
+  return plan;
+}
+
+}  // namespace
+
+Plan new_plan(const std::string& check, uint64_t base_samples, double scale) {
+  Plan p;
+  p.check = check;
+  p.samples = scaled_samples(base_samples, scale);
+  return p;
+}
+
+std::vector<Plan> cross_sources(const std::vector<PointSource>& sources,
+                                const std::function<bool(const CheckKind&)>& wanted) {
+  std::vector<Plan> plans;
+  for (const CheckKind& k : check_kinds()) {
+    if (!wanted(k)) continue;
+    for (const PointSource& src : sources)
+      if ((k.sources & src.source) && !src.add(k, plans))
+        throw Error(
+            fmt::format("internal: the registry says {} takes check kind '{}', but it builds no points of its shape "
+                        "(checks/registry.cpp: sources, not_taken)",
+                        src.name, k.check));
+  }
+  return plans;
+}
+
+std::vector<PointSource> suite_sources(const SuiteOptions& opt) {
+  PointSource grid{kSourceGrid, "the D x G x F grid", [&opt](const CheckKind& k, std::vector<Plan>& plans) {
+                     switch (shape_of(k)) {
+                       case Shape::DNorm: plans.push_back(d_norm_plan(k, opt)); return true;
+                       case Shape::Masking:
+                       case Shape::Furnace:
+                       case Shape::Energy: plans.push_back(dgf_plan(k, opt)); return true;
+                       case Shape::Pairs: plans.push_back(grid_reciprocity(k, opt)); return true;
+                       default: return false;
+                     }
+                   }};
+  PointSource whole{kSourceModels, "whole models", [&opt](const CheckKind& k, std::vector<Plan>& plans) {
+                      if (shape_of(k) != Shape::Pairs) return add_model_plans(k, opt, plans);
+                      plans.push_back(model_reciprocity(k, opt));
+                      return true;
+                    }};
+  // anisotropic D and G: two widths (suite_aniso.cpp); the sheen D and its visibility (suite_sheen.cpp)
+  return {grid, whole, aniso_source(opt), sheen_source(opt)};
+}
+
+std::vector<Plan> make_plans(const SuiteOptions& opt) {
+  return cross_sources(suite_sources(opt), [&opt](const CheckKind& k) {
+    return k.runner == Runner::Integral && k.in_run && suite_check_wanted(opt, k.check);
+  });
+}
+
+uint64_t scaled_samples(uint64_t n, double scale) {
+  const double x = double(n) * scale;
+  if (!(x < 0x1p64))  // also NaN
+    throw Error(fmt::format("--samples/--scale ask for {:.3g} samples per integral: too many", x));
+  return std::max<uint64_t>(64, uint64_t(x));
+}
+
+void validate_scale(double scale) {
+  if (!(scale > 0) || !std::isfinite(scale)) throw Error("--scale must be a positive number");
+  if (scale > 0x1p26)
+    throw Error(
+        fmt::format("--scale {:g} (or --samples {:.0f}) is too large: at most 2^26 = 67108864 (--samples "
+                    "2^38)",
+                    scale, scale * double(kSuiteBaseSamples)));
+}
+
+Plan reciprocity_plan(const CheckKind& k, const SuiteOptions& opt) {
+  // one plan of the sources' batches (one bounded point each), the grid's first
+  Plan plan;
+  plan.check = k.check;
+  for (Plan& p : cross_sources(suite_sources(opt), [&k](const CheckKind& c) { return &c == &k; })) {
+    plan.specs.insert(plan.specs.end(), p.specs.begin(), p.specs.end());
+    plan.points.insert(plan.points.end(), p.points.begin(), p.points.end());
+    plan.terms.add(p.terms);
   }
   return plan;
 }

@@ -80,37 +80,41 @@ std::vector<std::string> sheen_model_names() {
   return out;
 }
 
-void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
+namespace {
+
+bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector<Plan>& plans) {
   const Term* none = try_find_term("none", Kind::F);
   const std::vector<double> views = view_cosines(12);
-  if (suite_check_wanted(opt, "d_norm")) {
+  const Shape shape = shape_of(kind);
+  if (shape == Shape::DNorm) {
     // ∫ D(m) (m·n) dm = 1 at every suite width in the D's range, the stratified estimator of mfv run
-    Plan p = new_plan("d_norm", check_row("d_norm").base_samples, opt.scale);
+    Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
     for (auto* d : own_lobe_terms_of(Kind::D)) {
       if (!suite_model_wanted(opt.models, d->id)) continue;
       p.terms.d.push_back(d);
       for (double a : suite_norm_alphas()) {
         if (a < d->params[0].lo || a > d->params[0].hi) continue;
-        p.specs.push_back(sheen_spec(IntegralKind::DNorm, d, nullptr, nullptr, a, 1.0));
-        PointResult pt = sheen_point("d_norm", d, nullptr, nullptr, a);
-        const Expectation e = expect("d_norm", d, nullptr, a, 0, 0);
+        p.specs.push_back(sheen_spec(kind.kind, d, nullptr, nullptr, a, 1.0));
+        PointResult pt = sheen_point(kind.check, d, nullptr, nullptr, a);
+        const Expectation e = expect(kind.check, d, nullptr, a, 0, 0);
         pt.expect = e.expect;
         pt.reason = e.reason;
         p.points.push_back(pt);
       }
     }
     if (!p.specs.empty()) plans.push_back(p);
+    return true;
   }
-  auto pairs = [&](const std::string& check, auto add) {
+  auto pairs = [&](auto add) {
     for (auto* d : own_lobe_terms_of(Kind::D))
       for (auto* g : own_lobe_terms_of(Kind::G)) {
-        const std::string name = d->id + "/" + g->id + (check == "masking" ? "" : "/none");
+        const std::string name = d->id + "/" + g->id + (shape == Shape::Masking ? "" : "/none");
         if (g->fit_for(d->id) && suite_model_wanted(opt.models, name)) add(*d, *g);
       }
   };
-  if (suite_check_wanted(opt, "masking")) {
-    Plan p = new_plan("masking", check_row("masking").base_samples, opt.scale);
-    pairs("masking", [&](const Term& d, const Term& g) {
+  if (shape == Shape::Masking) {
+    Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
+    pairs([&](const Term& d, const Term& g) {
       p.terms.d.push_back(&d);
       p.terms.g.push_back(&g);
       // The expectation from the closed form at the float cosine the kernel takes
@@ -123,8 +127,8 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
       });
       for (size_t k = 0; k < closed.size(); ++k) {
         const double a = kSheenAlphas[k / views.size()], co = views[k % views.size()];
-        p.specs.push_back(sheen_spec(IntegralKind::Masking, &d, &g, nullptr, a, co));
-        PointResult pt = sheen_point("masking", &d, &g, nullptr, a);
+        p.specs.push_back(sheen_spec(kind.kind, &d, &g, nullptr, a, co));
+        PointResult pt = sheen_point(kind.check, &d, &g, nullptr, a);
         pt.params["cos_o"] = co;
         const double dev = std::fabs(closed[k] - 1.0);
         if (dev > kClosedFormMustFail) {
@@ -137,21 +141,22 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
       }
     });
     if (!p.specs.empty()) plans.push_back(p);
+    return true;
   }
-  if (suite_check_wanted(opt, "furnace")) {
+  if (shape == Shape::Furnace) {
     // white furnace (F = 1): the sheen lobe's albedo E_sheen(cos_o) <= 1
     // (two-sided in the pool, against the quadrature of checks/furnace_truth)
-    Plan p = new_plan("furnace", check_row("furnace").base_samples, opt.scale);
-    pairs("furnace", [&](const Term& d, const Term& g) {
+    Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
+    pairs([&](const Term& d, const Term& g) {
       p.terms.d.push_back(&d);
       p.terms.g.push_back(&g);
       p.terms.f = {none};
       for (double a : kSheenAlphas)
         for (double co : views) {
-          p.specs.push_back(sheen_spec(IntegralKind::AlbedoMis, &d, &g, none, a, co));
-          PointResult pt = sheen_point("furnace", &d, &g, none, a);
+          p.specs.push_back(sheen_spec(kind.kind, &d, &g, none, a, co));
+          PointResult pt = sheen_point(kind.check, &d, &g, none, a);
           pt.params["cos_o"] = co;
-          pt.upper_only = true;
+          pt.upper_only = kind.upper_only;
           // The expectation from the albedo by quadrature of the double reference
           // (checks/furnace_truth): Estevez and Kulla's fitted Λ under-masks near
           // grazing for small widths (masking shows it), and there the lobe alone
@@ -169,7 +174,16 @@ void add_sheen_plans(std::vector<Plan>& plans, const SuiteOptions& opt) {
         }
     });
     if (!p.specs.empty()) plans.push_back(p);
+    return true;
   }
+  return false;
+}
+
+}  // namespace
+
+PointSource sheen_source(const SuiteOptions& opt) {
+  return {kSourceSheen, "the sheen lobes",
+          [&opt](const CheckKind& k, std::vector<Plan>& plans) { return add_sheen_plans(k, opt, plans); }};
 }
 
 }  // namespace mfv

@@ -113,6 +113,10 @@ struct SceneMaterial {
   // ranges) and the coat's GGX widths
   std::vector<ModelParams> coat_points() const;
   std::vector<double> coat_alphas() const;
+  // glTF: every specular lobe as a white metal (F = 1: the lobe's own loss),
+  // lobes() and the coat's (alpha_b 0): the furnace of mfv run --scene and
+  // the white points of mfv energy --scene
+  std::vector<GltfChannelParams> white_lobes() const;
   // ... and over the anisotropic channel points: the "gltf_clearcoat_aniso" model's
   std::vector<ModelParams> coat_aniso_points() const;
   // sheen_checked: the "gltf_sheen" model's points (isotropic base channels x

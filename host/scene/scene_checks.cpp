@@ -71,7 +71,7 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
   p.f = f;
   p.model = key;
   p.params = std::move(params);
-  p.expected = sp.plan.check == "reciprocity" ? 0.0 : 1.0;
+  p.expected = check_kind(sp.plan.check).expected;
   p.upper_only = upper;
   p.expect = e.expect;
   p.reason = e.reason;
@@ -95,13 +95,13 @@ struct SceneSets {
   std::vector<std::set<std::string>> material_keys;  // per material: "check|key"
 };
 
-SetPlan& plan_for(SceneSets& s, const std::string& check, uint64_t base_samples, const SuiteOptions& opt) {
-  auto it = s.plans.find(check);
+SetPlan& plan_for(SceneSets& s, const CheckKind& k, uint64_t base_samples, const SuiteOptions& opt) {
+  auto it = s.plans.find(k.check);
   if (it == s.plans.end()) {
     SetPlan sp;
-    sp.plan = new_plan(check, base_samples, opt.scale);
-    if (base_samples == 0) sp.plan.samples = 0;  // reciprocity: pairs, not samples (record_reciprocity)
-    it = s.plans.emplace(check, sp).first;
+    sp.plan = new_plan(k.check, base_samples, opt.scale);
+    if (k.runner == Runner::Pairs) sp.plan.samples = 0;  // pairs, not samples (record_reciprocity)
+    it = s.plans.emplace(k.check, sp).first;
   }
   return it->second;
 }
@@ -123,64 +123,84 @@ struct MaterialSets {
     sp.models.insert(model);
     return sp.keys.emplace(key, true).second;
   }
-  void add_width_checks();  // d_norm and masking at every width the material has
-  void add_furnace();       // the material's D and G (glTF: its lobes) with F = 1
-  void add_energy();        // energy (energy_diffuse with a Lambert kd): the material's own BRDF
-  void add_reciprocity();   // reciprocity of the material's own BRDF
+  // The material's points of kind k, by its shape; false for a shape it has none of.
+  bool add_kind(const CheckKind& k);
+  // The widths the material's D and G are checked at, (pD, pG) with alpha =
+  // pD for glTF: every roughness point of a glTF range.
+  std::vector<std::pair<double, double>> widths() const;
+  void add_d_norm(const CheckKind& k);       // D at every width the material has
+  void add_masking(const CheckKind& k);      // D and G1 at every width the material has
+  void add_furnace(const CheckKind& k);      // the material's D and G (glTF: its lobes) with F = 1
+  void add_energy(const CheckKind& k);       // the material's own BRDF (a diffuse kind: with a Lambert kd)
+  void add_reciprocity(const CheckKind& k);  // reciprocity of the material's own BRDF
 };
 
-// d_norm and masking at every width the material has.
-void MaterialSets::add_width_checks() {
-  // the widths the material's D and G are checked at: every roughness point of a glTF range
-  std::vector<std::pair<double, double>> widths;  // (pD, pG) with alpha = pD for glTF
+bool MaterialSets::add_kind(const CheckKind& k) {
+  switch (shape_of(k)) {
+    case Shape::DNorm: add_d_norm(k); return true;
+    case Shape::Masking: add_masking(k); return true;
+    case Shape::Furnace: add_furnace(k); return true;
+    case Shape::Energy: add_energy(k); return true;
+    case Shape::Pairs: add_reciprocity(k); return true;
+    default: return false;
+  }
+}
+
+std::vector<std::pair<double, double>> MaterialSets::widths() const {
+  std::vector<std::pair<double, double>> out;
   if (m.gltf) {
-    for (double a : m.alphas()) widths.push_back({a, a});
-    for (double a : m.coat_alphas()) widths.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
+    for (double a : m.alphas()) out.push_back({a, a});
+    for (double a : m.coat_alphas()) out.push_back({a, a});  // KHR_materials_clearcoat: the coat's GGX
   } else
-    widths.push_back({pd, pg});
-  for (auto [wd, wg] : widths) {
+    out.push_back({pd, pg});
+  return out;
+}
+
+void MaterialSets::add_d_norm(const CheckKind& k) {
+  for (auto [wd, wg] : widths()) {
     const double a = m.gltf ? wd : m.alpha;
-    if (suite_check_wanted(opt, "d_norm")) {
-      SetPlan& sp = plan_for(s, "d_norm", check_row("d_norm").base_samples, opt);
-      std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, wd);
-      if (claim(sp, key, d->id)) {
-        IntegralSpec is = spec_of(dgf_integral(IntegralKind::DNorm, d, nullptr, nullptr, wd, 0, a, 1.0));
-        add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, wd}}, expect("d_norm", d, nullptr, a, 0, 0), false);
-        sp.add_terms(d, nullptr, nullptr);
-      }
-    }
-    if (suite_check_wanted(opt, "masking")) {
-      SetPlan& sp = plan_for(s, "masking", check_row("masking").base_samples, opt);
-      std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, a, wd, wg);
-      if (claim(sp, key, dgf(d, g, nullptr))) {
-        for (double co : views) {
-          IntegralSpec is = spec_of(dgf_integral(IntegralKind::Masking, d, g, nullptr, wd, wg, a, co));
-          add(sp, key, is, d, g, nullptr, {{"alpha", a}, {"cos_o", co}}, expect("masking", d, g, a, 0, 0), false);
-        }
-        sp.add_terms(d, g, nullptr);
-      }
+    SetPlan& sp = plan_for(s, k, k.base_samples, opt);
+    std::string key = fmt::format("{} {}={:.9g}", d->id, d->params[0].name, wd);
+    if (claim(sp, key, d->id)) {
+      IntegralSpec is = spec_of(dgf_integral(k.kind, d, nullptr, nullptr, wd, 0, a, 1.0));
+      add(sp, key, is, d, nullptr, nullptr, {{d->params[0].name, wd}}, expect(k.check, d, nullptr, a, 0, 0), false);
+      sp.add_terms(d, nullptr, nullptr);
     }
   }
 }
 
-// furnace: the material's D and G (glTF: its lobes) with F = 1.
-void MaterialSets::add_furnace() {
-  if (suite_check_wanted(opt, "furnace")) {
-    // F = 1: for glTF the model itself as a white metal (base colour 1 makes
-    // conductor_fresnel 1), so the energy loss 1 - E is the material's
-    // specular lobe at its roughness.
-    SetPlan& sp = plan_for(s, "furnace", check_row("furnace").base_samples, opt);
+void MaterialSets::add_masking(const CheckKind& k) {
+  for (auto [wd, wg] : widths()) {
+    const double a = m.gltf ? wd : m.alpha;
+    SetPlan& sp = plan_for(s, k, k.base_samples, opt);
+    std::string key = fmt::format("{}/{} alpha={:.9g} pD={:.9g} pG={:.9g}", d->id, g->id, a, wd, wg);
+    if (claim(sp, key, dgf(d, g, nullptr))) {
+      for (double co : views) {
+        IntegralSpec is = spec_of(dgf_integral(k.kind, d, g, nullptr, wd, wg, a, co));
+        add(sp, key, is, d, g, nullptr, {{"alpha", a}, {"cos_o", co}}, expect(k.check, d, g, a, 0, 0), false);
+      }
+      sp.add_terms(d, g, nullptr);
+    }
+  }
+}
+
+// F = 1: for glTF the model itself as a white metal (base colour 1 makes
+// conductor_fresnel 1), so the energy loss 1 - E is the material's specular
+// lobe at its roughness; with the defensive mixture (Albedo):
+// albedo_mis_microfacet takes isotropic catalog terms only
+// (docs/adding-a-check.md, What remains).
+void MaterialSets::add_furnace(const CheckKind& k) {
+  {
+    SetPlan& sp = plan_for(s, k, k.base_samples, opt);
     if (m.gltf) {
       // every specular lobe of the material's range (alpha_t, alpha_b under KHR_materials_anisotropy)
-      auto lobes = m.lobes();
-      for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // the coat's lobe, F = 1
-      for (auto [at, ab] : lobes) {
-        GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
+      for (const GltfChannelParams& white : m.white_lobes()) {
+        const double at = white.alpha, ab = white.alpha_b;
         std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", at, ab);
         if (!claim(sp, key, "gltf")) continue;
         for (double co : views)
           add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}},
-              {}, true);
+              {}, k.upper_only);
         sp.add_model(gltf_model());
       }
     } else {
@@ -188,8 +208,8 @@ void MaterialSets::add_furnace() {
       if (claim(sp, key, dgf(d, g, none))) {
         for (double co : views) {
           IntegralSpec is = spec_of(dgf_integral(IntegralKind::Albedo, d, g, none, pd, pg, m.alpha, co));
-          add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect("furnace", d, g, m.alpha, 1, 0),
-              true);
+          add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect(k.check, d, g, m.alpha, 1, 0),
+              k.upper_only);
         }
         sp.add_terms(d, g, none);
       }
@@ -197,12 +217,11 @@ void MaterialSets::add_furnace() {
   }
 }
 
-// energy (energy_diffuse with a Lambert kd): the material's own BRDF.
-void MaterialSets::add_energy() {
-  // the material's own BRDF: "energy", or "energy_diffuse" for a D/G/F with a Lambert kd
-  const std::string energy_check = !m.gltf && m.kd > 0 ? "energy_diffuse" : "energy";
-  if (suite_check_wanted(opt, energy_check)) {
-    SetPlan& sp = plan_for(s, energy_check, kSuiteBaseSamples, opt);  // a material has few points: the furnace budget
+// The material's own BRDF: a D/G/F with a Lambert kd in the diffuse kind
+// (diffuse_of: energy_diffuse), every other material in the other.
+void MaterialSets::add_energy(const CheckKind& k) {
+  if (diffuse_of(k) == (!m.gltf && m.kd > 0)) {
+    SetPlan& sp = plan_for(s, k, kSuiteBaseSamples, opt);  // a material has few points: the furnace budget
     if (m.gltf) {
       for (auto& w : m.whole_points()) {
         std::string key = w.key();
@@ -254,9 +273,9 @@ void MaterialSets::add_energy() {
 }
 
 // reciprocity of the material's own BRDF.
-void MaterialSets::add_reciprocity() {
-  if (suite_check_wanted(opt, "reciprocity")) {
-    SetPlan& sp = plan_for(s, "reciprocity", 0, opt);
+void MaterialSets::add_reciprocity(const CheckKind& k) {
+  {
+    SetPlan& sp = plan_for(s, k, 0, opt);
     if (m.gltf) {
       for (auto& w : m.whole_points()) {
         std::string key = w.key();
@@ -284,26 +303,31 @@ SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {
   const Term* smith = &term("smith_ggx_correlated", Kind::G);
   const Term* none = &term("none", Kind::F);
   s.material_keys.resize(scene.materials.size());
-  for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
-    const SceneMaterial& m = scene.materials[mi];
-    if (!m.not_checked.empty()) continue;  // accounted for in the report (skipped), never checked as something else
-    MaterialSets c{s,
-                   m,
-                   opt,
-                   s.material_keys[mi],
-                   views,
-                   m.gltf ? ggx : m.d,
-                   m.gltf ? smith : m.g,
-                   ggx,
-                   smith,
-                   none,
-                   m.gltf ? m.alpha : m.pd,
-                   m.gltf ? m.alpha : m.pg};
-    c.add_width_checks();
-    c.add_furnace();
-    c.add_energy();
-    c.add_reciprocity();
-  }
+  // the scene's materials as a point source crossed with the registry (the plans are s's, by check)
+  PointSource source{kSourceScene, "a scene's materials", [&](const CheckKind& k, std::vector<Plan>&) {
+                       for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+                         const SceneMaterial& m = scene.materials[mi];
+                         if (!m.not_checked.empty())
+                           continue;  // accounted for in the report (skipped), never checked as something else
+                         MaterialSets c{s,
+                                        m,
+                                        opt,
+                                        s.material_keys[mi],
+                                        views,
+                                        m.gltf ? ggx : m.d,
+                                        m.gltf ? smith : m.g,
+                                        ggx,
+                                        smith,
+                                        none,
+                                        m.gltf ? m.alpha : m.pd,
+                                        m.gltf ? m.alpha : m.pg};
+                         if (!c.add_kind(k)) return false;
+                       }
+                       return true;
+                     }};
+  cross_sources({source}, [&opt](const CheckKind& k) {
+    return (k.runner == Runner::Integral || k.runner == Runner::Pairs) && k.in_run && suite_check_wanted(opt, k.check);
+  });
   return s;
 }
 
@@ -327,7 +351,7 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     auto it = sets.plans.find(check);
     if (it == sets.plans.end() || it->second.plan.specs.empty()) continue;
     Plan& plan = it->second.plan;
-    if (check == "reciprocity")
+    if (check_kind(check).runner == Runner::Pairs)
       run_reciprocity(rt, plan, opt, run.rep);
     else
       run_plan(rt, plan, opt, run.rep);
@@ -352,8 +376,9 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
   // What the full catalog would have run with the same options.
   SuiteOptions full = opt;
   full.models.clear();
-  std::vector<Plan> full_plans = make_plans(full);
-  if (suite_check_wanted(opt, "reciprocity")) full_plans.push_back(reciprocity_plan(full));
+  SuitePlans full_suite = make_suite_plans(full);
+  std::vector<Plan>& full_plans = full_suite.plans;
+  if (!full_suite.reciprocity.specs.empty()) full_plans.push_back(full_suite.reciprocity);
   SuiteReport full_rep;
   if (compare_full) {
     const auto f0 = std::chrono::steady_clock::now();
@@ -387,8 +412,9 @@ SceneRun run_scene(Runtime& rt, const Scene& scene, const SuiteOptions& opt, boo
     row->full_combinations = full_models[fp.check].size();
     row->full_integrals += fp.specs.size();
     // reciprocity: per batch 64 work-items x 64 x scale pairs, two evaluations each (suite.cpp)
-    const uint64_t per =
-        fp.check == "reciprocity" ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2 : fp.samples;
+    const uint64_t per = check_kind(fp.check).runner == Runner::Pairs
+                             ? uint64_t(64) * std::max<uint32_t>(1, uint32_t(64 * opt.scale)) * 2
+                             : fp.samples;
     if (!compare_full) row->full_samples += fp.specs.size() * per;  // requested; a run rounds up to whole work-groups
   }
   return run;

@@ -36,10 +36,8 @@ std::vector<ModelPoint> gltf_points(const SceneMaterial& m) {
     out.push_back({points[k].model,
                    fmt::format("{} ({} point {} of {})", m.name, points[k].model->id, k + 1, points.size()),
                    points[k].p, points[k].energy, points[k].energy_why});
-  auto lobes = m.lobes();
-  for (double a : m.coat_alphas()) lobes.push_back({a, 0.0});  // KHR_materials_clearcoat: the coat's own lobe
-  for (auto [at, ab] : lobes) {
-    GltfChannelParams white{at, 1.0, 1.0, 1.0, 1.0, 1.0, ab};
+  for (const GltfChannelParams& white : m.white_lobes()) {
+    const double at = white.alpha, ab = white.alpha_b;
     out.push_back({&gltf_model(),
                    ab > 0 ? fmt::format("{} (F = 1 at alpha_t {:g}, alpha_b {:g})", m.name, at, ab)
                           : fmt::format("{} (F = 1 at alpha {:g})", m.name, at),

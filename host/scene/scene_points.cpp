@@ -107,6 +107,15 @@ std::vector<double> SceneMaterial::coat_alphas() const {
   return coat_checked ? alphas_of(clearcoat_roughness) : std::vector<double>{};
 }
 
+std::vector<GltfChannelParams> SceneMaterial::white_lobes() const {
+  auto all = lobes();
+  for (double a : coat_alphas()) all.push_back({a, 0.0});  // KHR_materials_clearcoat: the coat's own lobe
+  std::vector<GltfChannelParams> out;
+  for (auto [at, ab] : all)
+    out.push_back({at, 1.0, 1.0, 1.0, 1.0, 1.0, ab});  // metallic, base colour, f0, f0_max, weight 1: F = 1
+  return out;
+}
+
 // KHR_materials_clearcoat: the coat's weight clearcoat enters the layering
 // affinely (mix(material, layer, clearcoat · F)): its ends; the coat's
 // roughness non-linearly: ends and inside.

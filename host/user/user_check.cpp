@@ -177,9 +177,11 @@ using namespace user_detail;
 
 // ---- integrals -----------------------------------------------------------------
 
+// The user's BRDF as a point source crossed with the registry (the kinds in
+// `checks` that it takes). The albedo kinds integrate with the defensive
+// mixture (Albedo): albedo_mis_microfacet takes catalog terms only
+// (docs/adding-a-check.md, What remains).
 std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, const std::vector<std::string>& checks) {
-  auto wanted = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
-  std::vector<Plan> plans;
   auto add = [&](Plan& plan, IntegralKind kind, const Values& v, double co, int ch, bool upper) {
     plan.specs.push_back(user_spec(u, kind, v, co, ch));
     PointResult p = point_of(u, plan.check, v);
@@ -189,38 +191,44 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
     p.upper_only = upper;
     plan.points.push_back(p);
   };
-  if (wanted("d_norm")) {
-    Plan p = new_plan("d_norm", check_row("d_norm").base_samples, opt.scale);
-    for (auto& v : roughness_grid(u, suite_norm_alphas(), 64)) add(p, IntegralKind::DNorm, v, 1.0, 0, false);
-    plans.push_back(p);
-  }
-  if (wanted("masking")) {
-    Plan p = new_plan("masking", check_row("masking").base_samples, opt.scale);
-    for (auto& v : roughness_grid(u, suite_alphas(), 64))
-      for (double co : view_cosines(32)) add(p, IntegralKind::Masking, v, co, 0, false);
-    plans.push_back(p);
-  }
-  if (wanted("furnace")) {
-    // The budget of the full width grid whatever the file declares: a BRDF
-    // with fewer widths (none: Lambert) gets more samples per integral, so
-    // that the pooled test finds a 1 % gain (docs/statistics.md).
-    const auto grid = roughness_grid(u, suite_alphas(), 64);
-    const double share = double(suite_alphas().size()) / double(std::max<size_t>(grid.size(), 1));
-    Plan p = new_plan("furnace", uint64_t(double(check_row("furnace").base_samples) * std::max(1.0, share)), opt.scale);
-    for (auto& v : grid)
-      for (double co : view_cosines(32))
-        for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, true);
-    plans.push_back(p);
-  }
-  if (wanted("energy")) {
-    Plan p = new_plan("energy", check_row("energy").base_samples, opt.scale);
-    for (auto& r : roughness_grid(u, suite_alphas(), 6))
-      for (auto& v : corners(u, r))
-        for (double co : view_cosines(16))
-          for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, true);
-    plans.push_back(p);
-  }
-  return plans;
+  PointSource source{kSourceUser, "a user's BRDF", [&](const CheckKind& k, std::vector<Plan>& plans) {
+                       Plan p = new_plan(k.check, k.base_samples, opt.scale);
+                       switch (shape_of(k)) {
+                         case Shape::DNorm:
+                           for (auto& v : roughness_grid(u, suite_norm_alphas(), 64))
+                             add(p, k.kind, v, 1.0, 0, k.upper_only);
+                           break;
+                         case Shape::Masking:
+                           for (auto& v : roughness_grid(u, suite_alphas(), 64))
+                             for (double co : view_cosines(32)) add(p, k.kind, v, co, 0, k.upper_only);
+                           break;
+                         case Shape::Furnace: {
+                           // The budget of the full width grid whatever the file declares: a BRDF
+                           // with fewer widths (none: Lambert) gets more samples per integral, so
+                           // that the pooled test finds a 1 % gain (docs/statistics.md).
+                           const auto grid = roughness_grid(u, suite_alphas(), 64);
+                           const double share =
+                               double(suite_alphas().size()) / double(std::max<size_t>(grid.size(), 1));
+                           p = new_plan(k.check, uint64_t(double(k.base_samples) * std::max(1.0, share)), opt.scale);
+                           for (auto& v : grid)
+                             for (double co : view_cosines(32))
+                               for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, k.upper_only);
+                           break;
+                         }
+                         case Shape::Energy:
+                           for (auto& r : roughness_grid(u, suite_alphas(), 6))
+                             for (auto& v : corners(u, r))
+                               for (double co : view_cosines(16))
+                                 for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, k.upper_only);
+                           break;
+                         default: return false;
+                       }
+                       plans.push_back(p);
+                       return true;
+                     }};
+  return cross_sources({source}, [&](const CheckKind& k) {
+    return k.runner == Runner::Integral && std::find(checks.begin(), checks.end(), k.check) != checks.end();
+  });
 }
 
 // ---- reciprocity -------------------------------------------------------------
