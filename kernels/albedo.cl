@@ -59,7 +59,9 @@ static inline MFV_ALWAYS_INLINE real albedo_rqmc_microfacet(int d, int g, int f,
   real hx, hy, hz;
   real len = normalize_sum(ix + ox, iy + R(0.0), iz + co, &hx, &hy, &hz);
   real c = R(1.0) - min(R(0.5) * len, R(1.0));
-  real e = brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), co, pd, pg, f0, f1, kd) * iz /
+  // brdf_eval_c in select form (haswell: a branch leaves the loads conditional)
+  real fv = brdf_above_c(d, g, f, ix, iy, iz, ox, R(0.0), co, pd, pg, f0, f1, kd);
+  real e = (fmin(iz, co) <= R(0.0) ? R(0.0) : fv) * iz /
            vis_pdf_i(hz, hx * hx + hy * hy, co, so2, w);
   *b = live ? e * (c * c * c * c * c) : R(0.0);
   return live ? e : R(0.0);

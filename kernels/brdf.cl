@@ -5,11 +5,16 @@
 // wi = light, wo = view, both pointing away from the surface.
 // By components (l = (lx, ly, lz), v = (vx, vy, vz)): no float3 value, so
 // PoCL can run work-items in SIMD lanes (integrate.cl albedo_values).
-static inline MFV_ALWAYS_INLINE real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy, real vz, real pd,
-                               real pg, real f0, real f1, real kd) {
+// brdf_above_c is the value where both directions are above the horizon
+// (lz > 0, vz > 0; elsewhere its result is meaningless and must be selected
+// away): kernels that select 0 below the horizon themselves
+// (`fmin(lz, vz) <= 0 ? 0 : brdf_above_c(...)`, the same floats as
+// brdf_eval_c) keep every load of the BRDF's parameters unconditional, which
+// PoCL's haswell (AVX2) target needs to vectorize them (docs/performance.md).
+static inline MFV_ALWAYS_INLINE real brdf_above_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy,
+                                                  real vz, real pd, real pg, real f0, real f1, real kd) {
   real NoL = lz;
   real NoV = vz;
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   // Both above the horizon, so wi + wo != 0 and the half vector is defined.
   // v·h = l·h = |l + v| / 2 for unit l, v: symmetric in l and v (so f is
   // reciprocal to the last bit) and free of the cancellation dot(v, h) has
@@ -22,6 +27,12 @@ static inline MFV_ALWAYS_INLINE real brdf_eval_c(int d, int g, int f, real lx, r
   // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
   // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
   return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+}
+
+static inline MFV_ALWAYS_INLINE real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy,
+                                                 real vz, real pd, real pg, real f0, real f1, real kd) {
+  if (lz <= R(0.0) || vz <= R(0.0)) return R(0.0);  // below the horizon: no reflection
+  return brdf_above_c(d, g, f, lx, ly, lz, vx, vy, vz, pd, pg, f0, f1, kd);
 }
 
 static inline real brdf_eval(int d, int g, int f, real3 wi, real3 wo, real pd, real pg, real f0, real f1,

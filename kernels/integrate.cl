@@ -241,7 +241,8 @@ MFV_MASKING_VALUES(masking_values, s->d, s->g)
     __global const IntegralSpec* s = specs + j;                                                                  \
     uint4 shift = rqmc_shift(s, seed);                                                                           \
     uint i = (uint)(first + k);                                                                                  \
-    real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg_cos(shift, i, s->strata) : s->cos_o;                        \
+    real eavg = eavg_cos(shift, i, s->strata), cos_o = s->cos_o; /* both loads unconditional (haswell) */       \
+    real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg : cos_o;                                                    \
     real b;                                                                                                      \
     real e = albedo_rqmc_microfacet(D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, i, &b);  \
     size_t at = j * get_global_size(0) + k;                                                                      \

@@ -41,7 +41,10 @@ static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed
 // vectorized"); the results are the same.
 static inline float reciprocity_asym(real f1, real f2) {
   real m = max(max(f1, f2), -min(f1, f2));  // max(|f1|, |f2|)
-  real d = max(f1 - f2, f2 - f1);           // |f1 - f2|
+  // |f1 - f2| (f1 - f2 = -(f2 - f1) exactly, so the same float as max(f1 -
+  // f2, f2 - f1)); a max here would be paired by SLP with max(m, 1e-4) below
+  // into a 2-lane vector, which kept this kernel scalar on haswell (AVX2)
+  real d = fabs(f1 - f2);
   float a = m > R(0.0) ? (float)(d / max(m, R(1e-4))) : 0.0f;
   return f1 - f1 == R(0.0) && f2 - f2 == R(0.0) ? a : INFINITY;
 }
@@ -72,8 +75,13 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
   __global const IntegralSpec* s = specs + j;
   real ax, ay, az, bx, by, bz;
   reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
-  real fab = brdf_eval_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
-  real fba = brdf_eval_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
+  // brdf_eval_c's horizon test once for both values, in select form: a
+  // branch would leave the parameters' loads conditional (haswell: scalar)
+  bool below = fmin(az, bz) <= R(0.0);
+  real fab = brdf_above_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
+  real fba = brdf_above_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
+  fab = below ? R(0.0) : fab;
+  fba = below ? R(0.0) : fba;
   asym[j * get_global_size(0) + k] = reciprocity_asym(fab, fba);
 }
 #endif
