@@ -33,12 +33,20 @@ TEST_CASE("mfv bench measures devices and the reference in one run", "[bench][cl
     CHECK(std::isfinite(row["checksum"].get<double>()));
     if (row.contains("driver")) {
       CHECK(!row["driver"].get<std::string>().empty());
-      CHECK(row["vs_reference_x1"].get<double>() > 0);
+      // each device row's share of the same device's FMA-bound peak row
+      CHECK(row["fraction_of_peak"].get<double>() > 0);
+      if (row["integrand"] == "peak") {
+        CHECK(row["fraction_of_peak"].get<double>() == 1.0);
+        CHECK(row["gflops_per_cpu_second"].get<double>() > 0);
+      } else {
+        CHECK(row["vs_reference_x1"].get<double>() > 0);
+        CHECK(row["fraction_of_peak"].get<double>() < 1.0);  // an integrand cannot beat the peak
+      }
     }
     // d_norm: the mean of the normalization integrals is 1 on every engine
     if (row["integrand"] == "d_norm") CHECK(std::fabs(row["checksum"].get<double>() - 1.0) < 0.02);
   }
-  CHECK(integrands == std::set<std::string>{"d_norm", "albedo", "reciprocity"});
+  CHECK(integrands == std::set<std::string>{"d_norm", "albedo", "reciprocity", "peak"});
   CHECK(engines.count("reference x1") == 1);
   CHECK(engines.count("reference x2") == 1);
   CHECK(engines.size() >= 3);  // at least one device

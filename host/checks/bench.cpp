@@ -45,6 +45,8 @@ double bench_median(std::vector<double> v) {
 namespace {
 
 const std::vector<std::string> kIntegrands = {"d_norm", "albedo", "reciprocity"};
+const std::string kPeak = "peak";    // the FMA-bound row (kernels/peak.cl)
+constexpr double kPeakFlops = 8192;  // per fma_peak work-item: 2 flops x 8 lanes x 8 chains x 64 steps
 constexpr double kAlpha = 0.3;  // one representative width; the cost of these terms does not depend on it
 
 // Wall and CPU seconds of each call of f.
@@ -98,6 +100,41 @@ BenchRow make_row(const std::string& integrand, const std::string& engine, uint6
   return r;
 }
 
+// The peak row: kernels/peak.cl's fma_peak on the same device, in the same
+// run (its own program, built outside the timings). A "sample" is one
+// work-item, kPeakFlops flops; 2^18 work-items per launch (~2.1 GFLOP).
+BenchRow bench_peak(Runtime& rt, const DeviceInfo& dev, const BenchOptions& opt) {
+  const double b0 = bench_now();
+  cl::Program program = rt.build({"peak.cl"}, {});
+  const double build = bench_now() - b0;
+  cl::Kernel k(program, "fma_peak");
+  const size_t items = size_t(1) << 18;
+  cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, items * sizeof(float));
+  k.setArg(0, 0.999f);
+  k.setArg(1, 1e-3f);
+  k.setArg(2, out);
+  std::vector<float> host(items);
+  Timings tm;
+  for (int rep_i = -1; rep_i < opt.repeats; ++rep_i) {  // repeat -1 warms up
+    auto pass = [&] {
+      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items));
+      rt.queue().finish();
+    };
+    if (rep_i < 0)
+      pass();
+    else
+      tm.time(pass);
+  }
+  rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, items * sizeof(float), host.data());
+  double checksum = 0;
+  for (float v : host) checksum += v;
+  BenchRow r = make_row(kPeak, dev.name, 1, items, tm, checksum / double(items));
+  r.platform = dev.platform;
+  r.driver = dev.driver;
+  r.build_seconds = build;
+  return r;
+}
+
 void bench_device(const DeviceInfo& dev, const std::string& kernel_dir, const BenchOptions& opt,
                   const std::vector<std::string>& integrands, BenchReport& rep) {
   Runtime rt(std::to_string(dev.index), kernel_dir);
@@ -136,6 +173,7 @@ void bench_device(const DeviceInfo& dev, const std::string& kernel_dir, const Be
     r.build_seconds = build;
     rep.rows.push_back(std::move(r));
   }
+  rep.rows.push_back(bench_peak(rt, dev, opt));
 }
 
 // One integral in the reference: the mean of its first n samples.
@@ -204,25 +242,25 @@ const BenchRow* find_row(const BenchReport& r, const std::string& integrand, con
 
 }  // namespace
 
-// Counted by hand on the float kernel path (kernels/integrate.cl, brdf.cl,
-// terms_*.cl), branch shares weighted as sampled; ±20%:
-//   Philox4x32-10: 10 rounds of 2 32x32->64 multiplies, 4 xors, 2 key adds
-//     (~80 integer ops) + 4 uniform conversions (shift, or, convert, multiply).
-//   sincos_2pi (kernels/common.cl, in place of sin and cos): quarter-turn
-//     reduction 4, two degree-4 Horner polynomials in x² 17, sign/swap
-//     selects (not counted): ~22.
-//   d_norm: stratum mapping 6, sample_m ~19 + sincos_2pi 22, pdf_m 14, D_ggx 9,
-//     weight 2, stratified accumulation 4: ~77.
-//   albedo: view 5, branch + sample_m ~17 + sincos_2pi 22, reflection 12, half
-//     vector and proposal pdf (cosine + mixture, Jacobian) ~38, brdf_eval 74
-//     (half vector 14, D_ggx 9, Schlick 9, correlated Smith with two
-//     Λ_ggx ~30, assembly 7, checks 5), weight and accumulation 5: ~172.
-//   reciprocity: two directions ~25 (+ 2 sin, 2 cos), offsets for the
-//     near-retro/mirror half ~8, two brdf_eval 148, asymmetry 6: ~185.
+// Counted from the compiled kernels: scripts/kernel-flops.py (the float
+// operations per lane in the body of PoCL's vectorized loop over
+// work-items, fma = 2; every instruction there runs for every work-item, the
+// branches having become selects). The same counts on PoCL 3.1's haswell
+// (AVX2) and skylake-avx512 targets; other drivers compile other code, so
+// there the rate is an estimate. sincos_2pi is in-house polynomials, so it
+// is in the flops; no library call is left. Not counted: the reductions
+// (sum_pairs, sum_values: ~2 double additions per sample).
+//   d_norm: d_norm_values 34 flops, 81 integer ops (Philox's 32x32->64
+//     multiplies in 64-bit lanes, xors, shifts, masks).
+//   albedo: albedo_values 134 flops, 114 integer ops.
+//   reciprocity: reciprocity_values_microfacet 191 flops, 128 integer ops.
+// The hand counts they replace (77, 172, 185 + 4 sin/cos) had counted
+// sincos_2pi in d_norm's path, where the kernel has none.
 FlopCount flops_per_sample(const std::string& integrand) {
-  if (integrand == "d_norm") return {77, 0, 96};
-  if (integrand == "albedo") return {172, 0, 96};
-  return {185, 4, 96};
+  if (integrand == kPeak) return {kPeakFlops, 0, 0};
+  if (integrand == "d_norm") return {34, 0, 81};
+  if (integrand == "albedo") return {134, 0, 114};
+  return {191, 0, 128};
 }
 
 void validate_bench_options(const BenchOptions& opt) {
@@ -260,27 +298,46 @@ BenchReport run_bench(const std::string& device_selector, const std::string& ker
   return rep;
 }
 
+// GFLOP per CPU-second of a row (flops per sample as counted above).
+double gflops_per_cpu_second(const BenchRow& row) {
+  const FlopCount fc = flops_per_sample(row.integrand);
+  return row.samples_per_cpu_second * (fc.flops + fc.transcend) * 1e-9;
+}
+
+// A device row's share of the same device's peak row, per CPU-second (both
+// rows see the same load); < 0 where there is no peak row.
+double fraction_of_peak(const BenchReport& r, const BenchRow& row) {
+  const BenchRow* peak = row.platform.empty() ? nullptr : find_row(r, kPeak, row.engine);
+  return peak ? gflops_per_cpu_second(row) / gflops_per_cpu_second(*peak) : -1.0;
+}
+
 std::string bench_table(const BenchReport& r) {
   std::string s = fmt::format(
       "| integrand | engine | integrals x samples | median s | samples/s | integrals/s | "
-      "est. GFLOP/s | vs reference x1 | samples/CPU-s | per CPU-s vs reference x1 |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "est. GFLOP/s | vs reference x1 | samples/CPU-s | per CPU-s vs reference x1 | GFLOP/CPU-s | of peak |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& row : r.rows) {
     const BenchRow* ref1 = find_row(r, row.integrand, "reference x1");
     const FlopCount fc = flops_per_sample(row.integrand);
-    s += fmt::format("| {} | {} | {} x {} | {:.4f} | {:.3e} | {:.3g} | {:.2f} | {} | {:.3e} | {} |\n", row.integrand,
-                     row.engine, row.integrals, row.samples_per_integral, row.median_seconds, row.samples_per_second,
-                     row.integrals_per_second, row.samples_per_second * (fc.flops + fc.transcend) * 1e-9,
+    const double share = fraction_of_peak(r, row);
+    s += fmt::format("| {} | {} | {} x {} | {:.4f} | {:.3e} | {:.3g} | {:.2f} | {} | {:.3e} | {} | {:.2f} | {} |\n",
+                     row.integrand, row.engine, row.integrals, row.samples_per_integral, row.median_seconds,
+                     row.samples_per_second, row.integrals_per_second,
+                     row.samples_per_second * (fc.flops + fc.transcend) * 1e-9,
                      ref1 ? fmt::format("{:.1f}x", row.samples_per_second / ref1->samples_per_second) : "-",
                      row.samples_per_cpu_second,
-                     ref1 ? fmt::format("{:.1f}x", row.samples_per_cpu_second / ref1->samples_per_cpu_second) : "-");
+                     ref1 ? fmt::format("{:.1f}x", row.samples_per_cpu_second / ref1->samples_per_cpu_second) : "-",
+                     gflops_per_cpu_second(row), share >= 0 ? fmt::format("{:.1f} %", 100 * share) : "-");
   }
-  s += "\nFlops per sample (hand count of the float kernel path, +-20%; see host/checks/bench.cpp): ";
+  s += "\nThe peak row: kernels/peak.cl, chains of float8 fma, 8192 flops per work-item (its samples); "
+       "'of peak' is a device row's GFLOP per CPU-second over its device's peak row's.\n";
+  s += "\nFlops per sample (counted in PoCL's compiled kernels by scripts/kernel-flops.py; see "
+       "host/checks/bench.cpp): ";
   for (const auto& i : kIntegrands) {
     const FlopCount fc = flops_per_sample(i);
-    s += fmt::format("{} {:g} + {:g} sin/cos (+{:g} integer ops of Philox); ", i, fc.flops, fc.transcend, fc.int_ops);
+    s += fmt::format("{} {:g} (+{:g} integer ops); ", i, fc.flops, fc.int_ops);
   }
-  s += "GFLOP/s counts sin/cos as one flop each.\n";
+  s += "the reference rows run the same integrands in double.\n";
   return s;
 }
 
@@ -317,6 +374,8 @@ std::string bench_json(const BenchReport& r) {
            {"transcendentals_per_sample", fc.transcend},
            {"est_gflops", row.samples_per_second * (fc.flops + fc.transcend) * 1e-9},
            {"checksum", row.checksum}};
+    x["gflops_per_cpu_second"] = gflops_per_cpu_second(row);
+    if (const double share = fraction_of_peak(r, row); share >= 0) x["fraction_of_peak"] = share;
     if (ref1) {
       x["vs_reference_x1"] = row.samples_per_second / ref1->samples_per_second;
       x["per_cpu_second_vs_reference_x1"] = row.samples_per_cpu_second / ref1->samples_per_cpu_second;

@@ -1,6 +1,7 @@
 // mfv bench: throughput of the suite's integrands on every OpenCL device (or
 // the selected one) and in the scalar double reference with one thread and
-// with all threads, in one run; medians over repeats, ratios, flops/sample.
+// with all threads, in one run; medians over repeats, ratios, flops/sample,
+// and a peak row (FMA-bound kernel) per device with each integrand's share.
 #pragma once
 
 #include <cstdint>
@@ -19,11 +20,12 @@ struct BenchOptions {
   std::vector<std::string> integrands;  // empty: all (d_norm, albedo, reciprocity)
 };
 
-// Hand count of float operations per sample of each integrand (kernel path,
-// see bench.cpp for the breakdown), for achieved GFLOP/s.
+// Float operations per sample of each integrand, counted in the compiled
+// kernel (bench.cpp, scripts/kernel-flops.py), for achieved GFLOP/s; the
+// peak row's per work-item.
 struct FlopCount {
   double flops;      // + - * / sqrt min max, fma = 2
-  double transcend;  // sin, cos (counted apart: ~10-20 flops each in software)
+  double transcend;  // library sin, cos, exp... (none left in the bench kernels)
   double int_ops;    // Philox4x32-10 and uniform conversion
 };
 
