@@ -11,6 +11,10 @@
 
 // The user's files end here: what kernels/user_prelude.cl pushed is popped.
 #pragma pop_macro("R")
+#pragma pop_macro("float4")
+#pragma pop_macro("float3")
+#pragma pop_macro("float2")
+#pragma pop_macro("float")
 #pragma clang diagnostic pop
 #if MFV_USER_DIALECT != 0
 #pragma clang attribute pop
@@ -22,29 +26,29 @@
 // arithmetic the rewrite does not see.
 #define MFV_USER_SLOTS (MFV_USER_PARAMS + 1)
 
-static inline void user_poison(float* p) {
+static inline void user_poison(mfv_ufloat* p) {
   for (int k = MFV_USER_NPARAMS; k < MFV_USER_SLOTS; ++k) p[k] = NAN;
 }
 
 // The parameters of integral `s`: p[0..5] from IntegralSpec::p.
-static inline void user_params(__global const IntegralSpec* s, float* p) {
+static inline void user_params(__global const IntegralSpec* s, mfv_ufloat* p) {
   for (int k = 0; k < 6; ++k) p[k] = s->p[k];
   user_poison(p);
 }
 
-static inline real user_channel(float3 v, uint channel) { return channel == 0u ? v.x : channel == 1u ? v.y : v.z; }
+static inline real user_channel(mfv_ufloat3 v, uint channel) { return channel == 0u ? v.x : channel == 1u ? v.y : v.z; }
 
 static inline real user_brdf_adapter(__global const IntegralSpec* s, real3 i, real3 o) {
-  float p[MFV_USER_SLOTS];
+  mfv_ufloat p[MFV_USER_SLOTS];
   user_params(s, p);
-  return user_channel(brdf(convert_float3(i), convert_float3(o), p), s->channel);
+  return user_channel(brdf(convert_mfv_ufloat3(i), convert_mfv_ufloat3(o), p), s->channel);
 }
 
 static inline real user_D_adapter(__global const IntegralSpec* s, real3 m) {
 #ifdef MFV_USER_HAS_D
-  float p[MFV_USER_SLOTS];
+  mfv_ufloat p[MFV_USER_SLOTS];
   user_params(s, p);
-  return D(convert_float3(m), p);
+  return D(convert_mfv_ufloat3(m), p);
 #else
   return NAN;  // the host runs no D check without D
 #endif
@@ -52,9 +56,9 @@ static inline real user_D_adapter(__global const IntegralSpec* s, real3 m) {
 
 static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real3 m) {
 #ifdef MFV_USER_HAS_G1
-  float p[MFV_USER_SLOTS];
+  mfv_ufloat p[MFV_USER_SLOTS];
   user_params(s, p);
-  return G1(convert_float3(v), convert_float3(m), p);
+  return G1(convert_mfv_ufloat3(v), convert_mfv_ufloat3(m), p);
 #else
   return NAN;
 #endif
@@ -69,23 +73,24 @@ static inline real user_G1_adapter(__global const IntegralSpec* s, real3 v, real
 #include "abi/pointwise.h"
 __kernel void user_eval(__global float* rec) {
   __global float* r = rec + get_global_id(0) * PW_RECORD;
-  float3 wi = (float3)(r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z]), wo = (float3)(r[PW_WO_X], r[PW_WO_Y], r[PW_WO_Z]);
-  float3 m = (float3)(r[PW_M_X], r[PW_M_Y], r[PW_M_Z]);
-  float p[MFV_USER_SLOTS];
+  mfv_ufloat3 wi = (mfv_ufloat3)(r[PW_WI_X], r[PW_WI_Y], r[PW_WI_Z]);
+  mfv_ufloat3 wo = (mfv_ufloat3)(r[PW_WO_X], r[PW_WO_Y], r[PW_WO_Z]);
+  mfv_ufloat3 m = (mfv_ufloat3)(r[PW_M_X], r[PW_M_Y], r[PW_M_Z]);
+  mfv_ufloat p[MFV_USER_SLOTS];
   for (int k = 0; k < MFV_USER_PARAMS; ++k) p[k] = r[PW_P0 + k];
   user_poison(p);
-  float3 f = brdf(wi, wo, p);
-  r[PW_BRDF_R] = f.x;
-  r[PW_BRDF_G] = f.y;
-  r[PW_BRDF_B] = f.z;
+  mfv_ufloat3 f = brdf(wi, wo, p);  // the twin's values rounded to float: 6e-8 relative
+  r[PW_BRDF_R] = (float)f.x;
+  r[PW_BRDF_G] = (float)f.y;
+  r[PW_BRDF_B] = (float)f.z;
 #ifdef MFV_USER_HAS_D
-  r[PW_USER_D] = D(m, p);
+  r[PW_USER_D] = (float)D(m, p);
 #else
   r[PW_USER_D] = NAN;
 #endif
 #ifdef MFV_USER_HAS_G1
-  r[PW_USER_G1_WO] = G1(wo, m, p);
-  r[PW_USER_G1_WI] = G1(wi, m, p);
+  r[PW_USER_G1_WO] = (float)G1(wo, m, p);
+  r[PW_USER_G1_WI] = (float)G1(wi, m, p);
 #else
   r[PW_USER_G1_WO] = r[PW_USER_G1_WI] = NAN;
 #endif

@@ -10,3 +10,17 @@
 
 static inline long mfv_param_index(long k) { return k >= 0 && k < MFV_USER_NPARAMS ? k : MFV_USER_PARAMS; }
 #define MFV_PARAM_INDEX(k) mfv_param_index((long)(k))
+
+// The user's scalar type: float, or double in the double twin (-DMFV_USER_TWIN,
+// host/user/user_twin.hpp), where kernels/user_prelude.cl maps the file's
+// float types to double. The adapters (kernels/user_brdf.cl) convert the
+// estimators' directions to it: correctly rounded where they are double.
+#ifdef MFV_USER_TWIN
+typedef double mfv_ufloat;
+typedef double3 mfv_ufloat3;
+#define convert_mfv_ufloat3 convert_double3
+#else
+typedef float mfv_ufloat;
+typedef float3 mfv_ufloat3;
+#define convert_mfv_ufloat3 convert_float3
+#endif

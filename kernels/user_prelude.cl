@@ -10,6 +10,24 @@
 
 #define MFV_OVL static inline __attribute__((overloadable))
 
+// The double twin (-DMFV_USER_TWIN; host/user/user_twin.cpp): the same
+// files with every float type double (and, by the host, literals without
+// their f suffix), so that kf - kd on the same samples is the float
+// rounding of the user's code and nothing else. Popped by user_brdf.cl.
+#pragma push_macro("float")
+#pragma push_macro("float2")
+#pragma push_macro("float3")
+#pragma push_macro("float4")
+#ifdef MFV_USER_TWIN
+#pragma clang diagnostic push
+#pragma clang diagnostic ignored "-Wkeyword-macro"
+#define float double
+#define float2 double2
+#define float3 double3
+#define float4 double4
+#pragma clang diagnostic pop
+#endif
+
 #if MFV_USER_DIALECT != 0
 // constructors: from scalars, vectors and their concatenations
 MFV_OVL float2 mfv_vec2(float x) { return (float2)(x); }

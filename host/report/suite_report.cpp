@@ -47,8 +47,9 @@ std::string point_text(const PointResult& p) {
         "stability names such inputs) vs {:g}{} at {}",
         p.estimate, p.stderr_, p.expected, p.upper_only ? " (max)" : "", params_text(p));
   const std::string z = std::fabs(p.z) < 1e6 ? fmt::format("{:.1f}", p.z) : fmt::format("{:.1e}", p.z);
-  return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {}) vs {:g}{} at {}", p.estimate, p.stderr_, p.bias, z,
-                     p.expected, p.upper_only ? " (max)" : "", params_text(p));
+  // detail: mfv check's double twin names the cause (formula error or float conditioning)
+  return fmt::format("{:.6f} ± {:.1e} (+ bias {:.0e}, z {}) vs {:g}{} at {}{}{}", p.estimate, p.stderr_, p.bias, z,
+                     p.expected, p.upper_only ? " (max)" : "", params_text(p), p.detail.empty() ? "" : ": ", p.detail);
 }
 
 std::string worst_text(const SuiteReport& rep, const GroupResult& g) { return point_text(rep.points[g.worst]); }

@@ -11,6 +11,11 @@
 
 namespace mfv {
 
+bool floating_literal(const std::string& t) {
+  if (t.size() > 1 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X')) return false;
+  return t.find_first_of(".eE") != std::string::npos;
+}
+
 const char* dialect_name(Dialect d) { return d == Dialect::Glsl ? "glsl" : d == Dialect::Hlsl ? "hlsl" : "opencl"; }
 
 Dialect dialect_of(const std::string& name, const std::string& path) {
@@ -67,11 +72,6 @@ const std::map<std::string, std::string>& builtins(Dialect d) {
       {"asfloat", "as_float"},        {"asuint", "as_uint"},    {"asint", "as_int"}};
   static const std::map<std::string, std::string> none;
   return d == Dialect::Glsl ? glsl : d == Dialect::Hlsl ? hlsl : none;
-}
-
-bool floating_literal(const std::string& t) {
-  if (t.size() > 1 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X')) return false;
-  return t.find_first_of(".eE") != std::string::npos;
 }
 
 // The code tokens (no comments or directives) of the active branches.

@@ -48,6 +48,9 @@ UserNames user_names(const ReadSources& src, Dialect d);
 // mfv::Error naming the file, line and construct the dialect refuses.
 std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNames& names);
 
+// A decimal floating literal (1.0, 2e-3, .5f; not a hex float or an integer).
+bool floating_literal(const std::string& t);
+
 // A build log with the renamings undone (mfv_u_NAME -> NAME).
 std::string user_terms(const std::string& log);
 

@@ -6,6 +6,7 @@
 #include "rng/philox.hpp"
 #include "user/time_limit.hpp"
 #include "user/user_detail.hpp"
+#include "user/user_twin.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -31,7 +32,7 @@ SuiteOptions suite_options_of(const UserCheckOptions& o) {
   s.scale = o.scale;
   s.family_alpha = o.family_alpha;
   s.checks = o.checks;
-  s.reference_samples = 0;  // no double twin of user code; `agree` compares with a claimed model instead
+  s.reference_samples = 0;  // no reference of user code: its double twin (user/user_twin.hpp) and `agree` instead
   return s;
 }
 
@@ -43,10 +44,17 @@ using namespace user_detail;
 
 // integrate.cl with the user's file and the adapters after it: one build for
 // every check. A compile error leads with its first line in the user's file.
-cl::Program build_user_program(Runtime& rt, const UserBrdf& u) {
+// Where the device has fp64 the estimators run in double (MFV_DOUBLE) and
+// hand the user's float code directions rounded once (no rounding of mfv's
+// own); `twin` builds the user's code in double too (user/user_twin.hpp).
+cl::Program build_user_program(Runtime& rt, const UserBrdf& u, bool twin = false) {
   std::vector<std::string> defines = {"MFV_USER_BRDF", fmt::format("MFV_USER_NPARAMS={}", u.params.size()),
                                       fmt::format("MFV_USER_DIALECT={}", int(u.dialect))};
-  if (rt.device().fp64) defines.push_back("MFV_ACC_DOUBLE");
+  if (rt.device().fp64) {
+    defines.push_back("MFV_ACC_DOUBLE");
+    defines.push_back("MFV_DOUBLE");
+  }
+  if (twin) defines.push_back("MFV_USER_TWIN");
   if (u.has_d) defines.push_back("MFV_USER_HAS_D");
   if (u.has_g1) defines.push_back("MFV_USER_HAS_G1");
   try {
@@ -312,14 +320,25 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   SuiteReport rep;
   rep.title = "mfv check " + u.path;
   rep.list_passes = true;
-  rep.reference_note =
-      claim ? fmt::format("reference: no double twin of user code; check 'agree' compares it with {} ({}) pointwise",
-                          claim->spec, claim->mapping(u))
-            : "reference: no double twin of user code (claim a catalog model with --as D/G/F to compare pointwise)";
-  if (u.roughness < 0)
-    rep.reference_note += "; no roughness declared: the estimators use a mixture of widths 1, 1/4, ..., 1/256";
   double b0 = rt.build_stats().seconds;
   cl::Program prog = build_user_program(rt, u);
+  // The double twin (user/user_twin.hpp): where the device has fp64 and the
+  // file compiles in double; else the a-priori rounding bound alone.
+  std::optional<cl::Program> twin;
+  std::string twin_note = "no double twin (the device has no cl_khr_fp64)";
+  if (rt.device().fp64) try {
+      twin = build_user_program(rt, twin_of(u), true);
+      twin_note = "double twin: the same code in double bounds each integral's float rounding (kf - kd)";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      twin_note = "no double twin: the code does not compile in double (" + what.substr(0, what.find('\n')) + ")";
+    }
+  rep.reference_note =
+      "reference: " + twin_note +
+      (claim ? fmt::format("; check 'agree' compares it with {} ({}) pointwise", claim->spec, claim->mapping(u))
+             : std::string("; claim a catalog model with --as D/G/F to compare pointwise"));
+  if (u.roughness < 0)
+    rep.reference_note += "; no roughness declared: the estimators use a mixture of widths 1, 1/4, ..., 1/256";
   rep.build_seconds = rt.build_stats().seconds - b0;
   Integrator in(rt, prog);
   // Each step's time limit (user/time_limit.hpp): 100x what a calibration
@@ -331,7 +350,12 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   };
   for (auto& plan : make_plans(u, opt, checks)) {
     arm(double(plan.samples) * double(plan.specs.size()), "the " + plan.check + " integrals");
+    const size_t first = rep.points.size();
     run_plan(in, plan, sopt, rep);
+    if (!twin) continue;
+    // kf - kd on the integrals' own first samples (streams set, stratified)
+    std::vector<double> r = twin_rounding(rt, prog, *twin, plan.specs, kTwinSamples, opt.seed);
+    for (size_t j = 0; j < r.size(); ++j) rep.points[first + j].rounding_bound = r[j];
   }
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
   // pointwise steps: a few thousand evaluations per setting (a bound of their count)
@@ -341,9 +365,10 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   arm(settings * 4096, "the finite census");
   if (has("finite")) run_census(rt, prog, u, opt, rep);
   arm(settings * 4096, "the agreement");
-  if (has("agree")) run_agreement(rt, prog, u, *claim, opt, rep);
+  if (has("agree")) run_agreement(rt, prog, twin ? &*twin : nullptr, u, *claim, opt, rep);
   watchdog_pause();
   judge(rep, sopt);
+  if (twin) explain_twin_verdicts(rep, rep.z_threshold);
   return rep;
 }
 

@@ -37,8 +37,10 @@ void run_census(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const U
 // values in its detail, the kernel's pair rounded to float.
 void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, const std::vector<Values>& settings,
                           std::vector<PointResult*> pts);
-// Pointwise agreement with a claimed catalog model (check 'agree').
-void run_agreement(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const Claim& claim,
+// Pointwise agreement with a claimed catalog model (check 'agree'). With the
+// double twin (user/user_twin.hpp) the verdict is the twin's (formula error),
+// and the float code's own deviation is named float conditioning.
+void run_agreement(Runtime& rt, const cl::Program& prog, const cl::Program* twin, const UserBrdf& u, const Claim& claim,
                    const UserCheckOptions& opt, SuiteReport& rep);
 
 }  // namespace mfv::user_detail
