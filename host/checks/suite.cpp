@@ -31,6 +31,7 @@ const char* verdict_name(Verdict v) {
     case Verdict::Fail: return "FAIL";
     case Verdict::XFail: return "xfail";
     case Verdict::XPass: return "XPASS";
+    case Verdict::Inconclusive: return "INCONCLUSIVE";
   }
   return "?";
 }
@@ -40,7 +41,7 @@ bool SuiteReport::reference_ok() const { return reference_worst <= reference_bou
 bool SuiteReport::gate_ok() const {
   if (!reference_ok()) return false;
   for (auto& g : groups)
-    if (g.verdict == Verdict::Fail || g.verdict == Verdict::XPass) return false;
+    if (g.verdict == Verdict::Fail || g.verdict == Verdict::XPass || g.verdict == Verdict::Inconclusive) return false;
   return true;
 }
 

@@ -21,7 +21,10 @@
 
 namespace mfv {
 
-enum class Verdict { Pass, Fail, XFail, XPass };
+// Inconclusive (mfv check): no point failed, but at some point the estimator
+// did not reach the integrand's mass (PointResult::inconclusive): neither
+// pass nor fail; the gate does not pass it.
+enum class Verdict { Pass, Fail, XFail, XPass, Inconclusive };
 const char* verdict_name(Verdict v);
 
 // What the catalog predicts for one point: Expect (catalog/models.hpp) says
@@ -64,6 +67,10 @@ struct PointResult {
   // above), and a failure of the double twin against the reference, which
   // fails the group's verdict.
   bool reference_compared = false, reference_failed = false;
+  // Set before judge() where the estimate rests on too few effective samples
+  // to be tested (mfv check: user/user_power.hpp); `detail` says why. Such a
+  // point neither passes nor fails, and stays out of the pooled test.
+  bool inconclusive = false;
   std::string reference_detail;  // the comparison, its worst sample and its bound
 };
 

@@ -32,8 +32,19 @@ std::string comparison(const PointResult& p) {
 std::vector<std::string> SuiteReport::gate_failures() const {
   std::vector<std::string> out;
   for (auto& g : groups) {
-    if (g.verdict != Verdict::Fail && g.verdict != Verdict::XPass) continue;
+    if (g.verdict != Verdict::Fail && g.verdict != Verdict::XPass && g.verdict != Verdict::Inconclusive) continue;
     const std::string who = fmt::format("{} {} {}", verdict_name(g.verdict), g.check, g.model);
+    if (g.verdict == Verdict::Inconclusive) {
+      size_t n = 0;
+      for (size_t i : g.points) n += points[i].inconclusive;
+      for (size_t i : g.points)
+        if (points[i].inconclusive) {
+          out.push_back(fmt::format("{}: {} of {} points inconclusive; first at {}: {}", who, n, g.points.size(),
+                                    inputs(points[i]), points[i].detail));
+          break;
+        }
+      continue;
+    }
     if (g.verdict == Verdict::XPass) {
       out.push_back(fmt::format("{}: expected to fail ({}) but every point held; closest: {}", who, g.reason,
                                 comparison(points[g.worst])));

@@ -33,7 +33,7 @@ void pool_groups(SuiteReport& rep, double alpha) {
   for (size_t gi = 0; gi < rep.groups.size(); ++gi)
     for (size_t i : rep.groups[gi].points) {
       const PointResult& p = rep.points[i];
-      if (p.bounded || p.expect != Expect::Hold) continue;
+      if (p.bounded || p.expect != Expect::Hold || p.inconclusive) continue;
       devs[gi].push_back({p.deviation, p.stderr_, p.bias});
       upper[gi] = upper[gi] && p.upper_only;
     }
@@ -42,7 +42,7 @@ void pool_groups(SuiteReport& rep, double alpha) {
     std::vector<stats::Deviation> known;
     for (size_t i : rep.groups[gi].points) {
       const PointResult& p = rep.points[i];
-      if (!p.bounded && p.expect == Expect::Hold && p.known)
+      if (!p.bounded && p.expect == Expect::Hold && p.known && !p.inconclusive)
         known.push_back({p.estimate - p.known_value, p.stderr_, p.bias + p.known_error});
     }
     if (upper[gi] && !known.empty()) {
@@ -63,9 +63,10 @@ void group_verdicts(SuiteReport& rep) {
   // points that must fail all held; an xfail when only points expected to
   // (or allowed to) fail did.
   for (auto& g : rep.groups) {
-    bool unexpected = false, must_fail = false, must_failed = false, allowed_failed = false;
+    bool unexpected = false, must_fail = false, must_failed = false, allowed_failed = false, inconclusive = false;
     for (size_t i : g.points) {
       const PointResult& p = rep.points[i];
+      inconclusive = inconclusive || p.inconclusive;
       if (p.expect == Expect::Fail) must_fail = true;
       // the kernel computes another formula than the reference: whatever
       // the catalog expects of the model's statistics, that is a failure
@@ -92,6 +93,8 @@ void group_verdicts(SuiteReport& rep) {
       g.verdict = Verdict::XPass;
     else if (allowed_failed)
       g.verdict = Verdict::XFail;
+    else if (inconclusive)
+      g.verdict = Verdict::Inconclusive;
     else
       g.verdict = Verdict::Pass;
   }
@@ -154,6 +157,7 @@ void judge(SuiteReport& rep, const SuiteOptions& opt) {
       p.z = p.deviation / (stats::total_uncertainty(p.stderr_, p.bias) + 1e-300);
       p.bound = p.upper_only ? p.expected + allowance : allowance;
       p.failed = p.upper_only ? !(p.deviation <= allowance) : !(std::fabs(p.deviation) <= allowance);
+      p.failed = p.failed && !p.inconclusive;  // neither pass nor fail
     }
     g.points.push_back(i);
     g.tolerance = std::max(g.tolerance, p.tolerance);

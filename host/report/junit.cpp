@@ -37,6 +37,8 @@ std::string outcome(const SuiteReport& rep, const GroupResult& g) {
     case Verdict::XFail:
       return fmt::format("<skipped message=\"expected failure: {}\"/><system-out>{}</system-out>", xml_escape(g.reason),
                          w);
+    case Verdict::Inconclusive:
+      return fmt::format("<failure message=\"inconclusive: the estimator did not reach the lobe\">{}</failure>", w);
     case Verdict::Pass: break;
   }
   return "";
@@ -48,7 +50,7 @@ std::string suite_junit(const SuiteReport& rep, const SuiteOptions& opt, const s
   size_t failures = !rep.reference_ok(), skipped = 0;
   double total = rep.build_seconds;
   for (auto& g : rep.groups) {
-    failures += g.verdict == Verdict::Fail || g.verdict == Verdict::XPass;
+    failures += g.verdict == Verdict::Fail || g.verdict == Verdict::XPass || g.verdict == Verdict::Inconclusive;
     skipped += g.verdict == Verdict::XFail;
     total += group_seconds(rep, g);
   }

@@ -98,7 +98,7 @@ void print_suite_console(const SuiteReport& rep, const DeviceInfo& device, const
     fmt::print("{}\n", rep.reference_note);
   else
     fmt::print("{}\n", reference_line(rep));
-  size_t counts[4] = {0, 0, 0, 0};
+  size_t counts[5] = {0, 0, 0, 0, 0};
   for (auto& g : rep.groups) counts[int(g.verdict)]++;
   for (auto& g : rep.groups) {
     // pass lines are many; print the ones a person should read
@@ -107,8 +107,9 @@ void print_suite_console(const SuiteReport& rep, const DeviceInfo& device, const
     if (!g.reason.empty() && g.verdict != Verdict::Fail) fmt::print("       {:<15} reason: {}\n", "", g.reason);
     if (g.pooled.failed) fmt::print("       {:<15} {}\n", "", pooled_text(g));
   }
-  fmt::print("{} model x check verdicts: {} pass, {} xfail, {} FAIL, {} XPASS; {:.1f} s of integration\n",
-             rep.groups.size(), counts[0], counts[2], counts[1], counts[3], total_seconds(rep));
+  fmt::print("{} model x check verdicts: {} pass, {} xfail, {} FAIL, {} XPASS{}; {:.1f} s of integration\n",
+             rep.groups.size(), counts[0], counts[2], counts[1], counts[3],
+             counts[4] ? fmt::format(", {} INCONCLUSIVE", counts[4]) : "", total_seconds(rep));
   fmt::print("gate: {}\n", rep.gate_ok() ? "ok (every verdict matches expectation)" : "FAILED");
   for (auto& line : rep.gate_failures()) fmt::print("  because {}\n", line);
 }
@@ -132,7 +133,7 @@ nlohmann::json point_record(const PointResult& p) {
          {"expected", p.expected},
          {"bound", sig(p.bound, 4)},
          {"samples", p.samples},
-         {"verdict", p.failed ? "fail" : "pass"}};
+         {"verdict", p.failed ? "fail" : p.inconclusive ? "inconclusive" : "pass"}};
   if (p.reference_failed) r["reference"] = p.reference_detail;
   if (p.known) r["known"] = {{"value", sig(p.known_value, 9)}, {"error", sig(p.known_error, 3)}};
   // the catalog's prediction where it is not "holds"; the reason is in the group

@@ -6,6 +6,7 @@
 #include "rng/philox.hpp"
 #include "user/time_limit.hpp"
 #include "user/user_detail.hpp"
+#include "user/user_power.hpp"
 #include "user/user_twin.hpp"
 #include "util/error.hpp"
 
@@ -367,8 +368,11 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
   arm(settings * 4096, "the agreement");
   if (has("agree")) run_agreement(rt, prog, twin ? &*twin : nullptr, u, *claim, opt, rep);
   watchdog_pause();
+  mark_inconclusive(rep, 0);  // before the verdicts: neither pass nor fail (user/user_power.hpp)
   judge(rep, sopt);
   if (twin) explain_twin_verdicts(rep, rep.z_threshold);
+  const std::string power = power_statement(rep);
+  if (!power.empty()) rep.reference_note += "\n" + power;
   return rep;
 }
 

@@ -73,7 +73,7 @@ std::vector<double> twin_rounding(Runtime& rt, const cl::Program& f, const cl::P
 
 void explain_twin_verdicts(SuiteReport& rep, double z_threshold) {
   for (auto& p : rep.points) {
-    if (p.bounded || p.rounding_bound <= 0) continue;
+    if (p.bounded || p.rounding_bound <= 0 || p.inconclusive) continue;
     const double dev = p.upper_only ? p.deviation : std::fabs(p.deviation);
     const double noise = z_threshold * p.stderr_;
     if (p.failed)
