@@ -1,6 +1,7 @@
 #include "user/claim.hpp"
 
 #include "catalog/catalog.hpp"
+#include "catalog/roughness.hpp"
 #include "util/error.hpp"
 #include "util/parse.hpp"
 
@@ -45,6 +46,15 @@ ref::BrdfSpec Claim::at(const std::vector<double>& values) const {
     }
   }
   return {d, g, f, v[0], v[1], v[2], v[3], v[4]};
+}
+
+double Claim::proposal(const std::vector<double>& values) const {
+  if (!d || d->roughness == Roughness::None) return 0.0;
+  try {
+    return proposal_width(*d, alpha_from_native(d->roughness, at(values).pd));
+  } catch (const Error&) {
+    return 0.0;
+  }
 }
 
 std::string Claim::mapping(const UserBrdf& u) const {

@@ -27,6 +27,10 @@ struct Claim {
   // when a mapped value leaves the catalog range of its term.
   ref::BrdfSpec at(const std::vector<double>& values) const;
   std::string mapping(const UserBrdf& u) const;  // "alpha=roughness^2 f0=f0 kd=0"
+  // The estimators' proposal width of the claimed D at the user's values
+  // (catalog proposal_width of its alpha); 0 without a D of a width, or
+  // where the mapped value leaves the D's range.
+  double proposal(const std::vector<double>& values) const;
 };
 
 // `as` names a D/G/F of the catalog; `map` holds NAME=EXPR entries (comma

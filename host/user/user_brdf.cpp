@@ -23,6 +23,10 @@ std::vector<double> UserParam::ends() const {
 }
 
 double UserBrdf::width(const std::vector<double>& values) const {
+  if (claimed_width) {
+    const double w = claimed_width(values);
+    if (w > 0) return w;
+  }
   if (roughness < 0) return 0.0;  // no declared roughness: the estimators' mixture of widths
   double v = values[size_t(roughness)];
   return alpha_from_native(params[size_t(roughness)].role, v);

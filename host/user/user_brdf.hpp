@@ -7,6 +7,7 @@
 #include "catalog/catalog.hpp"
 #include "user/dialect.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct UserBrdf {
   std::vector<UserParam> params;                          // params[k] of the contract
   int roughness = -1;                                     // index of the width parameter, -1: none declared
   double width(const std::vector<double>& values) const;  // proposal width at these parameter values (<= 0: mixture)
+  // With --as: the claimed catalog D's proposal width (Term::proposal: a
+  // sheen's grazing lobe, not the normal's) at these values; <= 0 where the
+  // mapped value leaves the term's range, and the declared roughness then.
+  std::function<double(const std::vector<double>&)> claimed_width;
   std::vector<double> defaults() const;
 };
 

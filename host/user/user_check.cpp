@@ -291,8 +291,12 @@ double calibrate(Integrator& in, const UserBrdf& u) {
 
 }  // namespace
 
-SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<Claim>& claim,
+SuiteReport run_user_check(Runtime& rt, const UserBrdf& user, const std::optional<Claim>& claim,
                            const UserCheckOptions& opt) {
+  // With --as, the estimators take the claimed model's own proposal width
+  UserBrdf u = user;
+  if (claim && claim->proposal(u.defaults()) > 0)
+    u.claimed_width = [c = *claim](const std::vector<double>& v) { return c.proposal(v); };
   // Which checks: those asked for, each needing what it needs.
   std::vector<std::string> checks = opt.checks;
   auto available = [&](const std::string& c) -> std::string {
@@ -338,7 +342,9 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& u, const std::optional<C
       "reference: " + twin_note +
       (claim ? fmt::format("; check 'agree' compares it with {} ({}) pointwise", claim->spec, claim->mapping(u))
              : std::string("; claim a catalog model with --as D/G/F to compare pointwise"));
-  if (u.roughness < 0)
+  if (u.claimed_width)
+    rep.reference_note += "; the estimators take " + claim->d->id + "'s own proposal width (--as)";
+  else if (u.roughness < 0)
     rep.reference_note += "; no roughness declared: the estimators use a mixture of widths 1, 1/4, ..., 1/256";
   rep.build_seconds = rt.build_stats().seconds - b0;
   Integrator in(rt, prog);
