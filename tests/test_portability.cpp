@@ -84,11 +84,13 @@ TEST_CASE("Oclgrind finds no API error, invalid access or data race in any kerne
            std::string("eval ggx --NoH 0.9"),                                     // eval_records
            std::string("stability --terms-only --only 'D ggx'"),                  // stability_eval
            std::string("samplers --samples 4096 --device-only"),                  // draw_samples
-           "check --brdf " + kBrdfExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64",  // user_eval
+           "check --brdf " + kBrdfExamples + "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64 --timeout 600",  // user_eval
        }) {
     auto r = run_mfv(args, env);
     CAPTURE(args, r.out);
-    CHECK(r.code == 0);
+    // 1: a verdict at these tiny workloads (mfv check gives INCONCLUSIVE at
+    // 64 samples, rightly); 2 would be an error
+    CHECK((r.code == 0 || r.code == 1));
     // Oclgrind's findings: "Invalid read of size 4 at global memory address
     // ...", "Read-write data race at ...", "Oclgrind - OpenCL runtime error
     // detected" (API misuse), "OCLGRIND FATAL ERROR"

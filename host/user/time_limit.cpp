@@ -55,7 +55,8 @@ void stop(pid_t pid, int& status) {
 
 }  // namespace
 
-int run_with_time_limit(double seconds, const std::string& what, const std::function<int()>& work) {
+int run_with_time_limit(double seconds, const std::string& what, const std::function<int()>& work,
+                        bool step_limits) {
   std::fflush(stdout);
   std::fflush(stderr);
   void* shared = ::mmap(nullptr, sizeof(Watchdog), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
@@ -67,7 +68,7 @@ int run_with_time_limit(double seconds, const std::string& what, const std::func
   if (pid == 0) {
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);     // its handlers still remove temporary files
     if (::getppid() != parent) ::_exit(2);  // the parent died before prctl
-    g_watchdog = dog;
+    if (step_limits) g_watchdog = dog;
     int rc = work();
     std::fflush(stdout);
     std::fflush(stderr);

@@ -19,7 +19,10 @@ namespace mfv {
 // watchdog for each step of its work (watchdog_arm): a step that runs past
 // its own limit is stopped the same way, so a user BRDF that never returns
 // is stopped within the limit of the step it hangs in, not the whole run's.
-int run_with_time_limit(double seconds, const std::string& what, const std::function<int()>& work);
+// `step_limits` false: the whole limit alone (a limit the user chose), the
+// steps' watchdogs are not armed.
+int run_with_time_limit(double seconds, const std::string& what, const std::function<int()>& work,
+                        bool step_limits = true);
 
 // In the child of run_with_time_limit: the next step must end within
 // `seconds` (named `step` in the message); watchdog_pause() lifts the limit
