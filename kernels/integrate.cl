@@ -241,13 +241,14 @@ MFV_MASKING_VALUES(masking_values, s->d, s->g)
     __global const IntegralSpec* s = specs + j;                                                                  \
     uint4 shift = rqmc_shift(s, seed);                                                                           \
     uint i = (uint)(first + k);                                                                                  \
-    real eavg = eavg_cos(shift, i, s->strata), cos_o = s->cos_o; /* both loads unconditional (haswell) */       \
-    real co = s->check == MFV_CHECK_EAVG_RQMC ? eavg : cos_o;                                                    \
+    real ju, eavg = eavg_cos(shift, i, s->strata, &ju), cos_o = s->cos_o; /* loads unconditional (haswell) */    \
+    const bool avg = s->check == MFV_CHECK_EAVG_RQMC;                                                            \
+    real co = avg ? eavg : cos_o, jv = avg ? ju : R(1.0);                                                        \
     real b;                                                                                                      \
     real e = albedo_rqmc_microfacet(D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, co, shift, i, &b);  \
     size_t at = j * get_global_size(0) + k;                                                                      \
-    values[at] = (float)e;                                                                                       \
-    values[get_global_size(0) * get_global_size(1) + at] = (float)b;                                             \
+    values[at] = (float)(e * jv);                                                                                \
+    values[get_global_size(0) * get_global_size(1) + at] = (float)(b * jv);                                      \
   }
 MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 #endif

@@ -9,6 +9,7 @@
 #include "checks/integrate.hpp"
 #include "reference/estimators.hpp"
 #include "runtime/dispatch.hpp"
+#include "stats/normal.hpp"
 #include "util/error.hpp"
 #include "util/progress.hpp"
 
@@ -64,30 +65,61 @@ double record_unit(EnergyReport& rep, const EnergyUnit& u, const std::vector<dou
   return std::max({t.E[u.index].se, t.A[u.index].se, t.B[u.index].se});
 }
 
-// Pilot, then fresh samples: a pilot of min_points / 4 points per
-// replicate on streams of its own sizes each unit; the unit's estimate is
-// then a fresh run of the power-of-two multiple of min_points its pilot
-// error predicts (RQMC error falls as 1/N here: measured N^-1 at normal and
-// grazing view), up to max_points. Stopping on the estimate's own standard
-// error (the former adaptive passes) keeps the runs whose error happened to
-// come out small: 5 of 96 EON cells were beyond 3 SE, worst 5.4. With the
-// count fixed before the fresh samples are drawn, mean and replicate SE are
-// those of a fixed-size RQMC estimate, so the SE is unbiased.
+// Pilot, then fresh samples. Each unit's estimate is a fresh run of a
+// power-of-two multiple of min_points fixed before its samples are drawn, up
+// to max_points. Stopping on the estimate's own standard error (the former
+// adaptive passes) keeps the runs whose error happened to come out small: 5
+// of 96 EON cells were beyond 3 SE, worst 5.4. With the count fixed first,
+// mean and replicate SE are those of a fixed-size RQMC estimate, so the SE
+// is unbiased.
+// The count comes from pilots on streams of their own: one of P0 =
+// max(64, min_points / 4) points per replicate and, where that predicts more
+// than 64 P0 points, a second at 1/16 of the prediction, P1 >= 4 P0. The
+// error's rate N^-b is measured between the two pilots (b = log(se0/se1) /
+// log(P1/P0), clamped to [1/2, 1]: RQMC's N^-1 on smooth integrands, Monte
+// Carlo's N^-1/2 at worst) and extrapolates the second pilot's error to
+// target / m, m = sqrt(chi²_{R-1}(1 - 0.05/U) / (R-1)) over U units: the
+// replicate SE scatters about the true one as a chi with R - 1 degrees of
+// freedom, so where every unit's true SE is target / m, all U report at
+// most the target with probability 0.95 (Bonferroni; m = 1.77 at R = 8 and
+// U = 24, 1.38 at R = 32). With one pilot at 256 points and b = 1 assumed,
+// 6 of 48 values of the 12-point --fp64 query at 2e-6 ended above it
+// (worst 5.2e-6, E_avg at alpha = 0.16: 256 points predicted its error at
+// 65536 points 3x low); docs/performance.md.
 class PilotThenFresh {
  public:
   PilotThenFresh(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units)
       : rep_(rep), in_(in), units_(units), prog_(units.size()) {}
 
-  // The pilot on streams past every unit's own (from `free_stream` on), then
-  // the fresh run on the units' own streams.
+  // The pilots on streams past every unit's own (from `free_stream` and
+  // 2 `free_stream` on), then the fresh run on the units' own streams.
   void run(uint32_t free_stream) {
     const EnergyOptions& opt = rep_.opt;
-    const uint64_t pilot = std::max<uint64_t>(64, opt.min_points / 4);
-    for (auto& p : prog_) p.want = pilot;
-    const std::vector<double> pilot_se = run_units(free_stream);
+    const double dof = double(opt.replicates - 1);
+    const double tail = 0.05 / double(std::max<size_t>(1, units_.size()));  // every unit at once
+    const double margin = std::sqrt(stats::chi_squared_upper_quantile(tail, dof) / dof);
+    const uint64_t p0 = std::max<uint64_t>(64, opt.min_points / 4);
+    for (auto& p : prog_) p.want = p0;
+    const std::vector<double> se0 = run_units(free_stream);
+    std::vector<uint64_t> done0(units_.size());
     for (size_t ui = 0; ui < units_.size(); ++ui) {
       Progress& p = prog_[ui];
-      const double need = std::isfinite(pilot_se[ui]) ? 1.25 * double(p.done) * pilot_se[ui] / opt.target : 0.0;
+      done0[ui] = p.done;
+      const double need = points_for(double(p.done), se0[ui], 1.0, margin);
+      uint64_t p1 = p0;
+      while (double(p1) * 16 < need && p1 * 32 <= opt.max_points) p1 *= 2;
+      p.want = p1 >= 4 * p0 ? p1 : 0;  // 0: no second pilot
+    }
+    const std::vector<double> se1 = run_units(2 * free_stream);
+    for (size_t ui = 0; ui < units_.size(); ++ui) {
+      Progress& p = prog_[ui];
+      double base = double(done0[ui]), se = se0[ui], rate = 1.0;
+      if (p.want > 0) {
+        rate = std::log(se0[ui] / se1[ui]) / std::log(double(p.done) / base);
+        rate = std::isnan(rate) ? 1.0 : std::clamp(rate, 0.5, 1.0);
+        base = double(p.done), se = se1[ui];
+      }
+      const double need = points_for(base, se, rate, margin);
       uint64_t want = opt.min_points;
       while (want < opt.max_points && double(want) < need) want *= 2;
       p.want = std::min<uint64_t>(want, opt.max_points);
@@ -101,13 +133,22 @@ class PilotThenFresh {
     std::vector<double> sum, b_sum;  // per replicate: sums of the E (or E_avg) and B values
   };
 
-  // Runs every unit at its `want` points on streams first_stream + shift + r
-  // and records its cells; returns each unit's largest standard error.
+  // The points per replicate that bring an error `se` at `base` points,
+  // falling as N^-rate, to target / margin (0 where se is 0 or not finite).
+  double points_for(double base, double se, double rate, double margin) const {
+    if (!(se > 0) || !std::isfinite(se)) return 0.0;
+    return base * std::pow(margin * se / rep_.opt.target, 1.0 / rate);
+  }
+
+  // Runs every unit at its `want` points (none where want is 0) on streams
+  // first_stream + shift + r and records its cells; returns each unit's
+  // largest standard error.
   std::vector<double> run_units(uint32_t shift) {
     const size_t R = size_t(rep_.opt.replicates);
     std::vector<double> worst(units_.size(), 0.0);
     std::map<uint64_t, std::vector<size_t>> passes;  // one pass per point count
-    for (size_t ui = 0; ui < units_.size(); ++ui) passes[prog_[ui].want].push_back(ui);
+    for (size_t ui = 0; ui < units_.size(); ++ui)
+      if (prog_[ui].want > 0) passes[prog_[ui].want].push_back(ui);
     for (auto& [want, group] : passes) {
       std::vector<IntegralSpec> specs;
       std::vector<size_t> offset;

@@ -8,10 +8,12 @@
 // Estimator: the conformance albedo estimator (MIS of a cosine lobe and
 // Cauchy slopes of width alpha; independent of the D/G under test) fed with
 // randomized QMC points (kernels/integrate.cl, CHECK_ALBEDO_RQMC): R
-// independently shifted Kronecker point sets per quantity; the standard error
-// is the spread of the R replicate means / sqrt(R). Each quantity's point
-// count is sized by a pilot run on streams of its own, then its estimate is
-// a fresh run of that count (so the standard error is unbiased).
+// independently shifted Kronecker point sets per quantity, the radial
+// coordinate (and E_avg's mu²) periodized (rqmc_radial, kernels/albedo.cl);
+// the standard error is the spread of the R replicate means / sqrt(R). Each
+// quantity's point count is sized by two pilot runs on streams of their own
+// (which measure its error's rate), then its estimate is a fresh run of that
+// count (so the standard error is unbiased).
 //
 // Whole models (catalog/models.hpp) get the same treatment at parameter
 // points (their catalog cases, or points a caller gives): E(mu) with mu the

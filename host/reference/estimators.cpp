@@ -139,19 +139,29 @@ double energy_weight(const BrdfSpec& b, const glm::dvec3& m, const glm::dvec3& o
   return spec_brdf(b, i, o) * i.z / vis_pdf_i(glm::normalize(i + o), o, w);
 }
 
+// Korobov's degree-3 periodizing transform (Sloan & Joe 1994, "Lattice
+// Methods for Multiple Integration", §2.12) of the radial lattice
+// coordinate: u_r = t²(3 - 2t), weight du_r/dt = 6t(1 - t). Twin of
+// rqmc_radial in kernels/albedo.cl.
+double rqmc_radial(double t, double& jac) {
+  jac = 6.0 * t * (1.0 - t);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 // One point of AlbedoRqmc / EavgRqmc.
 double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const auto shift = philox(seed, s.stream, draw_word(s, 2), 0);
   const uint32_t k = static_cast<uint32_t>(index);
-  const double u_phi = u01_open(shift[0] + k * kRqmcG[0]), u_r = u01_open(shift[1] + k * kRqmcG[1]);
-  double cos_o = s.cos_o;
-  if (s.kind == Integral::EavgRqmc) {  // density 2μ, μ² stratified over `strata` points
+  double jac;
+  const double u_phi = u01_open(shift[0] + k * kRqmcG[0]), u_r = rqmc_radial(u01_open(shift[1] + k * kRqmcG[1]), jac);
+  double cos_o = s.cos_o, jv = 1.0;
+  if (s.kind == Integral::EavgRqmc) {  // density 2μ, μ² stratified over `strata` points, periodized as u_r
     const double u = u01_open(shift[2]) + double(k) / double(s.strata);
-    cos_o = std::sqrt(u - std::floor(u));
+    cos_o = std::sqrt(rqmc_radial(u - std::floor(u), jv));
   }
   const glm::dvec3 o(std::sqrt(1.0 - cos_o * cos_o), 0.0, cos_o);
   const glm::dvec3 m = sample_vis(o, u_phi, u_r, s.width);
-  return m.z > 0.0 ? energy_weight(s.brdf, m, o, s.width) : 0.0;
+  return m.z > 0.0 ? energy_weight(s.brdf, m, o, s.width) * jac * jv : 0.0;
 }
 
 // mfv run's albedo (twin of albedo_mis_microfacet in kernels/albedo.cl):

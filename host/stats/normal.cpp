@@ -1,6 +1,7 @@
 #include "stats/normal.hpp"
 
 #include <boost/math/distributions/binomial.hpp>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <boost/math/special_functions/beta.hpp>
@@ -20,6 +21,10 @@ double student_t_two_sided_quantile(double p, double dof) {
   const double q = 0.5 * std::min(p, 1.0);
   if (q >= 0.5) return 0;
   return boost::math::quantile(boost::math::complement(boost::math::students_t_distribution<double>(dof), q));
+}
+
+double chi_squared_upper_quantile(double p, double dof) {
+  return boost::math::quantile(boost::math::complement(boost::math::chi_squared_distribution<double>(dof), p));
 }
 
 double student_t_two_sided_p(double t, double dof) {

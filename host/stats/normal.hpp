@@ -16,6 +16,8 @@ double normal_two_sided_tail(double z);
 double student_t_two_sided_quantile(double p, double dof);
 // P(|T| > |t|) for Student's t with dof degrees of freedom (NaN for NaN, 0 for +-inf).
 double student_t_two_sided_p(double t, double dof);
+// x with P(X > x) = p for chi-squared X with dof degrees of freedom, p in (0, 1).
+double chi_squared_upper_quantile(double p, double dof);
 
 // The smallest k with P(Binomial(n, p) > k) <= q: a count of events of
 // probability at most p that exceeds it has chance at most q.
