@@ -5,6 +5,7 @@ packages=(cmake g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers openc
           catch2 libglm-dev librandom123-dev libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
           libboost-math-dev libstb-dev
           libpng-dev    # 16-bit PNG tables of mfv energy --layout
+          libtinyexr-dev  # float OpenEXR tables of mfv energy --layout and --compare
           gnuplot-nox   # gnuplot: optional at run time, for the plots
           python3-jsonschema python3-yaml)  # tests: outputs against schemas/, the CI snippets of docs/ci/
 missing=()

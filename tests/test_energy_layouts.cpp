@@ -14,6 +14,7 @@
 #include "run_mfv.hpp"
 #include "test_files.hpp"
 #include "util/error.hpp"
+#include "util/exr.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -183,7 +184,41 @@ TEST_CASE("16-bit PNG tables read back to their quantization", "[energy][compare
     }
 }
 
-TEST_CASE("mfv energy --compare passes mfv's own table in each layout, as CSV, C array and PNG", "[device][energy][compare]") {
+TEST_CASE("OpenEXR tables read back to their stored precision, float and half", "[energy][compare]") {
+  Scratch s;
+  const EnergyLayout& l = *parse_energy_layout("split-sum:3").layout;
+  const std::vector<double> axis = parse_energy_axis("--mu", "centers:3");
+  for (bool half : {false, true}) {
+    ExrImage img;
+    img.width = img.height = 3;
+    std::vector<double> v[2];
+    for (int q = 0; q < 2; ++q) {
+      ExrChannel c;
+      c.name = q == 0 ? "R" : "G";
+      c.half = half;
+      for (int i = 0; i < 9; ++i) {
+        v[q].push_back(std::fmod(0.123456789 * (i + 1) * (q + 1), 1.0) * (i == 4 ? 1e-6 : 1.0));
+        c.pixel.push_back(float(v[q].back()));
+      }
+      img.channels.push_back(c);
+    }
+    std::swap(img.channels[0], img.channels[1]);  // EXR's order: G, R
+    const std::string path = s.file(half ? "half.exr" : "float.exr", exr_encode(img));
+    const std::vector<TheirTable> t = read_their_table(path, l, axis, {0.1, 0.2, 0.3}, axis);
+    REQUIRE(t.size() == 2);
+    for (size_t q = 0; q < 2; ++q)
+      for (size_t c = 0; c < 9; ++c) {
+        CAPTURE(half, q, c, v[q][c], t[q].value[c], t[q].precision[c]);
+        CHECK(t[q].quantity == (q == 0 ? "A" : "B"));
+        CHECK(t[q].where[c] == fmt::format("pixel ({}, {}) channel {}", c % 3, c / 3, q == 0 ? "R" : "G"));
+        CHECK(std::fabs(t[q].value[c] - v[q][c]) <= t[q].precision[c]);
+        // the bound is half an ulp of the stored type, not looser
+        CHECK(t[q].precision[c] <= (half ? std::max(v[q][c] * 0x1p-11, 0x1p-25) : v[q][c] * 0x1p-24) * (1 + 1e-3));
+      }
+  }
+}
+
+TEST_CASE("mfv energy --compare passes mfv's own table in each layout, as CSV, C array, PNG and EXR", "[device][energy][compare]") {
   if (!test::device_runtime()) return;
   for (std::string layout : {"split-sum:4", "kulla-conty:4", "sheen:4"}) {
     Scratch s;
@@ -191,7 +226,7 @@ TEST_CASE("mfv energy --compare passes mfv's own table in each layout, as CSV, C
     std::string stem = layout.substr(0, layout.find(':'));
     std::replace(stem.begin(), stem.end(), '-', '_');
     // CSV (with its standard errors) against another seed; C array and PNG against the same seed
-    for (std::string f : {stem + ".csv", stem + ".h", stem + ".png"}) {
+    for (std::string f : {stem + ".csv", stem + ".h", stem + ".png", stem + ".exr"}) {
       const std::string seed = f.find(".csv") != std::string::npos ? "2" : "1";
       Run r = run_mfv("energy --layout " + layout + kFast + "--seed " + seed + " --compare " + s / ("own/layout/" + f));
       CAPTURE(layout, f, r.out);
@@ -243,6 +278,24 @@ TEST_CASE("mfv energy --compare flags a planted 1e-4 error in one cell, naming i
   CAPTURE(r.out);
   CHECK(r.code == 1);
   CHECK(r.out.find("FAIL: ") != std::string::npos);
+  // the same 1e-4 in B at pixel (3, 2) of the float EXR, and the EXR transposed
+  ExrImage img = exr_decode(slurp(s / "own/layout/split_sum.exr"), "own");
+  REQUIRE(img.channels.size() == 2);
+  ExrImage plant_exr = img, tr_exr = img;
+  REQUIRE(plant_exr.channels[0].name == "G");
+  plant_exr.channels[0].pixel[2 * 4 + 3] += 1e-4f;
+  r = run_mfv("energy --layout split-sum:4" + kFast + "--compare " + s.file("planted.exr", exr_encode(plant_exr)));
+  CAPTURE(r.out);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("FAIL: 1 of 32 cells") != std::string::npos);
+  CHECK(std::regex_search(r.out, std::regex("B +pixel \\(3, 2\\) channel G .* FAIL")));
+  for (auto& c : tr_exr.channels)
+    for (size_t a = 0; a < 4; ++a)
+      for (size_t k = 0; k < 4; ++k) c.pixel[a * 4 + k] = img.find(c.name)->pixel[k * 4 + a];
+  r = run_mfv("energy --layout split-sum:4" + kFast + "--compare " + s.file("transposed.exr", exr_encode(tr_exr)));
+  CAPTURE(r.out);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("FAIL: ") != std::string::npos);
 }
 
 TEST_CASE("mfv energy --compare refuses a bad table with one line naming the file, row and field, exit 2", "[energy][compare]") {
@@ -285,4 +338,27 @@ TEST_CASE("mfv energy --compare refuses a bad table with one line naming the fil
   Run r = run_mfv("energy --layout split-sum:2 --compare " + s.file("small.png", png16({0.5, 0.5, 0.5}, 1, 1, 3)));
   require_one_line_error(r);
   CHECK(r.out.find("1 x 1 pixels") != std::string::npos);
+  // EXR: not one, the wrong size, a NaN pixel, a missing channel
+  auto exr = [](std::vector<std::pair<std::string, std::vector<float>>> ch, int w, int h) {
+    ExrImage img;
+    img.width = w, img.height = h;
+    for (auto& [name, px] : ch) img.channels.push_back({name, px});
+    return exr_encode(img);
+  };
+  const std::vector<float> ok(4, 0.5f);
+  std::vector<float> nan = ok;
+  nan[3] = std::nanf("");
+  const std::vector<Bad> bad_exr = {
+      {"bad.exr", "not an exr", "not a readable OpenEXR image"},
+      {"small.exr", exr({{"G", {0.1f}}, {"R", {0.5f}}}, 1, 1), "1 x 1 pixels"},
+      {"nan.exr", exr({{"G", ok}, {"R", nan}}, 2, 2), "pixel (1, 1) channel R: nan is not a finite number"},
+      {"gray.exr", exr({{"Y", ok}}, 2, 2), "no channel R for A"},
+  };
+  for (auto& b : bad_exr) {
+    r = run_mfv("energy --layout split-sum:2 --compare " + s.file(b.name, b.text));
+    CAPTURE(b.name, b.says);
+    require_one_line_error(r);
+    CHECK(r.out.find(b.name) != std::string::npos);
+    CHECK(r.out.find(b.says) != std::string::npos);
+  }
 }

@@ -1,10 +1,11 @@
 // mfv energy --compare's readers (checks/energy_compare.hpp): CSV, C/C++
-// array literals and PNG images into the layout's cells, strictly: any cell
+// array literals, PNG and OpenEXR images into the layout's cells, strictly: any cell
 // missing, repeated, off the axes, non-numeric or NaN is an error naming the
 // file, row and field.
 #include "checks/energy_compare.hpp"
 
 #include "util/error.hpp"
+#include "util/exr.hpp"
 #include "util/files.hpp"
 #include "util/parse.hpp"
 
@@ -277,6 +278,18 @@ std::vector<TheirTable> read_c_arrays(const std::string& path, const EnergyLayou
   return out;
 }
 
+// The quantities a w x h image of the layout holds: its per-cell ones (nm x
+// na pixels, mu across, width down) or its per-width ones (na x 1).
+std::vector<std::string> image_quantities(const std::string& path, const EnergyLayout& layout, size_t nm, size_t na,
+                                          size_t w, size_t h) {
+  std::vector<std::string> per_cell, per_width;
+  for (auto& q : layout.quantities) (layout_quantity_per_cell(q) ? per_cell : per_width).push_back(q);
+  if (w == nm && h == na) return per_cell;
+  if (w == na && h == 1 && !per_width.empty()) return per_width;
+  throw Error(fmt::format("{}: {} x {} pixels; layout {} wants {} x {} (mu across, width down){}", path, w, h,
+                          layout.name, nm, na, per_width.empty() ? "" : fmt::format(" or {} x 1 (E_avg)", na)));
+}
+
 std::vector<TheirTable> read_png(const std::string& path, const EnergyLayout& layout, const std::vector<double>& mu,
                                  const std::vector<double>& alpha) {
   int w = 0, h = 0, ch = 0;
@@ -285,15 +298,7 @@ std::vector<TheirTable> read_png(const std::string& path, const EnergyLayout& la
                                                     : static_cast<void*>(stbi_load(path.c_str(), &w, &h, &ch, 0)),
                                             stbi_image_free);
   if (!px) throw Error(fmt::format("{}: not a readable PNG ({})", path, stbi_failure_reason()));
-  std::vector<std::string> per_cell, per_width;
-  for (auto& q : layout.quantities) (layout_quantity_per_cell(q) ? per_cell : per_width).push_back(q);
-  const size_t nm = mu.size(), na = alpha.size();
-  std::vector<std::string> qs;
-  if (size_t(w) == nm && size_t(h) == na) qs = per_cell;
-  else if (size_t(w) == na && h == 1) qs = per_width;
-  if (qs.empty())
-    throw Error(fmt::format("{}: {} x {} pixels; layout {} wants {} x {} (mu across, width down){}", path, w, h,
-                            layout.name, nm, na, per_width.empty() ? "" : fmt::format(" or {} x 1 (E_avg)", na)));
+  const std::vector<std::string> qs = image_quantities(path, layout, mu.size(), alpha.size(), size_t(w), size_t(h));
   if (size_t(ch) < qs.size() || (qs.size() == 1 && ch != 1 && ch != 2))
     throw Error(fmt::format("{}: {} channels; layout {} stores {} ({})", path, ch, layout.name, layout.image_channels,
                             qs.size()));
@@ -313,6 +318,35 @@ std::vector<TheirTable> read_png(const std::string& path, const EnergyLayout& la
   return out;
 }
 
+// An OpenEXR table: the layout's image as the PNG's (N x N, or N x 1 for
+// E_avg), one quantity in Y (or the only channel, or R), two in R and G;
+// float channels read to half a float ulp, half ones to half a half ulp.
+std::vector<TheirTable> read_exr(const std::string& path, const EnergyLayout& layout, const std::vector<double>& mu,
+                                 const std::vector<double>& alpha) {
+  const ExrImage img = exr_decode(read_text_file(path, "--compare"), path);
+  const size_t w = size_t(img.width), h = size_t(img.height);
+  const std::vector<std::string> qs = image_quantities(path, layout, mu.size(), alpha.size(), w, h);
+  std::vector<TheirTable> out;
+  for (size_t j = 0; j < qs.size(); ++j) {
+    const ExrChannel* ch = qs.size() == 1 ? img.find("Y") : img.find(std::string(1, "RG"[j]));
+    if (!ch && qs.size() == 1) ch = img.channels.size() == 1 ? &img.channels[0] : img.find("R");
+    if (!ch)
+      throw Error(fmt::format("{}: no channel {} for {} (layout {}: {})", path, qs.size() == 1 ? "Y" : std::string(1, "RG"[j]),
+                              qs[j], layout.name, qs.size() == 1 ? "Y, R or a single channel" : "R = A, G = B"));
+    TheirTable t = empty_quantity(path, qs[j], w * h);
+    for (size_t c = 0; c < t.value.size(); ++c) {
+      t.value[c] = double(ch->pixel[c]);
+      t.where[c] = fmt::format("pixel ({}, {}) channel {}", c % w, c / w, ch->name);
+      if (!std::isfinite(t.value[c]))
+        throw Error(fmt::format("{}: {}: {} is not a finite number", path, t.where[c], t.value[c]));
+      // half an ulp of the stored type (half: 11 significant bits, subnormal spacing 2^-24)
+      t.precision[c] = ch->half ? std::max(std::fabs(t.value[c]) * 0x1p-11, 0x1p-25) : std::fabs(t.value[c]) * 0x1p-24;
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<TheirTable> read_their_table(const std::string& path, const EnergyLayout& layout,
@@ -325,7 +359,8 @@ std::vector<TheirTable> read_their_table(const std::string& path, const EnergyLa
       ext == ".glsl")
     return read_c_arrays(path, layout, mu, alpha);
   if (ext == ".png") return read_png(path, layout, mu, alpha);
-  throw Error(fmt::format("--compare {}: want .csv, a C/C++ file (.h, .hpp, .c, .cpp, .inl) or .png", path));
+  if (ext == ".exr") return read_exr(path, layout, mu, alpha);
+  throw Error(fmt::format("--compare {}: want .csv, a C/C++ file (.h, .hpp, .c, .cpp, .inl), .png or .exr", path));
 }
 
 }  // namespace mfv

@@ -66,7 +66,7 @@ struct EnergyCommand : SharedValues {
     cmd->add_flag("--fp64", opt.fp64,
                   "the energy kernels in double (needs cl_khr_fp64; PoCL has it): no float32 rounding in the values");
     cmd->add_option("--compare", compare,
-                    "a team's table (.csv, C/C++ array file, .png) in --layout's layout: each cell against mfv's in "
+                    "a team's table (.csv, C/C++ array file, .png, .exr) in --layout's layout: each cell against mfv's in "
                     "units of total uncertainty, Holm over the cells; exit 0 pass, 1 a cell deviates, 2 bad input "
                     "(default --target 1e-5)");
     target_opt = cmd->add_option("--target", opt.target,

@@ -2,6 +2,7 @@
 
 #include "report/energy_report.hpp"
 #include "util/error.hpp"
+#include "util/exr.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -22,6 +23,23 @@ std::string stem(const EnergyLayout& l) {
   std::string s = l.name;
   std::replace(s.begin(), s.end(), '-', '_');
   return s;
+}
+
+// A float OpenEXR of t's quantities `qs` (w x h values each): channel Y for
+// one, R and G for two (docs/energy-layouts.md).
+std::string exr_table(const EnergyTable& t, const std::vector<std::string>& qs, size_t w, size_t h) {
+  ExrImage img;
+  img.width = int(w);
+  img.height = int(h);
+  for (size_t k = 0; k < qs.size(); ++k) {
+    ExrChannel c;
+    c.name = qs.size() == 1 ? "Y" : std::string(1, "RGB"[k]);
+    for (const Cell& v : quantity_of(t, qs[k])) c.pixel.push_back(float(v.mean));
+    img.channels.push_back(c);
+  }
+  std::sort(img.channels.begin(), img.channels.end(),
+            [](const ExrChannel& a, const ExrChannel& b) { return a.name < b.name; });  // EXR's channel order
+  return exr_encode(img);
 }
 
 void png_write_bytes(png_structp p, png_bytep data, png_size_t n) {
@@ -97,6 +115,8 @@ std::vector<std::pair<std::string, std::string>> energy_layout_files(const Energ
     for (size_t c = 0; c < nm * na; ++c)
       for (size_t k = 0; k < ch; ++k) px.push_back(k < per_cell.size() ? quantity_of(t, per_cell[k])[c].mean : 0.0);
     files.push_back({base + ".png", png16(px, nm, na, ch)});
+    // OpenEXR, 32-bit float: the same pixels; Y for one quantity, R and G for two (A, B)
+    files.push_back({base + ".exr", exr_table(t, per_cell, nm, na)});
     for (auto& q : per_width) {
       std::string e = head + wname + "," + q + "," + q + "_se\n";
       std::vector<double> row;
@@ -106,6 +126,7 @@ std::vector<std::pair<std::string, std::string>> energy_layout_files(const Energ
       }
       files.push_back({base + "_" + q + ".csv", e});
       files.push_back({base + "_" + q + ".png", png16(row, na, 1, 1)});
+      files.push_back({base + "_" + q + ".exr", exr_table(t, {q}, na, 1)});
     }
   }
   return files;
