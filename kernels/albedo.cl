@@ -56,8 +56,8 @@ static inline real eavg_cos(uint4 shift, uint k, uint strata, real* jac) {
 // 1 - u_r ~ α²/tan²θ_h, over a band of t of width ~α/tanθ_h instead of
 // α²/tan²θ_h, where the light crosses the horizon. Measured in double at
 // 2^20 points (GGX, height-correlated Smith): the replicate SE at
-// alpha = 0.04, mu = 0.5 from 3.2e-6 to 1.4e-7; alpha = 1, mu = 0.1 from
-// 4.4e-7 to 8e-8 (docs/performance.md). Twin: rqmc_radial in estimators.cpp.
+// alpha = 0.04, mu = 0.5 from 4.1e-6 to 9.2e-8; alpha = 1, mu = 0.1 from
+// 3.0e-7 to 7.1e-8 (docs/performance.md). Twin: rqmc_radial in estimators.cpp.
 static inline real rqmc_radial(real t, real* jac) {
   *jac = R(6.0) * t * (R(1.0) - t);
   return t * t * (R(3.0) - R(2.0) * t);

@@ -81,8 +81,8 @@ double record_unit(EnergyReport& rep, const EnergyUnit& u, const std::vector<dou
 // target / m, m = sqrt(chi²_{R-1}(1 - 0.05/U) / (R-1)) over U units: the
 // replicate SE scatters about the true one as a chi with R - 1 degrees of
 // freedom, so where every unit's true SE is target / m, all U report at
-// most the target with probability 0.95 (Bonferroni; m = 1.77 at R = 8 and
-// U = 24, 1.38 at R = 32). With one pilot at 256 points and b = 1 assumed,
+// most the target with probability 0.95 (Bonferroni; m = 1.79 at R = 8 and
+// U = 24, 1.37 at R = 32). With one pilot at 256 points and b = 1 assumed,
 // 6 of 48 values of the 12-point --fp64 query at 2e-6 ended above it
 // (worst 5.2e-6, E_avg at alpha = 0.16: 256 points predicted its error at
 // 65536 points 3x low); docs/performance.md.
