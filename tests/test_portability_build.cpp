@@ -55,11 +55,13 @@ const std::vector<Program>& programs() {
       {"stability --fp64 --terms-only --only 'D ggx'", true},  // stability.cl, MFV_DOUBLE
       // --timeout: the watchdog's 30 s floor is for users' code; on a loaded
       // 2-core machine Oclgrind's calibration launch alone came close to it
+      // user_brdf.cl, and on fp64 devices the user file's double twin
+      // (user/user_twin.*), where double is meant
       {"check --brdf " + kBrdfExamples +
            "ggx.cl --as ggx/smith_ggx_correlated/schlick --samples 64 --check reciprocity --timeout 600",
-       false},  // user_brdf.cl with MFV_USER_HAS_D, MFV_USER_HAS_G1
-      {"check --brdf " + kBrdfExamples + "lambert.cl --samples 64 --check reciprocity --timeout 600",
-       false},  // neither
+       false, true},  // with MFV_USER_HAS_D, MFV_USER_HAS_G1
+      {"check --brdf " + kBrdfExamples + "lambert.cl --samples 64 --check reciprocity --timeout 600", false,
+       true},  // neither
   };
   return p;
 }
