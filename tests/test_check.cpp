@@ -106,7 +106,7 @@ TEST_CASE("The mixture of widths is the same estimator in the kernel and the ref
   CHECK(est[0].mean == Approx(1.0).margin(6 * est[0].stderr_));  // d_norm, iid under the mixture
 }
 
-TEST_CASE("mfv check: a compile error points into the user's file; bad contracts get one line and exit 2",
+TEST_CASE("mfv check: a compile error points into the user's file, and bad contracts get one line and exit 2",
           "[check][cli]") {
   const Scratch s("mfv_check");
   const std::string syntax = s.file("syntax.cl",

@@ -29,7 +29,7 @@ TEST_CASE("densified grids keep every point and put density - 1 more between nei
   CHECK_THROWS_AS(profile_density("huge"), Error);
 }
 
-TEST_CASE("mfv run --profile deep plans over a million integrals; the default profile is the default plan", "[profile]") {
+TEST_CASE("mfv run --profile deep plans over a million integrals, and the default profile is the default plan", "[profile]") {
   SuiteOptions opt;
   const size_t def = plan_integrals(make_suite_plans(opt));
   opt.density = profile_density("default");

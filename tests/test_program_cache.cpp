@@ -128,7 +128,7 @@ TEST_CASE("A changed source or option is a new cache entry", "[device][program_c
   CHECK(rt.build_stats().cached == 1);
 }
 
-TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing; a bad value is an error",
+TEST_CASE("MFV_PROGRAM_CACHE=0 or unset writes nothing, and a bad value is an error",
           "[device][program_cache][bad_input]") {
   if (!test::device_runtime()) return;
   test::Scratch dir("mfv_program_cache_off");

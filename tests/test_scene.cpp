@@ -110,7 +110,7 @@ TEST_CASE("KHR_materials_anisotropy maps to alpha_t = mix(alpha, 1, strength^2),
   CHECK(iso[0].alpha == Approx(0.25));
 }
 
-TEST_CASE("a .glb container reads as its .gltf does; roughness 0 is checked at the floor with a warning", "[scene]") {
+TEST_CASE("a .glb container reads as its .gltf does, and roughness 0 is checked at the floor with a warning", "[scene]") {
   Scratch t;
   nlohmann::json j = nlohmann::json::parse(slurp(kData + "/scene.gltf"));
   j["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.0;

@@ -93,7 +93,7 @@ TEST_CASE("mfv run --shard reads K/N from 1 to N and refuses anything else", "[s
   }
 }
 
-TEST_CASE("the engines' shard variables give the shard, the variable named; bad values are errors", "[shard]") {
+TEST_CASE("the engines' shard variables give the shard, the variable named, and bad values are errors", "[shard]") {
   auto env_of = [](std::map<std::string, std::string> m) {
     return [m = std::move(m)](const char* n) -> const char* {
       auto it = m.find(n);
@@ -155,7 +155,7 @@ TEST_CASE("shards cover every integral of the run exactly once, each a like shar
 }
 
 TEST_CASE("three shards merged equal the single run record for record, with their index from --shard, Bazel's, "
-          "Slurm's and Kubernetes' variables; each bad merge input exits 2 naming the shard",
+          "Slurm's and Kubernetes' variables, and each bad merge input exits 2 naming the shard",
           "[shard][device]") {
   if (!device_runtime()) return;
   Scratch s("mfv_shard");
