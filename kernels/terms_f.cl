@@ -76,4 +76,27 @@ static inline real F_conductor(real VoH, real n, real k) {
   return R(0.5) * (rp + rs);
 }
 
+static inline real F_schlick_f90(real VoH, real f0, real f90) {
+  // Schlick 1994's Fresnel approximation with the grazing value f90 in
+  // place of 1 (Burley 2012 §5.3 uses it so for his diffuse; engines ship it):
+  // F = f0 + (f90 - f0)(1 - v.h)^5, evaluated as f0 (1 - w) + f90 w, w = m^5,
+  // m = 1 - v.h, with 1 - w = c (1 + m + m^2 + m^3 + m^4) (c = v.h exact):
+  // two non-negative terms, so nothing cancels when f90 < f0.
+  real c = saturate(VoH);
+  real m = R(1.0) - c;
+  real m2 = m * m;
+  real w = m2 * m2 * m;
+  real u = c * (R(1.0) + m + m2 + m2 * m + m2 * m2);
+  return f0 * u + f90 * w;
+}
+
+static inline real F_schlick_sg(real VoH, real f0, real unused) {
+  // Karis 2013, "Real Shading in Unreal Engine 4", Specular BRDF, Fresnel (the
+  // spherical-Gaussian fit of Schlick's (1 - v.h)^5, after Lagarde 2012):
+  // F = f0 + (1 - f0) 2^((-5.55473 v.h - 6.98316) v.h)
+  // 2^x as mfv_exp(x ln 2): no library call in float programs (common.cl)
+  real c = saturate(VoH);
+  return f0 + (R(1.0) - f0) * mfv_exp((R(-5.55473) * c - R(6.98316)) * c * R(0.69314718055994531));
+}
+
 MFV_TERMS_END

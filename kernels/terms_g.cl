@@ -129,6 +129,20 @@ static inline real G_hammon_002(real NoL, real NoV, real NoH, real VoH, real alp
   return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
+static inline real G_hammon_clamped(real NoL, real NoV, real NoH, real VoH, real alpha) {
+  // Hammon 2017, "PBR Diffuse Lighting for GGX+Smith Microsurfaces", slide
+  // "Approximating G2" (his fit of height-correlated Smith-GGX):
+  // G ~ 2 (n.l)(n.v) / lerp(2 (n.l)(n.v), n.l + n.v, α), with an engine's clamp:
+  // both cosines of the fit taken in [1e-4, 1] (engines floor n.v there), the
+  // outer 4 (n.l)(n.v) saturated. Symmetric in l and v, so reciprocal.
+  real l = saturate(NoL), v = saturate(NoV);
+  real cl = max(l, R(1e-4)), cv = max(v, R(1e-4));
+  // lerp written as two non-negative terms: no cancellation
+  real den = R(2.0) * cl * cv * (R(1.0) - alpha) + (cl + cv) * alpha;
+  real g = R(2.0) * l * v / den;
+  return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
+}
+
 // ---- Anisotropic Smith (tangent frame t = +x, b = +y, n = +z) -----------
 // Heitz 2014 ("Understanding the masking-shadowing function", anisotropic
 // distributions): the Λ of an anisotropic GGX or Beckmann is the isotropic Λ
@@ -205,6 +219,20 @@ static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real 
   // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))
   if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
   return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
+}
+
+static inline real G_neubelt_sheen(real NoL, real NoV, real NoH, real VoH, real unused) {
+  // Neubelt and Pettineo 2013, "Crafting a Next-Gen Material Pipeline for The
+  // Order: 1886", cloth BRDF visibility (after Ashikhmin and Premoze 2007):
+  // V = 1 / (4 (n.l + n.v - (n.l)(n.v))), returned as G = 4 (n.l)(n.v) V.
+  // Cosines above 1 (rounding) are taken as 1. (l + v) - l v loses at most
+  // one bit (l v <= (l + v) / 2); G = (min / den) max: the quotient lies in
+  // (0, 1] (den >= max(l, v)), so l v never underflows at grazing, and the
+  // form is symmetric in l and v to the bit (reciprocity).
+  real l = min(NoL, R(1.0)), v = min(NoV, R(1.0));
+  real den = (l + v) - l * v;
+  real g = (min(l, v) / den) * max(l, v);
+  return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 
 MFV_TERMS_END

@@ -145,7 +145,9 @@ inline std::vector<NamedG2> all_g2() {
     v.push_back({"G_smith_ggx", ref::G_smith_ggx, a});
     v.push_back({"G_smith_ggx_correlated", ref::G_smith_ggx_correlated, a});
     v.push_back({"G_hammon_002", ref::G_hammon_002, a});
+    v.push_back({"G_hammon_clamped", ref::G_hammon_clamped, a});
   }
+  v.push_back({"G_neubelt_sheen", ref::G_neubelt_sheen, 0.0});
   for (double ap : {10.0, 1000.0}) v.push_back({"G_smith_phong", ref::G_smith_phong, ap});
   return v;
 }

@@ -202,7 +202,9 @@ TEST_CASE("Every G2 is zero when light or view is below the horizon", "[referenc
 TEST_CASE("Every G2 built on the half vector is zero when the facet faces away (VoH <= 0)", "[reference][g][g2]") {
   const double VoH = GENERATE(0.0, -0.0, -0.5);
   for (const auto& g : all_g2()) {
-    if (g.name == "G_implicit" || g.name == "G_hammon_002") continue;  // no h in them
+    if (g.name == "G_implicit" || g.name == "G_hammon_002" || g.name == "G_hammon_clamped" ||
+        g.name == "G_neubelt_sheen")
+      continue;  // no h in them
     CAPTURE(g.name, g.param, VoH);
     CHECK(g.fn(0.6, 0.7, 0.8, VoH, g.param) == 0.0);
   }

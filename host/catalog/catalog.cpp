@@ -1,5 +1,6 @@
 #include "catalog/catalog.hpp"
 
+#include "catalog/pairing.hpp"
 #include "catalog/roughness.hpp"
 #include "reference/reference.hpp"
 #include "util/error.hpp"
@@ -7,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
 
 namespace mfv {
 namespace ref_ = ::mfv::ref;
@@ -244,10 +246,66 @@ std::vector<Term> build_catalog() {
                      "Estevez and Kulla 2017 §3 fit ln Lambda of the Charlie D; masking takes the fit's error from "
                      "the exact Lambda by quadrature (host/checks/suite_sheen.cpp)"}};
   }
+  // Terms engines ship (issue 28), appended last; each checked in the pairing
+  // engines use it in (kPairings below), out of the shared grids.
+  {
+    auto* t = G("hammon_clamped", "G_hammon_clamped",
+                "Hammon 2017, \"PBR Diffuse Lighting for GGX+Smith Microsurfaces\" (fit of height-correlated "
+                "Smith-GGX), the fit's cosines floored at 1e-4 as engines clamp n.v",
+                "4(n.l)(n.v) * 0.5/mix(2 l v, l + v, alpha), l, v = max(cosine, 1e-4)",
+                Param{"alpha", 0.0, 1.0, 0.3, "GGX width alpha, the fit's mix weight"}, Roughness::Alpha,
+                ref_::G_hammon_clamped);
+    t->own_lobe = true;
+  }
+  {
+    auto* t = G("neubelt_sheen", "G_neubelt_sheen",
+                "Neubelt and Pettineo 2013, \"Crafting a Next-Gen Material Pipeline for The Order: 1886\" (cloth "
+                "visibility, after Ashikhmin and Premoze 2007)",
+                "4(n.l)(n.v) / (4 (n.l + n.v - (n.l)(n.v)))", std::nullopt, Roughness::None, ref_::G_neubelt_sheen);
+    t->own_lobe = true;
+  }
+  {
+    auto* t = F("schlick_f90", "F_schlick_f90", "Schlick 1994 with the grazing value f90 (Burley 2012 §5.3)",
+                "F0 + (F90-F0)(1-l.h)^5",
+                {{"f0", 0.0, 1.0, 0.04, "reflectance at normal incidence (per channel)"},
+                 {"f90", 0.0, 1.0, 1.0, "reflectance at grazing incidence"}},
+                ref_::F_schlick_f90);
+    t->own_lobe = true;
+    // m = 1 - c carries a relative rounding up to u, which m^5 multiplies by
+    // 5; four products, the sum of five in u and the final f0 u + f90 w add
+    // ~10 roundings of u: ~15 u = 7.5 ulps (measured worst 6.95, mfv agree)
+    t->ulp_budget = 12;
+    // f90 below f0 is in range: F then falls towards grazing
+    t->check_points = {{0.04, 1.0, "f0=0.04,f90=1"}, {0.04, 0.5, "f0=0.04,f90=0.5"}, {1.0, 0.0, "f0=1,f90=0"}};
+  }
+  {
+    auto* t = F("schlick_sg", "F_schlick_sg",
+                "Karis 2013, \"Real Shading in Unreal Engine 4\", Fresnel (spherical-Gaussian fit, Lagarde 2012)",
+                "F0 + (1-F0) 2^((-5.55473 l.h - 6.98316) l.h)",
+                {{"f0", 0.0, 1.0, 0.04, "reflectance at normal incidence (per channel)"}}, ref_::F_schlick_sg);
+    t->own_lobe = true;
+    // 2^x = exp(x ln 2): x = (a c + b) c ln 2 reaches |x| = 8.7, formed in four
+    // roundings (~4 |x| u absolute), which exp turns into that relative error
+    // of 2^x: ~35 u = 17 ulps, plus exp's own 2-8 ulps (common.cl): 24
+    // (measured worst 8.3, mfv agree)
+    t->ulp_budget = 24;
+    t->check_points = {{0.0, 0, "f0=0"}, {0.04, 0, "f0=0.04"}, {1.0, 0, "f0=1"}};
+  }
   return c;
 }
 
 }  // namespace
+
+// The engine terms' pairings (catalog/pairing.hpp): the Gs under the D they
+// are shipped with, the Fs under GGX with the correlated Smith G.
+const Pairing* engine_pairing(const Term& t) {
+  static const std::map<std::string, Pairing> kPairings = {{"hammon_clamped", {"ggx", ""}},
+                                                           {"neubelt_sheen", {"charlie", ""}},
+                                                           {"schlick_f90", {"ggx", "smith_ggx_correlated"}},
+                                                           {"schlick_sg", {"ggx", "smith_ggx_correlated"}}};
+  auto it = kPairings.find(t.id);
+  return it == kPairings.end() ? nullptr : &it->second;
+}
 
 const SmithFit* Term::fit_for(const std::string& d_id) const {
   for (auto& f : smith_for)

@@ -114,8 +114,8 @@ std::vector<CheckKind> make_kinds() {
     c.n_view = 24;
     c.fs = FSet::Real;
     c.upper_only = true;
-    c.sources = kSourceGrid | kSourceModels | kSourceScene | kSourceUser;
-    c.not_taken = "the anisotropic and sheen pairs are checked with F = 1 only (furnace)";
+    c.sources = kSourceGrid | kSourceModels | kSourceSheen | kSourceScene | kSourceUser;
+    c.not_taken = "the anisotropic pairs are checked with F = 1 only (furnace); of the own lobes, only engines' F terms";
     c.expect = expect_energy;
     c.verdict = "as furnace, but F <= 1 may hide a gain: may fail where furnace must";
     c.summary = "energy with every F (and whole models at 10 lights): the albedo is at most 1 (one-sided)";
@@ -141,8 +141,8 @@ std::vector<CheckKind> make_kinds() {
     c.domain = Domain::Hemisphere;
     c.base_samples = 64;  // pairs per work-item at scale 1 (record_reciprocity)
     c.expected = 0.0;
-    c.sources = kSourceGrid | kSourceModels | kSourceScene | kSourceUser;
-    c.not_taken = "the anisotropic and sheen pairs' terms are reciprocal by their form (agree compares them)";
+    c.sources = kSourceGrid | kSourceModels | kSourceSheen | kSourceScene | kSourceUser;
+    c.not_taken = "the anisotropic pairs' terms are reciprocal by their form (agree compares them)";
     c.verdict = "holds for every D x G x F; whole models from their cases (ModelCase::reciprocity)";
     c.summary = "f(i,o) = f(o,i) to float rounding over sampled pairs (a bounded maximum)";
   }

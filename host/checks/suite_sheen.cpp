@@ -3,10 +3,16 @@
 // in d_norm, masking and furnace. The shared-width D x G grids leave them out
 // (terms_of): the Charlie D pairs with no other G, and its mass sits at
 // grazing microfacet normals, so the proposal takes its own width here.
+// With them, the terms engines ship (issue 28; catalog/pairing.hpp): each
+// G in its pairing under masking and furnace, each F under energy, all in
+// reciprocity.
+#include "catalog/pairing.hpp"
 #include "checks/check_table.hpp"
 #include "checks/furnace_truth.hpp"
 #include "checks/integrate.hpp"
 #include "checks/suite.hpp"
+#include "checks/registry.hpp"
+#include "runtime/dispatch.hpp"
 #include "numeric/hemisphere_quadrature.hpp"
 #include "util/parallel.hpp"
 
@@ -53,7 +59,7 @@ IntegralSpec sheen_spec(IntegralKind kind, const Term* d, const Term* g, const T
   m.g = g;
   m.f = f;
   m.pd = alpha;
-  m.pg = g ? alpha : 0.0;
+  m.pg = g ? native_widths(*d, *g, alpha).pg : 0.0;
   m.width = proposal_width(*d, alpha);
   m.cos_o = cos_o;
   return spec_of(m);
@@ -67,15 +73,52 @@ double sheen_masking_closed_form(const Term& d, const Term& g, double alpha, dou
   return g.ref_g1(cos_o, alpha) * (1.0 + lambda_by_quadrature(d, alpha, cos_o));
 }
 
+namespace {
+
+// One pairing of own-lobe terms mfv run checks: D, G and F (F none: the furnace's).
+struct LobePair {
+  const Term *d, *g, *f;
+  bool smith;  // g's G1 is a Smith fit of d (masking from the closed form)
+};
+
+// The sheen pairs (a G whose Smith fit names the D), then the engine terms'
+// pairings (engine_pairing), in catalog order.
+std::vector<LobePair> lobe_pairs() {
+  std::vector<LobePair> out;
+  const Term* none = try_find_term("none", Kind::F);
+  for (auto* d : own_lobe_terms_of(Kind::D))
+    for (auto* g : own_lobe_terms_of(Kind::G))
+      if (g->fit_for(d->id)) out.push_back({d, g, none, true});
+  for (auto* g : own_lobe_terms_of(Kind::G))
+    if (const Pairing* p = engine_pairing(*g)) out.push_back({try_find_term(p->d, Kind::D), g, none, false});
+  for (auto* f : own_lobe_terms_of(Kind::F))
+    if (const Pairing* p = engine_pairing(*f))
+      out.push_back({try_find_term(p->d, Kind::D), try_find_term(p->g, Kind::G), f, false});
+  return out;
+}
+
+// A plan's terms, each once (the generated dispatch has one case per term).
+void add_terms(TermSelection& t, const Term* d, const Term* g, const Term* f) {
+  auto once = [](std::vector<const Term*>& v, const Term* x) {
+    if (x && std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+  };
+  once(t.d, d);
+  once(t.g, g);
+  once(t.f, f);
+}
+
+std::string pair_name(const LobePair& p, bool with_f) {
+  return p.d->id + "/" + p.g->id + (with_f ? "/" + p.f->id : "");
+}
+
+}  // namespace
+
 std::vector<std::string> sheen_model_names() {
   std::vector<std::string> out;
-  for (auto* d : own_lobe_terms_of(Kind::D)) {
-    out.push_back(d->id);
-    for (auto* g : own_lobe_terms_of(Kind::G))
-      if (g->fit_for(d->id)) {
-        out.push_back(d->id + "/" + g->id);
-        out.push_back(d->id + "/" + g->id + "/none");
-      }
+  for (auto* d : own_lobe_terms_of(Kind::D)) out.push_back(d->id);
+  for (auto& p : lobe_pairs()) {
+    out.push_back(pair_name(p, false));
+    out.push_back(pair_name(p, true));
   }
   return out;
 }
@@ -105,18 +148,18 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
     if (!p.specs.empty()) plans.push_back(p);
     return true;
   }
-  auto pairs = [&](auto add) {
-    for (auto* d : own_lobe_terms_of(Kind::D))
-      for (auto* g : own_lobe_terms_of(Kind::G)) {
-        const std::string name = d->id + "/" + g->id + (shape == Shape::Masking ? "" : "/none");
-        if (g->fit_for(d->id) && suite_model_wanted(opt.models, name)) add(*d, *g);
-      }
+  // The pairs of G's own (F none) for masking and furnace; `smith`: those
+  // whose G1 is a Smith fit of D, else the engine Gs
+  auto pairs = [&](bool smith, auto add) {
+    for (auto& lp : lobe_pairs())
+      if (lp.smith == smith && lp.f == none &&
+          suite_model_wanted(opt.models, pair_name(lp, shape != Shape::Masking)))
+        add(*lp.d, *lp.g);
   };
   if (shape == Shape::Masking) {
     Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
-    pairs([&](const Term& d, const Term& g) {
-      p.terms.d.push_back(&d);
-      p.terms.g.push_back(&g);
+    pairs(true, [&](const Term& d, const Term& g) {
+      add_terms(p.terms, &d, &g, nullptr);
       // The expectation from the closed form at the float cosine the kernel takes
       // (a quadrature each, on the host's threads): a fitted G1 is D's Smith G1
       // within the fit's error there, the tolerance.
@@ -140,17 +183,91 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
         p.points.push_back(pt);
       }
     });
+    // an engine's G with no Smith G1: the registry's expectation (it must fail, and says why)
+    pairs(false, [&](const Term& d, const Term& g) {
+      add_terms(p.terms, &d, &g, nullptr);
+      for (double a : kSheenAlphas)
+        for (double co : views) {
+          p.specs.push_back(sheen_spec(kind.kind, &d, &g, nullptr, a, co));
+          PointResult pt = sheen_point(kind.check, &d, &g, nullptr, a);
+          pt.params["cos_o"] = co;
+          const Expectation e = expect(kind.check, &d, &g, a, 0, 0);
+          pt.expect = e.expect;
+          pt.reason = e.reason;
+          pt.tolerance = e.tolerance;
+          p.points.push_back(pt);
+        }
+    });
     if (!p.specs.empty()) plans.push_back(p);
+    return true;
+  }
+  if (shape == Shape::Energy) {
+    // an engine's F under its D and G (F <= 1, so the albedo stays under the
+    // furnace's): the registry's expectation, at the F's check points
+    Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
+    for (auto& lp : lobe_pairs()) {
+      if (lp.f == none || !suite_model_wanted(opt.models, pair_name(lp, true))) continue;
+      add_terms(p.terms, lp.d, lp.g, lp.f);
+      for (auto& fp : lp.f->check_points)
+        for (double a : kSheenAlphas)
+          for (double co : views) {
+            MicrofacetIntegral m;
+            m.kind = kind.kind;
+            m.d = lp.d, m.g = lp.g, m.f = lp.f;
+            const NativeWidths w = native_widths(*lp.d, *lp.g, a);
+            m.pd = w.pd, m.pg = w.pg, m.f0 = fp.p0, m.f1 = fp.p1;
+            m.width = proposal_width(*lp.d, a);
+            m.cos_o = co;
+            p.specs.push_back(spec_of(m));
+            PointResult pt = sheen_point(kind.check, lp.d, lp.g, lp.f, a);
+            pt.params["cos_o"] = co;
+            pt.params[lp.f->params[0].name] = fp.p0;
+            if (lp.f->params.size() > 1) pt.params[lp.f->params[1].name] = fp.p1;
+            pt.upper_only = kind.upper_only;
+            const Expectation e = expect(kind.check, lp.d, lp.g, a, fp.p0, 0);
+            pt.expect = e.expect;
+            pt.reason = e.reason;
+            pt.tolerance = e.tolerance;
+            p.points.push_back(pt);
+          }
+    }
+    if (!p.specs.empty()) plans.push_back(p);
+    return true;
+  }
+  if (shape == Shape::Pairs) {
+    // reciprocity batches of every pairing (as the grid's: alpha 0.3, each F point)
+    Plan p;
+    p.check = kind.check;
+    for (auto& lp : lobe_pairs()) {
+      if (!suite_model_wanted(opt.models, pair_name(lp, true))) continue;
+      add_terms(p.terms, lp.d, lp.g, lp.f);
+      const NativeWidths w = native_widths(*lp.d, *lp.g, 0.3);
+      for (auto& fp : lp.f->check_points) {
+        IntegralSpec s;
+        s.d = term_index(*lp.d);
+        s.g = term_index(*lp.g);
+        s.f = term_index(*lp.f);
+        s.pd = float(w.pd);
+        s.pg = float(w.pg);
+        s.f0 = float(fp.p0);
+        s.f1 = float(fp.p1);
+        p.specs.push_back(s);
+        PointResult pt = sheen_point(kind.check, lp.d, lp.g, lp.f, 0.3);
+        pt.expected = 0.0;
+        if (!fp.label.empty()) pt.params[lp.f->params[0].name] = fp.p0;
+        if (lp.f->params.size() > 1) pt.params[lp.f->params[1].name] = fp.p1;
+        p.points.push_back(pt);
+      }
+    }
+    plans.push_back(p);
     return true;
   }
   if (shape == Shape::Furnace) {
     // white furnace (F = 1): the sheen lobe's albedo E_sheen(cos_o) <= 1
     // (two-sided in the pool, against the quadrature of checks/furnace_truth)
     Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
-    pairs([&](const Term& d, const Term& g) {
-      p.terms.d.push_back(&d);
-      p.terms.g.push_back(&g);
-      p.terms.f = {none};
+    auto furnace = [&](const Term& d, const Term& g) {
+      add_terms(p.terms, &d, &g, none);
       for (double a : kSheenAlphas)
         for (double co : views) {
           p.specs.push_back(sheen_spec(kind.kind, &d, &g, none, a, co));
@@ -164,15 +281,21 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
           const KnownValue q = cached_albedo_by_quadrature(p.specs.back());  // attach_furnace_truth reuses it
           if (q.value - q.error > 1.1) {  // ~5 standard errors of a default-size integral
             pt.expect = Expect::Fail;
-            pt.reason = fmt::format("the fitted Lambda of {} under-masks {} here: E = {:.3g} by quadrature", g.id, d.id,
-                                    q.value);
+            pt.reason = g.fit_for(d.id)
+                            ? fmt::format("the fitted Lambda of {} under-masks {} here: E = {:.3g} by quadrature",
+                                          g.id, d.id, q.value)
+                            : fmt::format("{} is no Smith G of {} and masks too little here: E = {:.3g} by "
+                                          "quadrature",
+                                          g.id, d.id, q.value);
           } else if (q.value + q.error > 1.0) {
             pt.expect = Expect::May;
             pt.reason = fmt::format("E = {:.3g} by quadrature, within noise of 1", q.value);
           }
           p.points.push_back(pt);
         }
-    });
+    };
+    pairs(true, furnace);
+    pairs(false, furnace);
     if (!p.specs.empty()) plans.push_back(p);
     return true;
   }

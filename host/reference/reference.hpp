@@ -81,6 +81,10 @@ double G_smith_ggx_correlated(double NoL, double NoV, double NoH, double VoH, do
 double G_hammon_002(double NoL, double NoV, double NoH, double VoH, double alpha);
 // KHR_materials_sheen's Charlie visibility times 4 NoL NoV: 1 / (1 + Λ(l) + Λ(v))
 double G_charlie_sheen(double NoL, double NoV, double NoH, double VoH, double alpha);
+// Hammon 2017's fit of height-correlated Smith-GGX, the fit's cosines floored at 1e-4
+double G_hammon_clamped(double NoL, double NoV, double NoH, double VoH, double alpha);
+// Neubelt and Pettineo 2013's cloth (sheen) visibility times 4 NoL NoV: NoL NoV / (NoL + NoV - NoL NoV)
+double G_neubelt_sheen(double NoL, double NoV, double NoH, double VoH, double unused);
 // Anisotropic separable Smith G1(l) G1(v) (directions l, v; VoH for the χ+ test).
 double G_smith_ggx_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
 double G_smith_beckmann_aniso(const glm::dvec3& l, const glm::dvec3& v, double VoH, double ax, double ay);
@@ -92,5 +96,7 @@ double F_none(double VoH, double unused0, double unused1);
 double F_schlick(double VoH, double f0, double unused);
 double F_dielectric(double VoH, double eta, double unused);  // eta = eta_t / eta_i
 double F_conductor(double VoH, double n, double k);          // complex index n + i k
+double F_schlick_f90(double VoH, double f0, double f90);      // Schlick with the grazing value f90
+double F_schlick_sg(double VoH, double f0, double unused);    // Karis 2013's spherical-Gaussian Schlick
 
 }  // namespace mfv::ref

@@ -86,4 +86,24 @@ double F_conductor(double VoH, double n, double k) {
   return 0.5 * (std::norm(r_s) + std::norm(r_p));
 }
 
+double F_schlick_f90(double VoH, double f0, double f90) {
+  // Schlick 1994's approximation with the grazing reflectance f90 in place of 1:
+  //   F = f0 + (f90 − f0)(1 − cosθ)^5
+  // From the larger end's side: f0 + (f90 − f0) w for f90 >= f0 (both terms
+  // >= 0), else f90 + (f0 − f90)(1 − w), where 1 − w = −expm1(5 log1p(−c))
+  // keeps its digits as c -> 0 (then F -> f90 and nothing cancels).
+  const double c = saturate(VoH);
+  const double w = std::pow(1.0 - c, 5.0);
+  if (f90 >= f0) return f0 + (f90 - f0) * w;
+  return f90 + (f0 - f90) * -std::expm1(5.0 * std::log1p(-c));
+}
+
+double F_schlick_sg(double VoH, double f0, double) {
+  // Karis 2013, "Real Shading in Unreal Engine 4", Specular BRDF, Fresnel: Schlick's
+  // with the spherical-Gaussian fit of (1 − cosθ)^5 (Lagarde 2012):
+  //   F = f0 + (1 − f0) 2^((−5.55473 cosθ − 6.98316) cosθ)
+  const double c = saturate(VoH);
+  return f0 + (1.0 - f0) * std::exp2((-5.55473 * c - 6.98316) * c);
+}
+
 }  // namespace mfv::ref

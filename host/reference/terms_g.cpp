@@ -177,6 +177,19 @@ double G_hammon_002(double NoL, double NoV, double, double, double alpha) {
   return 4.0 * NoL * NoV * V;
 }
 
+double G_hammon_clamped(double NoL, double NoV, double, double, double alpha) {
+  // Hammon 2017, "PBR Diffuse Lighting for GGX+Smith Microsurfaces",
+  // "Approximating G2": G2 ~ 0.5 / lerp(2 |n.l||n.v|, |n.l| + |n.v|, alpha)
+  // as the visibility V = G2 / (4 |n.l||n.v|), so G = 4 (n.l)(n.v) V.
+  // The engine's clamp: the fit's cosines floored at 1e-4 (n.v -> 0 would
+  // make V grow without bound at alpha = 0), all cosines at most 1.
+  if (NoL <= 0.0 || NoV <= 0.0) return 0.0;  // below the horizon
+  const double l = std::min(NoL, 1.0), v = std::min(NoV, 1.0);
+  const double fl = std::max(l, 1e-4), fv = std::max(v, 1e-4);
+  const double lerp = 2.0 * fl * fv + (fl + fv - 2.0 * fl * fv) * alpha;
+  return 4.0 * l * v * (0.5 / lerp);
+}
+
 // ---- Anisotropic Smith ---------------------------------------------------
 // Heitz 2014, "Understanding the masking-shadowing function", anisotropic
 // distributions: stretching the microsurface by (1/ax, 1/ay) maps it onto
@@ -302,6 +315,17 @@ double G_charlie_sheen(double NoL, double NoV, double, double VoH, double alpha)
   // height-correlated form with the Charlie Λ.
   if (NoL <= 0.0 || NoV <= 0.0 || VoH <= 0.0) return 0.0;
   return 1.0 / (1.0 + Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha));
+}
+
+double G_neubelt_sheen(double NoL, double NoV, double, double, double) {
+  // Neubelt and Pettineo 2013, "Crafting a Next-Gen Material Pipeline for
+  // The Order: 1886" (SIGGRAPH course), the cloth BRDF's visibility after
+  // Ashikhmin and Premoze 2007: V = 1 / (4 (n.l + n.v - (n.l)(n.v))).
+  // G = 4 (n.l)(n.v) V; cosines that rounded above 1 count as 1.
+  if (NoL <= 0.0 || NoV <= 0.0) return 0.0;  // below the horizon
+  const double l = std::min(NoL, 1.0), v = std::min(NoV, 1.0);
+  const double V = 1.0 / (4.0 * (l + v - l * v));
+  return 4.0 * l * v * V;
 }
 
 }  // namespace mfv::ref
