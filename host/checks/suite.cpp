@@ -1,6 +1,7 @@
 #include "checks/suite.hpp"
 
 #include "catalog/roughness.hpp"
+#include "checks/device_share.hpp"
 #include "checks/energy.hpp"
 #include "checks/furnace_truth.hpp"
 #include "checks/integrate.hpp"
@@ -154,12 +155,16 @@ void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::ve
   rep.stats.push_back({"reciprocity", specs.size(), specs.size() * uint64_t(pairs) * 2, secs});
 }
 
-void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep,
+              const std::vector<Integrator*>& others) {
   if (plan.specs.empty()) return;
   if (!plan.streams_set) assign_streams(plan.check, plan.specs);  // by identity (checks/streams.hpp), not by place
   in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<Estimate> est = in.run(plan.specs, plan.samples, opt.seed);
+  std::vector<Integrator*> all{&in};
+  all.insert(all.end(), others.begin(), others.end());
+  std::vector<Estimate> est = others.empty() ? in.run(plan.specs, plan.samples, opt.seed)
+                                             : run_shared(all, plan.specs, plan.samples, opt.seed, rep.device_shares);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < est.size(); ++i) {
     plan.points[i].estimate = est[i].mean;
@@ -219,7 +224,8 @@ SuitePlans make_suite_plans(const SuiteOptions& opt) {
   return sp;
 }
 
-void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep) {
+void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
+                     const std::vector<Runtime*>& more) {
   std::vector<Plan>& plans = sp.plans;
   Plan& rp = sp.reciprocity;
   // One program for every plan: the kernels specialized per term pair
@@ -231,12 +237,16 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
     terms.add(p.terms);
   }
   const double b0 = rt.build_stats().seconds;
+  PendingIntegrators pending = integrators_beside(more, terms);  // the other devices' builds beside this one
   Integrator in(rt, terms);
+  const std::vector<std::unique_ptr<Integrator>> others = integrators_ready(pending, rt, more, rep.device_shares);
+  std::vector<Integrator*> other;
+  for (auto& o : others) other.push_back(o.get());
   rep.build_seconds += rt.build_stats().seconds - b0;
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
     if (check_kind(plans[i].check).truth) attach_furnace_truth(plans[i]);  // its pooled test is two-sided
-    run_plan(in, plans[i], opt, rep);
+    run_plan(in, plans[i], opt, rep, other);
   }
   if (!rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
@@ -245,11 +255,11 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
   }
 }
 
-SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt) {
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Runtime*>& more) {
   validate_suite_options(opt);
   SuiteReport rep;
   SuitePlans sp = make_suite_plans(opt);
-  run_suite_plans(rt, sp, opt, rep);
+  run_suite_plans(rt, sp, opt, rep, more);
   // the pointwise kinds (agree, stability) run whole, never in a shard (docs/scale.md)
   run_pointwise_kinds(rt, opt, rep);
   if (rep.points.empty()) throw Error("no model matches the --model filter");

@@ -5,6 +5,7 @@
 
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
+#include "checks/device_share.hpp"
 #include "checks/registry.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
@@ -143,6 +144,7 @@ struct SuiteReport {
   std::string reference_note;     // replaces the reference line where no double twin runs (mfv check)
   std::string title = "mfv run";  // report heading and JUnit suite name
   bool list_passes = false;       // the console lists pass verdicts too (a handful of groups)
+  std::vector<DeviceShare> device_shares;  // mfv run --device all: what each device integrated
   bool reference_ok() const;
   bool gate_ok() const;  // every verdict as expected and the reference agrees
   // One line per reason the gate failed: the comparison, its worst case and its bound.
@@ -150,7 +152,10 @@ struct SuiteReport {
 };
 
 void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error naming the bad option
-SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt);
+// `more`: other devices that share the integration of every plan with `rt`
+// (mfv run --device all: checks/device_share.hpp); the reference comparison,
+// reciprocity and the pointwise kinds run on `rt`.
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Runtime*>& more = {});
 
 
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
@@ -177,7 +182,8 @@ struct SuitePlans {
   Plan reciprocity;
 };
 SuitePlans make_suite_plans(const SuiteOptions& opt);
-void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep);
+void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
+                     const std::vector<Runtime*>& more = {});
 // Which integrals of a plan the reference compares: every whole-model and
 // d_norm integral, and of each model x check its first and every k-th after it.
 std::vector<size_t> reference_subset(const Plan& plan, uint32_t every);
@@ -193,7 +199,9 @@ Plan new_plan(const std::string& check, uint64_t base_samples, double scale);
 // Runs the plan's integrals (each on the stream of its identity,
 // checks/streams.hpp), records estimates, timing and, when
 // opt.reference_samples > 0, the same-sample reference comparison into `rep`.
-void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
+// `others`: more devices sharing the integration (run_suite's `more`).
+void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep,
+              const std::vector<Integrator*>& others = {});
 // The same through a program built here with plan.terms (its build time goes to rep.build_seconds).
 void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 

@@ -11,7 +11,7 @@ void build_app(CLI::App& app, Globals& g, int& rc) {
   app.require_subcommand(1);
   app.add_option("--device", g.device,
                  "OpenCL device: index, exact name, or a name substring that matches one "
-                 "device (default: first GPU, else CPU); bench: all");
+                 "device (default: first GPU, else CPU); bench and run: all, run: a comma list (docs/scale.md)");
   app.add_option("--kernel-dir", g.kernel_dir, "read kernels from this folder instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   add_devices(app, g, rc);

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace mfv::cli {
 
@@ -79,8 +80,14 @@ struct RunCommand : SharedValues {
     };
     if (dry && !scene_path.empty()) throw Error("--dry-run does not apply to --scene");
     if (opt.density > 1 && !scene_path.empty()) throw Error("--profile does not apply to --scene");
+    if (is_device_set(g.device) && (dry || !scene_path.empty() || (!shard.empty() && shard != "off")))
+      throw Error(fmt::format("--device {} (several devices) does not apply to {} yet: give one device", g.device,
+                              dry ? "--dry-run" : !scene_path.empty() ? "--scene" : "--shard"));
     if (dry) return dry_run(g, opt, shard_of(shard, shard_count));
     if (std::optional<ShardSpec> s = shard_of(scene_path.empty() ? shard : "off", shard_count)) {
+      if (is_device_set(g.device))
+        throw Error(fmt::format("--device {} (several devices) does not apply to a shard ({}) yet", g.device,
+                                s->source));
       if (!baseline.empty()) throw Error("--baseline applies to the merged run (mfv merge), not to a shard");
       return run_shard(g, opt, *s, out_dir);
     }
@@ -99,10 +106,27 @@ struct RunCommand : SharedValues {
       return std::max(scene_run.rep.gate_ok() ? 0 : 1, compare(scene_run.rep));
     }
     prepare_out();
+    if (is_device_set(g.device)) return run_on_devices(g, opt, compare);
     Runtime rt(g.device, g.kernel_dir);
     SuiteReport rep = run_suite(rt, opt);
     print_suite_console(rep, rt, opt);
     if (!out_dir.empty()) write_suite_outputs(rep, rt, opt, out_dir);
+    return std::max(rep.gate_ok() ? 0 : 1, compare(rep));
+  }
+
+  // --device all or a list: every plan's integration shared by the devices
+  // (checks/device_share.hpp), the rest on the first.
+  template <class Compare>
+  int run_on_devices(const Globals& g, const SuiteOptions& o, Compare& compare) {
+    const std::vector<DeviceInfo> devices = select_devices(g.device);
+    std::vector<std::unique_ptr<Runtime>> more;  // built before the first, whose device the provenance records
+    for (size_t d = 1; d < devices.size(); ++d) more.push_back(std::make_unique<Runtime>(devices[d], g.kernel_dir));
+    Runtime rt(devices[0], g.kernel_dir);
+    std::vector<Runtime*> others;
+    for (auto& m : more) others.push_back(m.get());
+    SuiteReport rep = run_suite(rt, o, others);
+    print_suite_console(rep, rt, o);
+    if (!out_dir.empty()) write_suite_outputs(rep, rt, o, out_dir);
     return std::max(rep.gate_ok() ? 0 : 1, compare(rep));
   }
 };

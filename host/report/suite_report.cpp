@@ -86,6 +86,11 @@ void print_suite_console(const SuiteReport& rep, const Runtime& rt, const SuiteO
 
 void print_suite_console(const SuiteReport& rep, const DeviceInfo& device, const SuiteOptions& opt) {
   fmt::print("device: {} ({}), {}\n", device.name, device.platform, device.driver);
+  for (size_t d = 0; d < rep.device_shares.size(); ++d) {
+    const DeviceShare& s = rep.device_shares[d];
+    fmt::print("  device {} of {}: #{} {} ({}): {} integrals, {:.2f} s busy{}\n", d + 1, rep.device_shares.size(),
+               s.index, s.name, s.platform, s.integrals, s.seconds, d == 0 ? "; reference, reciprocity, pointwise" : "");
+  }
   fmt::print("{:<16} {:>10} {:>14} {:>8} {:>14}\n", "check", "integrals", "samples", "seconds", "samples/s");
   for (auto& c : rep.stats)
     fmt::print("{:<16} {:>10} {:>14} {:>8.2f} {:>14.3g}\n", c.check, c.integrals, c.samples, c.seconds,
@@ -202,6 +207,12 @@ std::string suite_json(const SuiteReport& rep, const OutputContext& ctx, const S
                  {"driver", dev.driver},
                  {"version", dev.version},
                  {"fp64", dev.fp64}};
+  for (const DeviceShare& s : rep.device_shares)  // mfv run --device all: who integrated what
+    j["device"]["shared"].push_back({{"index", s.index},
+                                     {"name", s.name},
+                                     {"platform", s.platform},
+                                     {"integrals", s.integrals},
+                                     {"seconds", s.seconds}});
   j["build"] = {{"options", ctx.build_options}, {"seconds", rep.build_seconds}, {"builds", ctx.builds}};
   j["timings"] = json::array();
   for (auto& c : rep.stats)

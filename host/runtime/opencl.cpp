@@ -132,7 +132,9 @@ DeviceInfo pick_device(const std::vector<DeviceInfo>& devs, const std::string& s
       if (d.type == "GPU") return d;
     return devs.front();
   }
-  if (selector == "all") throw Error("--device all is for 'mfv bench' only; other commands run on one device");
+  if (selector == "all" || is_device_set(selector))
+    throw Error(fmt::format("--device {} is for 'mfv bench' and 'mfv run' only; other commands run on one device",
+                            selector));
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     uint64_t i = parse_unsigned("--device", selector);
     if (i >= devs.size())
@@ -164,8 +166,29 @@ DeviceInfo pick_device(const std::vector<DeviceInfo>& devs, const std::string& s
 
 DeviceInfo select_device(const std::string& selector) { return pick_device(list_devices(), selector); }
 
+bool is_device_set(const std::string& selector) {
+  return selector == "all" || selector.find(',') != std::string::npos;
+}
+
+std::vector<DeviceInfo> select_devices(const std::string& selector) {
+  std::vector<DeviceInfo> devs = list_devices();
+  if (selector == "all") return devs;
+  if (!is_device_set(selector)) return {pick_device(devs, selector)};
+  std::vector<DeviceInfo> out;
+  for (size_t at = 0;;) {
+    const size_t comma = selector.find(',', at);
+    const std::string one = selector.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    if (one.empty() || one == "all") throw Error(fmt::format("--device {}: an empty or 'all' entry in the list", selector));
+    out.push_back(pick_device(devs, one));
+    if (comma == std::string::npos) return out;
+    at = comma + 1;
+  }
+}
+
 Runtime::Runtime(const std::string& device_selector, std::string kernel_dir)
-    : info_(select_device(device_selector)), kernel_dir_(std::move(kernel_dir)) {
+    : Runtime(select_device(device_selector), std::move(kernel_dir)) {}
+
+Runtime::Runtime(const DeviceInfo& device, std::string kernel_dir) : info_(device), kernel_dir_(std::move(kernel_dir)) {
   local_size_cap_from_env();               // a bad MFV_MAX_LOCAL_SIZE fails here, before any work
   extra_options_ = cl_options_from_env();  // and a bad MFV_CL_OPTIONS
   // a build that may flush float subnormals is checked as on a flush-to-zero device

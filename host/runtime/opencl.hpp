@@ -34,6 +34,11 @@ std::vector<DeviceInfo> list_devices();
 // that matches several devices is an error listing them.
 DeviceInfo pick_device(const std::vector<DeviceInfo>& devices, const std::string& selector);
 DeviceInfo select_device(const std::string& selector);  // pick_device over list_devices()
+// mfv run's --device: "all" (every device of every platform) or a comma list
+// of selectors as pick_device takes them ("0,0" names one device twice: two
+// contexts and queues on it). One device where the selector is neither.
+bool is_device_set(const std::string& selector);
+std::vector<DeviceInfo> select_devices(const std::string& selector);
 
 struct BuildStats {
   int builds = 0;
@@ -44,6 +49,8 @@ struct BuildStats {
 class Runtime {
  public:
   explicit Runtime(const std::string& device_selector = "", std::string kernel_dir = "");
+  // On a device of list_devices() (mfv run --device all: one Runtime per device).
+  Runtime(const DeviceInfo& device, std::string kernel_dir);
 
   const DeviceInfo& device() const { return info_; }
   cl::Context& context() { return context_; }
