@@ -84,4 +84,23 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
   fba = below ? R(0.0) : fba;
   asym[j * get_global_size(0) + k] = reciprocity_asym(fab, fba);
 }
+
+// The whole-model kernel for the constant model id MODEL, one per model
+// (runtime/specialize.cpp, PoCL only, as MFV_MODEL_ALBEDO_VALUES):
+// reciprocity_values' operations in the same order (spec_brdf(s, a, b) is
+// eval_model(model, b, a, p)), so the same floats; with MODEL a constant,
+// eval_model's switch folds to the one model, flatten leaves no call, and
+// PoCL vectorizes the work-item loop where the model's code allows it
+// (docs/performance.md). No generic instance: see model_values.cl (Intel).
+#define MFV_MODEL_RECIPROCITY_VALUES(NAME, MODEL)                                                               \
+  __kernel __attribute__((flatten)) void NAME(__global const IntegralSpec* restrict specs, ulong seed,          \
+                                              __global float* restrict asym) {                                 \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                        \
+    __global const IntegralSpec* s = specs + j;                                                               \
+    real ax, ay, az, bx, by, bz;                                                                              \
+    reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                       \
+    real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);                                                   \
+    real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};                              \
+    asym[j * get_global_size(0) + k] = reciprocity_asym(eval_model(MODEL, b, a, p), eval_model(MODEL, a, b, p)); \
+  }
 #endif

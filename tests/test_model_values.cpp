@@ -2,7 +2,9 @@
 // specialized per model (runtime/specialize.hpp): the samples of
 // `integrate` (estimates equal but for the order of the double sums), and Integrator::run launches the specialized
 // kernels where the program has them. A planted specialization that
-// evaluates another model than its name says is caught.
+// evaluates another model than its name says is caught. The whole models'
+// reciprocity kernels (kernels/reciprocity.cl) give the generic kernel's
+// asymmetries to the bit.
 #include "catalog/models.hpp"
 #include "checks/integrate.hpp"
 #include "device_fixture.hpp"
@@ -98,4 +100,36 @@ TEST_CASE("a model kernel that evaluates another model than its name says is cau
   size_t differ = 0;
   for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
   CHECK(differ == 2);  // eon's two integrals
+}
+
+TEST_CASE("whole models' reciprocity kernels give the generic kernel's asymmetries to the bit",
+          "[reciprocity][device][model_values]") {
+  // kernels/reciprocity.cl MFV_MODEL_RECIPROCITY_VALUES, specialized per
+  // model (PoCL only), against reciprocity_values (a program without the
+  // specializations): every case of every model, 4096 pairs each
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  std::vector<IntegralSpec> specs;
+  TermSelection sel;
+  for (const Model& m : models()) {
+    for (const auto& c : m.cases) specs.push_back(model_spec(IntegralKind::DNorm, m, c.p, 1.0));
+    if (!m.cases.empty()) sel.models.push_back(&m);
+  }
+  for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
+  REQUIRE(sel.models.size() >= 10);
+  Integrator generic(*rt, build_integrate_program(*rt, sel, ""), true);
+  Integrator specialized(*rt, sel);
+  const WorstPairs a = generic.reciprocity(specs, 4096, 7), b = specialized.reciprocity(specs, 4096, 7);
+  CHECK(generic.launched_kernels().empty());
+  for (size_t i = 0; i < specs.size(); ++i) {
+    INFO("model " << specs[i].model << ": generic " << a.worst[i] << " at " << a.at[i] << ", specialized "
+                  << b.worst[i] << " at " << b.at[i]);
+    CHECK(a.worst[i] == b.worst[i]);  // worst_of reads NaN as +inf
+    CHECK(a.at[i] == b.at[i]);
+  }
+  if (!test::is_pocl(*rt)) return;  // other drivers build no specializations
+  for (const Model* m : sel.models) {
+    INFO(m->id);
+    CHECK(specialized.launched_kernels().count(fmt::format("model_reciprocity_values__m{}", m->number())) == 1);
+  }
 }

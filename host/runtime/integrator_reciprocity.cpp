@@ -1,9 +1,11 @@
 // Integrator's reciprocity launches (kernels/reciprocity.cl): one pair per
 // work-item, the worst asymmetry of each integral read back.
 #include "runtime/integrator.hpp"
+#include "runtime/specialize.hpp"
 #include "runtime/work_group.hpp"
 
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace mfv {
@@ -50,9 +52,23 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   if (kernel_names_.count("reciprocity_values_microfacet"))
     microfacet = cl::Kernel(program_, "reciprocity_values_microfacet");
   std::vector<size_t> fast, slow;
-  for (size_t i = 0; i < specs.size(); ++i)
-    (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) && !(specs[i].width_y > 0) ? fast : slow).push_back(i);
+  // whole models: the kernel specialized to the model where the program has
+  // one (kernels/reciprocity.cl MFV_MODEL_RECIPROCITY_VALUES, PoCL only)
+  std::map<std::string, std::vector<size_t>> by_model;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) && !(specs[i].width_y > 0)) {
+      fast.push_back(i);
+      continue;
+    }
+    const std::string name = specialized_name("model_reciprocity_values", specs[i]);
+    if (specs[i].model != MFV_MODEL_MICROFACET && kernel_names_.count(name)) by_model[name].push_back(i);
+    else slow.push_back(i);
+  }
   if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
+  for (const auto& [name, at] : by_model) {
+    cl::Kernel k = launched(name);
+    worst_of(k, specs, at, pairs, seed, out);
+  }
   if (!slow.empty()) worst_of(generic, specs, slow, pairs, seed, out);
   return out;
 }

@@ -28,8 +28,10 @@ std::string name_of(const std::string& base, int d, int g, bool by_g) {
 
 // kernels/model_values.cl, specialized per model
 constexpr const char* kModelAlbedo = "model_albedo_values";
+// kernels/reciprocity.cl, specialized per model
+constexpr const char* kModelReciprocity = "model_reciprocity_values";
 
-std::string model_kernel_name(int model) { return fmt::format("{}__m{}", kModelAlbedo, model); }
+std::string model_kernel_name(int model, const char* base = kModelAlbedo) { return fmt::format("{}__m{}", base, model); }
 
 const Specializable* find(const std::string& base) {
   for (const auto& k : kSpecializable)
@@ -61,13 +63,16 @@ std::string generate_specializations(const std::vector<TermPair>& pairs) {
 
 std::string generate_model_specializations(const std::vector<const Model*>& models) {
   std::string out;
-  for (const Model* m : models)
+  for (const Model* m : models) {
     out += fmt::format("MFV_MODEL_ALBEDO_VALUES({}, {})\n", model_kernel_name(m->number()), m->number());
+    out += fmt::format("MFV_MODEL_RECIPROCITY_VALUES({}, {})\n", model_kernel_name(m->number(), kModelReciprocity),
+                       m->number());
+  }
   return out;
 }
 
 std::string specialized_name(const std::string& base, const IntegralSpec& s) {
-  if (base == kModelAlbedo) return model_kernel_name(int(s.model));
+  if (base == kModelAlbedo || base == kModelReciprocity) return model_kernel_name(int(s.model), base.c_str());
   const Specializable* k = find(base);
   return k ? name_of(base, s.d, s.g, k->by_g) : base;
 }

@@ -26,13 +26,13 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 // albedo_mis_values and albedo_rqmc_values for the other pairs.
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
-// OpenCL C that defines model_albedo_values (kernels/model_values.cl)
-// specialized to each model of `models` (its Model::number() a constant, so
+// OpenCL C that defines model_albedo_values (kernels/model_values.cl) and
+// model_reciprocity_values (kernels/reciprocity.cl) specialized to each model of `models` (its Model::number() a constant, so
 // that eval_model's switch folds to the one model).
 std::string generate_model_specializations(const std::vector<const Model*>& models);
 
 // The name of the kernel `base` specialized to the terms of `s`
-// (d_norm_values: D only; model_albedo_values: s's model).
+// (d_norm_values: D only; model_albedo_values, model_reciprocity_values: s's model).
 std::string specialized_name(const std::string& base, const IntegralSpec& s);
 
 }  // namespace mfv
