@@ -1,14 +1,11 @@
 // mfv energy's axes, points, engine layouts and --compare (issue 33): the
-// axes exactly as given, E at the Kulla-Conty points against quadrature in
-// float64, a team's table passed, a planted error and a transposition
-// flagged, bad tables refused, images read back.
+// axes exactly as given, a team's table passed, a planted error and a
+// transposition flagged, bad tables refused, images read back (E at the
+// Kulla-Conty points against quadrature: test_energy_kc_points.cpp).
 #include "catalog/catalog.hpp"
-#include "catalog/roughness.hpp"
 #include "checks/energy_axes.hpp"
 #include "checks/energy_compare.hpp"
 #include "checks/energy_layouts.hpp"
-#include "checks/furnace_truth.hpp"
-#include "checks/integrate.hpp"
 #include "device_fixture.hpp"
 #include "report/energy_layout_out.hpp"
 #include "run_mfv.hpp"
@@ -131,40 +128,6 @@ TEST_CASE("mfv energy --mu/--alpha and --at write exactly the given values, in t
   CHECK(j["grid"]["points"] == true);
   CHECK(j["combinations"][0]["E"].size() == 2);
   CHECK(slurp(s / "at/kulla_conty.h").find("MFV_A_ggx_smith_ggx_correlated[2]") != std::string::npos);
-}
-
-TEST_CASE("E at Kulla-Conty points mu = y/31, alpha = (x/31)^2 in float64 lies within 3 total SE of quadrature",
-          "[device][energy][fp64]") {
-  Runtime* rt = test::fp64_runtime("the --fp64 energy points");
-  if (!rt) return;
-  EnergyOptions o;
-  o.models = {"ggx/smith_ggx_correlated"};
-  o.catalog_models = false;
-  o.fp64 = true;
-  o.target = 1e-6;
-  o.max_points = 1 << 20;
-  const std::vector<std::pair<int, int>> yx = {{1, 6}, {12, 20}, {31, 31}, {25, 9}};
-  std::vector<double> mu, r;
-  for (auto [y, x] : yx) mu.push_back(y / 31.0), r.push_back(x / 31.0);
-  set_energy_axes(o, mu, r, RoughnessAxis::R2, true);
-  const EnergyReport rep = run_energy(*rt, o);
-  REQUIRE(rep.tables.size() == 1);
-  const EnergyTable& t = rep.tables[0];
-  for (size_t i = 0; i < yx.size(); ++i) {
-    MicrofacetIntegral m;
-    m.kind = IntegralKind::Albedo;
-    m.d = t.d, m.g = t.g, m.f = &find_term("none");
-    m.pd = t.pd[i], m.pg = t.pg[i];
-    m.width = rep.alpha[i];
-    m.cos_o = rep.mu[i];
-    const KnownValue q = albedo_by_quadrature(spec_of(m));
-    const double total = t.E[i].se + q.error + energy_rounding_bound(t, t.E[i].mean, true);
-    CAPTURE(i, rep.mu[i], rep.alpha[i], t.E[i].mean, t.E[i].se, q.value, q.error);
-    CHECK(rep.mu[i] == mu[i]);
-    CHECK(rep.alpha[i] == r[i] * r[i]);
-    CHECK(t.E[i].se <= 2e-6);
-    CHECK(std::fabs(t.E[i].mean - q.value) <= 3 * total);
-  }
 }
 
 TEST_CASE("16-bit PNG tables read back to their quantization", "[energy][compare]") {
