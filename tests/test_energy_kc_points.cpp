@@ -107,7 +107,7 @@ EnergyReport run_cells(Runtime& rt, const std::vector<std::pair<int, int>>& yx, 
 
 }  // namespace
 
-TEST_CASE("the Boost quadrature of E meets GGX's closed form at alpha = 1 from grazing to normal view", "[energy][fp64]") {
+TEST_CASE("the Boost quadrature of energy E meets GGX's closed form at alpha = 1 from grazing to normal view", "[energy][fp64]") {
   // At alpha = 1 GGX's D is 1/π and Smith's Λ(v) = (1/μ_v - 1)/2 (Heitz 2014,
   // "Understanding the masking-shadowing function", eq. 72 and §5.3's height-
   // correlated G2 = 1/(1 + Λ_o + Λ_i)), so f = 1/(2π(μ_o + μ_i)) and
@@ -121,7 +121,7 @@ TEST_CASE("the Boost quadrature of E meets GGX's closed form at alpha = 1 from g
   }
 }
 
-TEST_CASE("E at Kulla-Conty points mu = y/31, alpha = (x/31)^2 in float64 lies within 3 total SE of Boost quadrature",
+TEST_CASE("mfv energy at Kulla-Conty points mu = y/31, alpha = (x/31)^2 in float64 lies within 3 total SE of Boost quadrature",
           "[device][energy][fp64]") {
   Runtime* rt = test::fp64_runtime("the --fp64 energy points");
   if (!rt) return;
@@ -134,7 +134,7 @@ TEST_CASE("E at Kulla-Conty points mu = y/31, alpha = (x/31)^2 in float64 lies w
   CHECK(cells_beyond_3(rep, mu, r, 2e-6) == 0);
 }
 
-TEST_CASE("the Kulla-Conty quadrature comparison fails a D planted 1e-4 too large", "[device][energy][fp64][planted]") {
+TEST_CASE("the mfv energy Kulla-Conty quadrature comparison fails a D planted 1e-4 too large", "[device][energy][fp64][planted]") {
   Runtime* rt = test::fp64_runtime("the --fp64 energy points");
   if (!rt) return;
   const test::PlantedKernelDir k("terms_d.cl", "real d = R(1.0) / (MFV_PI * a2 * k * k);",
@@ -147,7 +147,7 @@ TEST_CASE("the Kulla-Conty quadrature comparison fails a D planted 1e-4 too larg
 
 // Hidden (the whole table: ~25 min of CPU at 1e-6 on the 2-core EPYC, docs/performance.md):
 // `ctest -L full-table` in a build configured with -DMFV_FULL_TABLE=ON, or `mfv_tests "[full-table]"`.
-TEST_CASE("every cell of the 32x32 Kulla-Conty table at --target 1e-6 --fp64 lies within 3 total SE of Boost quadrature",
+TEST_CASE("mfv energy: every cell of the 32x32 Kulla-Conty table at --target 1e-6 --fp64 lies within 3 total SE of Boost quadrature",
           "[.][full-table][device][energy][fp64]") {
   Runtime* rt = test::fp64_runtime("the --fp64 Kulla-Conty table");
   if (!rt) return;
