@@ -154,37 +154,45 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 // *shape* of width w (sample_vis_c, vis_pdf_i: Heitz 2018, written here, never
 // D_*/G1_*), the low-variance one; (b) o reflected about Cauchy slopes of
 // width w and (c) the cosine lobe, the defensive pair whose tails cover every
-// catalog D (see the top of this file). Combined by the multi-sample model of
-// MIS with the balance heuristic (Veach 1997 §9.2.2, eq. 9.13): with shares
-// c = (1/2, 1/4, 1/4) of the points, every point contributes
-// f(i,o) (n·i) / (Σ_t c_t p_t(i)), whichever proposal drew it, and the mean
-// is unbiased. A wrong D or G under test only enters the numerator, so it
-// cannot cancel (tests/test_suite.cpp plants three).
-// Points: index = r n + k with n = `points` per replicate; replicate r
-// has its own Cranley-Patterson shift (Philox draw 3, counter r); k < n/2
-// takes proposal (a), k < 3n/4 (b), the rest (c), each on its own run
-// j = 0, 1, ... of the 2D Kronecker sequence (RQMC_G1, RQMC_G2). Replicates
-// are independent, so their spread gives an honest standard error (host:
-// Integrator::run, Student t with R - 1 degrees of freedom).
+// catalog D (see the top of estimators.cl). Combined by multi-sample MIS
+// with the balance heuristic over a fixed mixture c = (15/16, 1/32, 1/32)
+// (Veach 1997 §9.2.2, eq. 9.13 with weights c_t p_t / Σ c_s p_s): every point
+// of proposal t contributes c_t (n / n_t) f(i,o) (n·i) / (Σ_s c_s p_s(i)),
+// so the mean over the n points is Σ_t c_t (mean over t's points), which is
+// unbiased for any point counts n_t. A wrong D or G under test only enters
+// the numerator, so it cannot cancel (tests/test_albedo_mis.cpp plants
+// three), and f/q <= 32 f / p_defensive stays bounded.
+// Points: index = r n + k with n = `points` = 5·2^(m-2) per replicate
+// (Integrator::mis_points): k < 2^m = 4n/5 takes (a), the next n/10 (b),
+// the last n/10 (c), each share a power of two on Owen-scrambled Sobol
+// points (owen_sobol_2d: (a) seeded by Philox words x, y of draw 3 at counter
+// r, (b) by z, w, (c) by w, z), so each share is a whole (0, m, 2)-net. The
+// shares and the net sizes are measured (docs/statistics.md): against a
+// 1/2, 1/4, 1/4 split on Kronecker points the variance per point fell
+// 30-140x at (alpha, mu) = (0.5, 0.5), (0.1, 0.1), (0.01, 0.9); a share
+// that is not a power of two (3·2^10) gave no more than its 2^11 net alone.
+// Replicates are independent, so their spread gives an honest standard
+// error (host: Integrator::run, Student t with R - 1 degrees of freedom).
 // Reference twin: albedo_mis in host/reference/estimators.cpp.
-#define MIS_C_VIS R(0.5)
-#define MIS_C_SLOPE R(0.25)
-#define MIS_C_COS R(0.25)
-#define MIS_DRAW 3u  // the Philox draw of the replicates' shifts
+#define MIS_C_VIS R(0.9375)
+#define MIS_C_SLOPE R(0.03125)
+#define MIS_C_COS R(0.03125)
+#define MIS_DRAW 3u  // the Philox draw of the replicates' scramble seeds
 
 static inline uint4 mis_shift(__global const IntegralSpec* s, ulong seed, uint replicate) {
   return mfv_philox(seed, s->stream, spec_draw(s, MIS_DRAW), replicate);
 }
 
-// Point k of n of a replicate with shift `shift`, by components and with
+// Point k of n of a replicate with seeds `shift`, by components and with
 // selects (no branch, no float3: albedo_mis_values vectorizes, see
 // albedo_values); the three candidates share one (u_phi, u_r).
 static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
                                          real co, uint4 shift, uint k, uint n) {
-  uint n_vis = n / 2u, n_slope = n / 4u;
-  bool vis = k < n_vis, cosine = k >= n_vis + n_slope;
-  uint j = vis ? k : cosine ? k - n_vis - n_slope : k - n_vis;
-  real u_phi = u01_open(shift.x + j * RQMC_G1), u_r = u01_open(shift.y + j * RQMC_G2);
+  uint n_def = n / 10u, n_vis = 8u * n_def;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_def;
+  uint j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
+  real u_phi, u_r;
+  owen_sobol_2d(j, vis ? shift.x : cosine ? shift.w : shift.z, vis ? shift.y : cosine ? shift.z : shift.w, &u_phi, &u_r);
   real so2 = sin2_from_cos(co), ox = sqrt(so2), oz = co;  // the view in the xz-plane
   real vx, vy, vz, sx, sy, sz, s2;
   sample_vis_c(ox, R(0.0), oz, u_phi, u_r, w, &vx, &vy, &vz);
@@ -202,7 +210,9 @@ static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, 
   // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
   real q = MIS_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + MIS_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
            MIS_C_COS * iz * MFV_INV_PI;
-  return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
+  // c_t n / n_t: (15/16)(5/4) = 75/64 for (a), (1/32) 10 = 5/16 for (b) and (c)
+  real share = vis ? R(1.171875) : R(0.3125);
+  return share * brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
 }
 
 static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, ulong index) {

@@ -248,6 +248,46 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
 #define RQMC_G1 3242174889u
 #define RQMC_G2 2447445414u
 
+// Owen-scrambled 2D Sobol points (Owen 1995; the hash form of Burley 2020,
+// "Practical Hash-based Owen Scrambling", JCGT 9(4), Listings 1-2, with the
+// hash of Vegdahl 2021, "Building a Better LK Hash", for Listing 1's): point
+// k of a replicate whose two scrambles have seeds s0, s1. Sobol's first
+// dimension is the bit-reversed index; its second, digit i (most significant
+// first) the XOR of the index bits j whose bits contain i's (the Pascal
+// matrix mod 2, by Lucas's theorem), formed in five steps, no loop. The
+// scramble flips each digit by a hash of the digits before it, on the
+// bit-reversed word (a multiply by an even constant carries bits upward
+// only), so every point is uniform and any 2^m consecutive points from an
+// aligned start remain a (0, m, 2)-net. Twin: owen_sobol_2d in
+// host/reference/estimators.cpp (a loop over direction numbers instead).
+static inline uint reverse_bits32(uint x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+  x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+static inline uint owen_hash(uint x, uint seed) {
+  x ^= x * 0x3d20adeau;
+  x += seed;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x05526c56u;
+  x ^= x * 0x53a22864u;
+  return x;
+}
+
+static inline void owen_sobol_2d(uint k, uint s0, uint s1, real* u0, real* u1) {
+  uint y = k;  // Sobol's second dimension, digits in index-bit order
+  y ^= (y >> 1) & 0x55555555u;
+  y ^= (y >> 2) & 0x33333333u;
+  y ^= (y >> 4) & 0x0F0F0F0Fu;
+  y ^= (y >> 8) & 0x00FF00FFu;
+  y ^= (y >> 16) & 0x0000FFFFu;
+  *u0 = u01_open(reverse_bits32(owen_hash(k, s0)));
+  *u1 = u01_open(reverse_bits32(owen_hash(y, s1)));
+}
+
 // mfv energy's proposal (MFV_CHECK_ALBEDO_RQMC / MFV_CHECK_EAVG_RQMC): o reflected
 // about a visible normal of the GGX *shape* of width w. The proposal is its
 // own code (not the catalog's D_ggx, whose value only appears in the

@@ -1,49 +1,93 @@
 #!/usr/bin/env bash
-# mfv against Mitsuba 3 on the same integral, back to back in one run:
-# the directional albedo of GGX + height-correlated Smith G2 + F = 1 at
-# alpha = 0.5, mu = 0.5 (quadrature 0.6982507). Prints both JSON results and
-# a table of medians: samples/s, variance per sample, seconds to SE 1e-4, and
-# the ratio. Not part of CI (the peers need Python packages from PyPI).
+# mfv against Mitsuba 3 on the same integral, back to back in one run: the
+# directional albedo of GGX + height-correlated Smith G2 + F = 1 at
+# (alpha, mu) = (0.5, 0.5), (0.1, 0.1), (0.01, 0.9) (quadrature 0.6982507,
+# 0.8834550, 0.9998865: ggx_np.py beside the peers' scripts).
+#
+# mfv: `mfv bench --case` (the suite's estimator), one call's wall time and SE
+# at the fewest points reaching SE 1e-4 and 1e-5.
+# Mitsuba 3 (the stronger anchor, mitsuba_albedo_qmc.py: visible normals on
+# its low-discrepancy samplers, SE from 32 independently randomized
+# replicates): multijitter and multijitter + dr.freeze at 256 ... 65536
+# points per replicate, ldsampler at 4096; for each, one call's wall time
+# and SE, the extrapolated time to SE 1e-4 and 1e-5 (variance / SE² /
+# samples per second, from the 4096-point run), and the smallest measured
+# call reaching each SE. Not part of CI (the peers need Python packages from PyPI).
 #
 # Setup (Debian 12, once):
 #   apt-get install -y libllvm19                 # Dr.Jit 1.5 fails on Debian's LLVM 15
-#   python3 -m venv /work/peers-venv && /work/peers-venv/bin/pip install mitsuba numpy numba
+#   python3 -m venv /work/peers-venv && /work/peers-venv/bin/pip install mitsuba numpy scipy
 # Usage:
 #   scripts/bench-peers.sh [build dir] [peers dir] [venv]   # defaults: build ../shared/peers /work/peers-venv
-#   ROUNDS=3 scripts/bench-peers.sh                          # alternate mfv and Mitsuba 3 times
+#   ROUNDS=3 scripts/bench-peers.sh                          # alternate mfv and Mitsuba 3 times (medians)
+#   CASES="0.5:0.5:0.6982507" scripts/bench-peers.sh         # one case
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$here/build}
 peers=${2:-$here/../shared/peers}
 venv=${3:-/work/peers-venv}
-rounds=${ROUNDS:-3}
-case_=ggx/smith_ggx_correlated/none:0.5:0.5
+rounds=${ROUNDS:-1}
+cases=${CASES:-0.5:0.5:0.6982507 0.1:0.1:0.8834550 0.01:0.9:0.9998865}
+sizes=${SIZES:-256 1024 4096 16384 65536}
 export DRJIT_LIBLLVM_PATH=${DRJIT_LIBLLVM_PATH:-$(dpkg -L libllvm19 2>/dev/null | grep -m1 'libLLVM.so.19' || true)}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 echo "load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
 for r in $(seq "$rounds"); do
-  "$build/mfv" bench --case "$case_" --repeats 9 --seed "$r" --out "$out/mfv$r" >/dev/null
-  cat "$out/mfv$r/bench.json" >"$out/mfv$r.json"
-  "$venv/bin/python" "$peers/mitsuba_albedo.py" --log2n 26 --repeats 9 --cases 0.5:0.5 --est corr-vis \
-    --seed "$r" >"$out/mi$r.json"
+  for c in $cases; do
+    IFS=: read -r a mu truth <<<"$c"
+    "$build/mfv" bench --case "ggx/smith_ggx_correlated/none:$a:$mu" --repeats 9 --seed "$r" --out "$out/mfv" >/dev/null
+    cp "$out/mfv/bench.json" "$out/mfv_${c}_$r.json"
+    qmc=("$venv/bin/python" "$peers/mitsuba_albedo_qmc.py" --R 32 --repeats 9 --alpha "$a" --mu "$mu" --truth "$truth"
+      --seed "$r")
+    for n in $sizes; do
+      "${qmc[@]}" --n "$n" --samplers multijitter --tag "mj" >>"$out/mi_${c}_$r.jsonl"
+      "${qmc[@]}" --n "$n" --samplers multijitter --freeze --tag "mj+freeze" >>"$out/mi_${c}_$r.jsonl"
+    done
+    "${qmc[@]}" --n 4096 --samplers ldsampler --tag "ld" >>"$out/mi_${c}_$r.jsonl"
+  done
 done
 echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
-python3 - "$out" "$rounds" <<'PY'
+python3 - "$out" "$rounds" "$cases" <<'PY'
 import json, statistics as st, sys
-out, rounds = sys.argv[1], int(sys.argv[2])
-m = [json.load(open(f"{out}/mfv{r}.json")) for r in range(1, rounds + 1)]
-p = [json.loads(open(f"{out}/mi{r}.json").read().splitlines()[-1]) for r in range(1, rounds + 1)]
-for x in m: print("mfv", json.dumps({k: x[k] for k in ("estimate", "rms_stderr", "samples", "samples_per_s", "variance_per_sample", "seconds_to_se_1e-4", "median_cpu_seconds", "load_average")}))
-for x in p: print("mitsuba", json.dumps({k: x[k] for k in ("mean", "se", "samples_per_s_median", "var_per_sample", "load")}))
-mi_rate = st.median(x["samples_per_s_median"] for x in p)
-mi_var = st.median(x["var_per_sample"] for x in p)
-mi_t = mi_var / 1e-8 / mi_rate
-mf_rate = st.median(x["samples_per_s"] for x in m)
-mf_var = st.median(x["variance_per_sample"] for x in m)
-mf_t = st.median(x["seconds_to_se_1e-4"] for x in m)
-print(f"\n| system | samples/s | variance/sample | s to SE 1e-4 |\n|---|---|---|---|")
-print(f"| Mitsuba 3 llvm_ad_rgb, visible normals + height-correlated G2 | {mi_rate:.3g} | {mi_var:.3g} | {mi_t:.3g} |")
-print(f"| mfv bench --case {'ggx/smith_ggx_correlated/none:0.5:0.5'} (the suite's estimator) | {mf_rate:.3g} | {mf_var:.3g} | {mf_t:.3g} |")
-print(f"\nmedians of {rounds} alternating rounds; Mitsuba 3 / mfv time to SE 1e-4: {mi_t / mf_t:.1f}x")
+out, rounds, cases = sys.argv[1], int(sys.argv[2]), sys.argv[3].split()
+med = lambda xs: st.median(xs) if xs else float("nan")
+for c in cases:
+    a, mu, truth = c.split(":")
+    print(f"\n## alpha {a}, mu {mu} (truth {truth}); medians of {rounds} round(s)\n")
+    m = [json.load(open(f"{out}/mfv_{c}_{r}.json")) for r in range(1, rounds + 1)]
+    rows = [json.loads(l) for r in range(1, rounds + 1) for l in open(f"{out}/mi_{c}_{r}.jsonl") if l.startswith("{")]
+    print("| system | points x replicates | variance/sample | one call: wall, SE | extrapolated s to SE 1e-4, 1e-5 |")
+    print("|---|---|---|---|---|")
+    for k in range(2):
+        ts = [x["targets"][k] for x in m]
+        t = ts[0]
+        print(f"| mfv bench --case, SE target {t['target_se']:g} | {t['points_per_replicate']} x {m[0]['replicates']} "
+              f"| {med([x['variance_per_sample'] for x in ts]):.3g} | {1e3 * med([x['median_seconds'] for x in ts]):.3g} ms, "
+              f"{med([x['rms_stderr'] for x in ts]):.2g} | - |")
+    best = {}
+    for tag in ("mj", "mj+freeze", "ld"):
+        by_n = {}
+        for x in rows:
+            if x["tag"] == tag: by_n.setdefault(x["n_per_replicate"], []).append(x)
+        for n in sorted(by_n):
+            xs = by_n[n]
+            wall = med([sorted(x["times_s"])[len(x["times_s"]) // 2] for x in xs])
+            se = med([x["rms_se_per_call"] for x in xs])
+            var = med([x["var_per_sample"] for x in xs])
+            rate = med([x["samples_per_s_median"] for x in xs])
+            for target in (1e-4, 1e-5):
+                if se <= target and tag != "ld" and (target not in best or wall < best[target][0]):
+                    best[target] = (wall, f"{tag} {n} x 32")
+            extra = f"{var / 1e-8 / rate * 1e3:.3g} ms, {var / 1e-10 / rate * 1e3:.3g} ms" if n == 4096 else "-"
+            print(f"| Mitsuba 3 {tag} | {n} x 32 | {var:.3g} | {1e3 * wall:.3g} ms, {se:.2g} | {extra} |")
+    print()
+    for k, target in enumerate((1e-4, 1e-5)):
+        mf = med([x["targets"][k]["median_seconds"] for x in m])
+        if target in best:
+            w, what = best[target]
+            print(f"one call to SE <= {target:g}: mfv {1e3 * mf:.3g} ms, Mitsuba 3's best measured {1e3 * w:.3g} ms ({what}): "
+                  f"mfv {'<=' if mf <= w else '>'} Mitsuba")
+        else:
+            print(f"one call to SE <= {target:g}: mfv {1e3 * mf:.3g} ms; no measured Mitsuba 3 call reached it (SIZES)")
 PY

@@ -66,7 +66,7 @@ TEST_CASE("mfv bench rejects bad options with one line", "[bench][cli]") {
   }
 }
 
-TEST_CASE("mfv bench --case gives one integral's time to a standard error of 1e-4", "[bench][cli][mis]") {
+TEST_CASE("mfv bench --case gives one integral's time to standard errors of 1e-4 and 1e-5", "[bench][cli][mis]") {
   namespace fs = std::filesystem;
   const mfv::test::Scratch scratch("mfv_bench_case");
   const fs::path dir = scratch.dir / "out";
@@ -83,4 +83,13 @@ TEST_CASE("mfv bench --case gives one integral's time to a standard error of 1e-
   // estimate is the quadrature's 0.6982507 within 6 of its standard errors
   CHECK(j["rms_stderr"].get<double>() < 1.3e-4);
   CHECK(std::fabs(j["estimate"].get<double>() - 0.6982507) < 6 * j["stderr"].get<double>());
+  // the second target: one call's wall time and SE at 1e-5, more points than at 1e-4
+  REQUIRE(j["targets"].size() == 2);
+  const auto& t = j["targets"][1];
+  CHECK(t["target_se"].get<double>() == 1e-5);
+  CHECK(t["rms_stderr"].get<double>() < 1.3e-5);
+  CHECK(t["points_per_replicate"].get<uint32_t>() >= j["targets"][0]["points_per_replicate"].get<uint32_t>());
+  CHECK(t["median_seconds"].get<double>() > 0);
+  CHECK(j["seconds_to_se_1e-5"].get<double>() == t["seconds_to_se"].get<double>());
+  CHECK(std::fabs(t["estimate"].get<double>() - 0.6982507) < 6 * t["stderr"].get<double>());
 }

@@ -7,6 +7,7 @@
 #include "checks/suite.hpp"
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
+#include "runtime/integrator.hpp"
 #include "stats/normal.hpp"
 #include "stats/verdict.hpp"
 #include "suite_verdicts.hpp"
@@ -151,6 +152,40 @@ TEST_CASE("Over cells of known truth the share beyond 3 total uncertainties is w
   REQUIRE(sharp > 200);
   CHECK(beyond1_sharp >= stats::binomial_lower_bound(sharp, stats::normal_two_sided_tail(1.1), 1e-4));
   CHECK(beyond1_sharp <= stats::binomial_upper_bound(sharp, stats::normal_two_sided_tail(1.0), 1e-4));
+}
+
+TEST_CASE("Over the furnace's cells of known truth the share beyond 3 replicate SEs is what Student's t allows",
+          "[device][suite][calibration][mis]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  // The furnace's albedo integrals (AlbedoMis: MIS on Owen-scrambled Sobol
+  // replicates, SE from 32 replicates) against the double reference's
+  // quadrature (checks/furnace_truth.hpp) at default samples, three D x G
+  // pairs, grazing to normal views. z = dev / (SE + bias + quadrature error);
+  // the SE has 31 degrees of freedom.
+  SuiteOptions opt;
+  opt.seed = 5;
+  opt.checks = {"furnace"};
+  opt.models = {"ggx/smith_ggx_correlated", "beckmann/smith_beckmann", "ggx/smith_ggx"};
+  opt.reference_samples = 0;
+  SuiteReport rep = run_suite(*rt, opt);
+  uint64_t n = 0, beyond3 = 0, beyond1 = 0;
+  for (auto& p : rep.points) {
+    if (!p.known || p.expect != Expect::Hold || p.dof == 0) continue;
+    const double z = (p.estimate - p.known_value) / (p.stderr_ + p.bias + p.known_error);
+    ++n;
+    beyond3 += !(std::fabs(z) <= 3);
+    beyond1 += std::fabs(z) > 1;
+  }
+  CAPTURE(n, beyond3, beyond1);
+  WARN("furnace calibration: " << beyond3 << " of " << n << " known-truth cells beyond 3 total SE, " << beyond1
+                               << " beyond 1");
+  REQUIRE(n > 500);
+  const double t3 = stats::student_t_two_sided_p(3.0, kMisReplicates - 1);
+  CHECK(beyond3 <= stats::binomial_upper_bound(n, t3, 1e-4));
+  // not inflated to uselessness: |z| > 1 at least as common as |t| > 1.5 (a bias bound and quadrature
+  // error that dominated the SE would push the share far below)
+  CHECK(beyond1 >= stats::binomial_lower_bound(n, stats::student_t_two_sided_p(1.5, kMisReplicates - 1), 1e-4));
 }
 
 TEST_CASE("mfv energy's pilot-sized estimates have honest standard errors against EON's closed form",

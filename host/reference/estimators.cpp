@@ -104,6 +104,40 @@ constexpr uint32_t kRqmcG[2] = {3242174889u, 2447445414u};
 
 }  // namespace
 
+// Owen-scrambled 2D Sobol points (twin of owen_sobol_2d in
+// kernels/estimators.cl, written from the definitions): Sobol's digits from
+// its direction numbers (first dimension v_j = 2^(31-j), the van der Corput
+// sequence; second v_0 = 2^31, v_j = v_(j-1) ^ (v_(j-1) >> 1)), then Burley
+// 2020's nested uniform scramble (Listing 2: reverse, hash, reverse) with
+// Vegdahl 2021's hash.
+namespace {
+
+uint32_t reverse_bits(uint32_t x) {
+  uint32_t r = 0;
+  for (int b = 0; b < 32; ++b) r |= ((x >> b) & 1u) << (31 - b);
+  return r;
+}
+
+uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  uint32_t v = reverse_bits(x);
+  v ^= v * 0x3d20adeau;
+  v += seed;
+  v *= (seed >> 16) | 1u;
+  v ^= v * 0x05526c56u;
+  v ^= v * 0x53a22864u;
+  return reverse_bits(v);
+}
+
+}  // namespace
+
+void owen_sobol_2d(uint32_t k, uint32_t s0, uint32_t s1, double& u0, double& u1) {
+  uint32_t x = 0, y = 0, v = 0x80000000u;
+  for (int j = 0; j < 32; ++j, v ^= v >> 1)
+    if ((k >> j) & 1u) x ^= 0x80000000u >> j, y ^= v;
+  u0 = u01_open(owen_scramble(x, s0));
+  u1 = u01_open(owen_scramble(y, s1));
+}
+
 // mfv energy's proposal (twin of energy_weight in kernels/albedo.cl): o
 // reflected about a visible normal of the GGX shape of width w.
 // The GGX shape, written from Walter et al. 2007 eq. 33 as a function of the
@@ -165,17 +199,22 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 }
 
 // mfv run's albedo (twin of albedo_mis_microfacet in kernels/albedo.cl):
-// point k of replicate r (index = r n + k, n = strata) on the 2D Kronecker
-// points of its own run j, shifted by Philox draw 3 at counter r; k < n/2:
-// o reflected about a visible normal of the GGX shape, k < 3n/4: about a
-// Cauchy slope of width w, else the cosine lobe. Balance heuristic over the
-// three (Veach 1997 eq. 9.13): f cos / (½ p_vis + ¼ p_slope + ¼ cos/π).
+// point k of replicate r (index = r n + k, n = s.points = 5·2^(m-2)); the
+// first 4n/5 points take o reflected about a visible normal of the GGX shape
+// (scramble seeds: Philox draw 3 at counter r, words 0 and 1), the next n/10
+// a Cauchy slope of width w (words 2, 3), the last n/10 the cosine lobe
+// (words 3, 2), each on Owen-scrambled Sobol points from its own index 0.
+// Balance heuristic over the mixture c = (15/16, 1/32, 1/32) (Veach 1997
+// eq. 9.13), each point weighted c_t n / n_t: f cos / (Σ c_t p_t).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  const uint32_t n = s.points, k = uint32_t(index % n), half = n / 2, quarter = n / 4;
+  const uint32_t n = s.points, k = uint32_t(index % n), n_def = n / 10, n_vis = n - 2 * n_def;
   const auto shift = philox(seed, s.stream, draw_word(s, 3), index / n);
-  const bool vis = k < half, cosine = k >= half + quarter;
-  const uint32_t j = vis ? k : cosine ? k - half - quarter : k - half;
-  const double u_phi = u01_open(shift[0] + j * kRqmcG[0]), u_r = u01_open(shift[1] + j * kRqmcG[1]);
+  const bool vis = k < n_vis, cosine = k >= n_vis + n_def;
+  const uint32_t j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
+  double u_phi, u_r;
+  if (vis) owen_sobol_2d(j, shift[0], shift[1], u_phi, u_r);
+  else if (cosine) owen_sobol_2d(j, shift[3], shift[2], u_phi, u_r);
+  else owen_sobol_2d(j, shift[2], shift[3], u_phi, u_r);
   const double w = s.width;
   const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
   glm::dvec3 i;
@@ -189,9 +228,11 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   }
   if (i.z <= 0.0) return 0.0;
   const glm::dvec3 h = glm::normalize(i + o);
+  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
   const double p_slope = pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h));
-  const double q = 0.5 * vis_pdf_i(h, o, w) + 0.25 * p_slope + 0.25 * i.z / M_PI;
-  return spec_brdf(s.brdf, i, o) * i.z / q;
+  const double q = c_vis * vis_pdf_i(h, o, w) + c_def * p_slope + c_def * i.z / M_PI;
+  const double share = vis ? c_vis * n / n_vis : c_def * n / n_def;
+  return share * spec_brdf(s.brdf, i, o) * i.z / q;
 }
 
 }  // namespace

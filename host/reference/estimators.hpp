@@ -15,7 +15,7 @@ namespace mfv::ref {
 // EavgRqmc also draws the view cosine per sample with density 2μ.
 // AlbedoMis (mfv run's albedo): visible normals of the GGX shape, Cauchy
 // slopes and the cosine lobe by multi-sample MIS, strata = points per
-// randomized-QMC replicate (twin of albedo_mis in kernels/integrate.cl).
+// randomized-QMC replicate (twin of albedo_mis_microfacet in kernels/albedo.cl).
 enum class Integral {
   DNorm = MFV_CHECK_D_NORM,
   Masking = MFV_CHECK_MASKING,
@@ -63,6 +63,8 @@ double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double w);  // light 
 double pdf_m_aniso(const glm::dvec3& m, double wx, double wy);
 glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, double wy);
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
+// Point k of the Owen-scrambled 2D Sobol sequence with scramble seeds s0, s1 (AlbedoMis's points).
+void owen_sobol_2d(uint32_t k, uint32_t s0, uint32_t s1, double& u0, double& u1);
 
 // Reciprocity pair `index` of integral `stream` (twin of the `reciprocity` kernel).
 void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t stream_hi, uint32_t index, glm::dvec3& a,

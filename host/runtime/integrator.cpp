@@ -92,9 +92,14 @@ uint64_t Integrator::samples_used(uint64_t requested) const {
 }
 
 uint32_t Integrator::mis_points(uint64_t requested) const {
+  // 5·2^(m-2) points: 2^m visible normals and two defensive shares of 2^(m-3)
+  // (kernels/albedo.cl albedo_mis_microfacet), each a whole Sobol net; the
+  // largest such count within the budget, at least 20 (m = 4)
   const uint64_t n = (samples_used(requested) + kMisReplicates - 1) / kMisReplicates;
   if (n > (uint64_t(1) << 26)) throw Error(fmt::format("{} samples per integral is too many", requested));
-  return uint32_t(std::max<uint64_t>(4, (n + 3) / 4 * 4));
+  uint64_t points = 20;
+  while (2 * points <= n) points *= 2;
+  return uint32_t(points);
 }
 
 namespace {

@@ -107,8 +107,8 @@ class Integrator {
                             uint64_t first_index = 0);
   uint64_t samples_used(uint64_t requested) const;
   // Points per replicate of an AlbedoMis integral run with `requested`
-  // samples: samples_used / kMisReplicates, rounded up to a multiple of 4
-  // (the kernel's shares 1/2, 1/4, 1/4 and sum_values' runs).
+  // samples: the largest 5·2^(m-2) <= samples_used / kMisReplicates, at
+  // least 20 (the kernel's shares 2^m, 2^(m-3), 2^(m-3), each a whole net).
   uint32_t mis_points(uint64_t requested) const;
   // Sets `strata` as run() does, for callers that need the same samples
   // elsewhere (sample_values, the reference).
