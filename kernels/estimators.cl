@@ -260,12 +260,20 @@ static inline real albedo_weight(__global const IntegralSpec* s, real3 i, real3 
 // only), so every point is uniform and any 2^m consecutive points from an
 // aligned start remain a (0, m, 2)-net. Twin: owen_sobol_2d in
 // host/reference/estimators.cpp (a loop over direction numbers instead).
+// The bit reversal: bytes swapped (LLVM emits llvm.bswap, which Oclgrind
+// runs), then the bits within each byte, the pairs by a delta swap
+// (t = (x ^ x >> 1) & m; x ^= t ^ t << 1). Written as five mask-and-shift
+// swaps, LLVM folded the whole chain into llvm.bitreverse.i32, which
+// Oclgrind 21.10 does not implement (clCreateKernel failed with -46); the
+// XOR step ends that idiom's match. Same bits as the swaps for all 2^32
+// inputs (checked exhaustively); PoCL's cost in docs/performance.md.
 static inline uint reverse_bits32(uint x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
   x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-  return (x >> 16) | (x << 16);
+  x = (x >> 16) | (x << 16);
+  uint t = ((x >> 1) ^ x) & 0x55555555u;
+  x ^= t ^ (t << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  return ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
 }
 
 static inline uint owen_hash(uint x, uint seed) {
