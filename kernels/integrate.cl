@@ -3,7 +3,8 @@
 // squares in local memory, in double where the device has it; the host adds
 // the slices. Needs the generated eval_D/eval_G/eval_F, brdf.cl and the
 // integration files before it (runtime/integrator.cpp integration_sources):
-// estimators.cl (proposals and integrands), albedo.cl, convergence.cl.
+// estimators.cl (proposals and integrands), albedo.cl, convergence.cl,
+// btdf.cl and transmission.cl.
 // Reference twin of the estimators: host/reference/estimators.cpp.
 
 #ifdef MFV_ACC_DOUBLE
@@ -115,6 +116,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     case MFV_CHECK_EAVG_RQMC: return albedo_rqmc_value(s, rqmc_shift(s, seed), index).x;
     case MFV_CHECK_ALBEDO_RQMC_B: return albedo_rqmc_value(s, rqmc_shift(s, seed), index).y;
     case MFV_CHECK_ALBEDO_MIS: return albedo_mis_value(s, seed, index);
+    case MFV_CHECK_BSDF_FLUX: return bsdf_flux_value(s, seed, index);
     default: return NAN;  // no integrand for this check id
   }
 }

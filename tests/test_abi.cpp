@@ -20,7 +20,7 @@ namespace {
 // Every field of IntegralSpec, once, in declaration order (p: the array's first element).
 #define MFV_SPEC_FIELDS(X)                                                                                    \
   X(check) X(model) X(estimator) X(channel) X(d) X(g) X(f) X(pd) X(pg) X(pd2) X(pg2) X(f0) X(f1) X(kd) X(p) \
-      X(eta) X(side) X(cos_o) X(phi_o) X(width) X(width_y) X(stream) X(stream_hi) X(strata) X(points)
+      X(eta) X(side) X(bsdf) X(lobe) X(cos_o) X(phi_o) X(width) X(width_y) X(stream) X(stream_hi) X(strata) X(points)
 
 struct Field {
   const char* name;

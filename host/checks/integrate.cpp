@@ -86,6 +86,10 @@ ref::IntegralRef reference_of(const IntegralSpec& s) {
   r.strata = s.strata;
   r.points = s.points;
   r.estimator = s.estimator;
+  r.eta = s.eta;
+  r.side = s.side;
+  r.bsdf = s.bsdf;
+  r.lobe = s.lobe;
   if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmcB)) {
     // B by its definition: the albedo with Schlick's F at F0 = 0 (the
     // reference's own Schlick), where the kernel multiplies by (1 - o·h)^5

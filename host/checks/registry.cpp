@@ -57,6 +57,15 @@ Expectation expect_energy_diffuse(const ExpectPoint& p) {
   return {p.kd >= 1.0 && p.f0 >= 1.0 ? Expect::Fail : Expect::May, why, 0};
 }
 
+// The rough dielectric BSDF's flux against the facet-space truth: every
+// known-bad entry of catalog/bsdfs.cpp plants a bug that moves E_T (F at n.i,
+// eta_o^2 dropped, the Jacobian's sum, same-side directions counted) or
+// E_R + E_T (a G1 from another D: the truth takes D's own Smith G).
+Expectation expect_bsdf_furnace(const ExpectPoint& p) {
+  if (p.bsdf && !p.bsdf->known_bad.empty()) return {Expect::Fail, p.bsdf->id + ": " + p.bsdf->known_bad, 0};
+  return {};
+}
+
 std::vector<CheckKind> make_kinds() {
   std::vector<CheckKind> k;
   auto add = [&](const char* name) -> CheckKind& {
@@ -177,6 +186,21 @@ std::vector<CheckKind> make_kinds() {
     c.summary = "no NaN, Inf or out-of-domain value on in-domain extreme inputs (stable terms and BRDFs)";
   }
   {
+    CheckKind& c = add("bsdf_furnace");
+    c.kind = IntegralKind::BsdfFlux;
+    c.domain = Domain::Sphere;
+    c.terms_read = 2;  // D and G (F is the exact dielectric one, bsdf and eta carry the rest)
+    c.base_samples = kSuiteBaseSamples;
+    c.n_view = 6;
+    c.sources = kSourceBsdf;
+    c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
+    c.expect = expect_bsdf_furnace;
+    c.verdict = "holds for every rough dielectric BSDF but the known-bad entries (Bsdf::known_bad), which must fail";
+    c.summary =
+        "rough dielectric BSDF, flux form: E_R and E_T of the light from one direction (o over the sphere) equal the "
+        "facet-space truth with the total-internal-reflection cut, whose E_R + E_T <= 1 (two-sided)";
+  }
+  {
     CheckKind& c = add("energy_mu");
     c.runner = Runner::Table;
     c.kind = IntegralKind::AlbedoRqmc;
@@ -270,6 +294,7 @@ Shape shape_of(const CheckKind& k) {
     case IntegralKind::AlbedoRqmc:
       if (!k.upper_only) return Shape::Exact;
       return k.fs == FSet::None ? Shape::Furnace : Shape::Energy;
+    case IntegralKind::BsdfFlux: return Shape::BsdfFlux;
     default: return Shape::None;
   }
 }
@@ -280,7 +305,7 @@ bool diffuse_of(const CheckKind& k) {
 
 Expectation expect(const std::string& check, const Term* d, const Term* g, double alpha, double f0, double kd) {
   const CheckKind& k = check_kind(check);
-  return k.expect ? k.expect({d, g, alpha, f0, kd}) : Expectation{};
+  return k.expect ? k.expect({d, g, alpha, f0, kd, nullptr}) : Expectation{};
 }
 
 NativeWidths native_widths(const Term& d, const Term& g, double alpha) {

@@ -9,6 +9,7 @@
 // an entry lacks a piece.
 #pragma once
 
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "runtime/integrator.hpp"
@@ -57,6 +58,7 @@ enum Source : unsigned {
   kSourceModels = 1u << 3,
   kSourceScene = 1u << 4,
   kSourceUser = 1u << 5,
+  kSourceBsdf = 1u << 6,  // the catalog's rough dielectric BSDFs (catalog/bsdfs.hpp; checks/suite_bsdf.cpp)
 };
 
 // The catalog's prediction for one point: Expect (catalog/models.hpp) says it
@@ -73,6 +75,7 @@ struct Expectation {
 struct ExpectPoint {
   const Term *d = nullptr, *g = nullptr;
   double alpha = 0, f0 = 0, kd = 0;
+  const Bsdf* bsdf = nullptr;  // a rough dielectric BSDF's point (kSourceBsdf): its entry
 };
 
 struct CheckKind {
@@ -113,8 +116,10 @@ std::string suite_check_list();
 // of D and G1 at each width and view; an albedo with F = 1 (FSet::None,
 // one-sided); an albedo with the Fs of `fs` (one-sided; with a Lambert kd
 // where `kds` has one, diffuse_of); an albedo against the model's own exact
-// value (two-sided); reciprocity pairs; none (pointwise passes, tables).
-enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, None };
+// value (two-sided); reciprocity pairs; a rough dielectric BSDF's reflected
+// and transmitted flux over the sphere against the facet-space truth
+// (BsdfFlux, two-sided); none (pointwise passes, tables).
+enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, BsdfFlux, None };
 Shape shape_of(const CheckKind& k);
 bool diffuse_of(const CheckKind& k);  // an Energy kind whose points add a Lambert kd > 0
 

@@ -58,6 +58,8 @@ std::string integral_key(const std::string& check, const IntegralSpec& s) {
   for (int i = 0; i < 7; ++i) add_float(fmt::format("p{}", i).c_str(), s.p[i], def.p[i]);
   add_float("eta", s.eta, def.eta);
   add_int("side", s.side, def.side);
+  add_int("bsdf", s.bsdf, def.bsdf);
+  add_int("lobe", s.lobe, def.lobe);
   add_float("cos_o", s.cos_o, def.cos_o);
   add_float("phi_o", s.phi_o, def.phi_o);
   add_float("width", s.width, def.width);

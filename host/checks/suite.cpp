@@ -205,6 +205,7 @@ void validate_suite_options(const SuiteOptions& opt) {
   }
   for (auto& name : aniso_model_names()) any = any || suite_model_wanted(opt.models, name);
   for (auto& name : sheen_model_names()) any = any || suite_model_wanted(opt.models, name);
+  for (auto& name : bsdf_model_names()) any = any || suite_model_wanted(opt.models, name);
   if (!any) throw Error("no model matches the --model filter (names are D, D/G, D/G/F or model[case]: see 'mfv list')");
 }
 

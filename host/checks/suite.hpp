@@ -247,7 +247,7 @@ struct PointSource {
 std::vector<Plan> cross_sources(const std::vector<PointSource>& sources,
                                 const std::function<bool(const CheckKind&)>& wanted);
 // mfv run's sources: the D x G x F grid, whole models, the anisotropic pairs,
-// the sheen lobes.
+// the sheen lobes, the rough dielectric BSDFs.
 std::vector<PointSource> suite_sources(const SuiteOptions& opt);
 
 // The sheen lobes (Term::own_lobe, host/checks/suite_sheen.cpp): d_norm,
@@ -262,6 +262,10 @@ double sheen_masking_closed_form(const Term& d, const Term& g, double alpha, dou
 // masking and furnace plans, and the model names they use.
 PointSource aniso_source(const SuiteOptions& opt);
 std::vector<std::string> aniso_model_names();
+// The rough dielectric BSDFs (catalog/bsdfs.hpp) in every kind that takes
+// them (kSourceBsdf, checks/suite_bsdf.cpp); their names for --model.
+PointSource bsdf_source(const SuiteOptions& opt);
+std::vector<std::string> bsdf_model_names();
 
 // z-test verdicts for every point, then one verdict per model x check: a
 // group fails on a point that must hold or on its pooled test (stats/).

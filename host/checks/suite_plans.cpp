@@ -300,8 +300,9 @@ std::vector<PointSource> suite_sources(const SuiteOptions& opt) {
                       plans.push_back(model_reciprocity(k, opt));
                       return true;
                     }};
-  // anisotropic D and G: two widths (suite_aniso.cpp); the sheen D and its visibility (suite_sheen.cpp)
-  return {grid, whole, aniso_source(opt), sheen_source(opt)};
+  // anisotropic D and G: two widths (suite_aniso.cpp); the sheen D and its visibility (suite_sheen.cpp);
+  // the rough dielectric BSDFs (suite_bsdf.cpp)
+  return {grid, whole, aniso_source(opt), sheen_source(opt), bsdf_source(opt)};
 }
 
 std::vector<Plan> make_plans(const SuiteOptions& opt) {

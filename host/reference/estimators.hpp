@@ -22,7 +22,8 @@ enum class Integral {
   Albedo = MFV_CHECK_ALBEDO,
   AlbedoRqmc = MFV_CHECK_ALBEDO_RQMC,
   EavgRqmc = MFV_CHECK_EAVG_RQMC,
-  AlbedoMis = MFV_CHECK_ALBEDO_MIS
+  AlbedoMis = MFV_CHECK_ALBEDO_MIS,
+  BsdfFlux = MFV_CHECK_BSDF_FLUX  // the rough dielectric BSDF's E_R or E_T (host/reference/transmission.cpp)
 };
 
 struct IntegralRef {
@@ -37,6 +38,12 @@ struct IntegralRef {
   uint32_t strata = 0;     // d_norm, E_avg: stratified over this many samples (0 = iid)
   uint32_t points = 0;     // AlbedoMis: points per replicate
   uint32_t estimator = 0;  // mfv convergence: 0 = the check's own, else Estimator below
+  // The interface (twins of IntegralSpec::eta, side, bsdf, lobe): the
+  // rough dielectric BSDF of brdf.d and brdf.g with MFV_BTDF_CODE bsdf.
+  double eta = 1.0;
+  int side = MFV_SIDE_ABOVE;
+  int bsdf = -1;
+  uint32_t lobe = MFV_LOBE_ALL;
 };
 
 // mfv convergence's estimators (MFV_EST_* in kernels/abi/integral.h).
@@ -52,6 +59,8 @@ enum class Estimator : uint32_t {
 
 // The index-th sample of the estimator: its mean over samples is the integral.
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);
+// BsdfFlux's sample (host/reference/transmission.cpp).
+double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index);
 
 // The proposals on their own (twins of kernels/integrate.cl), for mfv
 // samplers' quadrature and chi-square tests. Densities are over solid angle.

@@ -23,7 +23,7 @@ std::vector<std::string> catalog_sources(const std::vector<std::string>& then) {
 
 const std::vector<std::string>& integration_files() {
   static const std::vector<std::string> files = {"estimators.cl",   "albedo.cl",    "convergence.cl",
-                                                 "aniso_values.cl", "integrate.cl", "model_values.cl",
+                                                 "aniso_values.cl", "btdf.cl", "transmission.cl", "integrate.cl", "model_values.cl",
                                                  "reciprocity.cl"};
   return files;
 }
@@ -116,7 +116,8 @@ Sampling sampling_of(int32_t check) {
     case IntegralKind::Masking:
     case IntegralKind::Albedo:
     case IntegralKind::AlbedoRqmc:
-    case IntegralKind::AlbedoRqmcB: return Sampling::Iid;
+    case IntegralKind::AlbedoRqmcB:
+    case IntegralKind::BsdfFlux: return Sampling::Iid;
   }
   throw Error(fmt::format("internal: check id {} has no integrand (runtime/integrator.cpp sampling_of)", check));
 }

@@ -33,7 +33,8 @@ enum class IntegralKind : int32_t {
   AlbedoRqmc = MFV_CHECK_ALBEDO_RQMC,
   EavgRqmc = MFV_CHECK_EAVG_RQMC,
   AlbedoRqmcB = MFV_CHECK_ALBEDO_RQMC_B,
-  AlbedoMis = MFV_CHECK_ALBEDO_MIS
+  AlbedoMis = MFV_CHECK_ALBEDO_MIS,
+  BsdfFlux = MFV_CHECK_BSDF_FLUX  // the rough dielectric BSDF's E_R or E_T over the sphere (kernels/transmission.cl)
 };
 
 // Replicates of an AlbedoMis integral. The error allowance is t·SE with the
@@ -46,7 +47,7 @@ enum class IntegralKind : int32_t {
 constexpr uint32_t kMisReplicates = 32;
 
 // IntegralSpec: kernels/abi/integral.h, the one layout kernels and host share.
-static_assert(sizeof(IntegralSpec) == 124, "IntegralSpec: thirty-one 4-byte words, no padding (tests/test_abi.cpp)");
+static_assert(sizeof(IntegralSpec) == 132, "IntegralSpec: thirty-three 4-byte words, no padding (tests/test_abi.cpp)");
 
 struct Estimate {
   double mean = 0, stderr_ = 0;

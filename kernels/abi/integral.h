@@ -29,6 +29,8 @@ namespace mfv {
 #define MFV_CHECK_EAVG_RQMC 4       /* E_avg = ∫ E(μ) 2μ dμ: μ with density 2μ, stratified */
 #define MFV_CHECK_ALBEDO_RQMC_B 5   /* sample_values only: the split sum's B of MFV_CHECK_ALBEDO_RQMC */
 #define MFV_CHECK_ALBEDO_MIS 6      /* mfv run's albedo: three proposals by multi-sample MIS on RQMC replicates */
+/* The rough dielectric BSDF (bsdf, eta, side; kernels/transmission.cl): */
+#define MFV_CHECK_BSDF_FLUX 7       /* E_R or E_T (lobe) of the light from the fixed direction, o over the sphere, iid */
 
 /* IntegralSpec::estimator: mfv convergence's estimators (0: the check's own;
  * host: ref::Estimator). */
@@ -54,6 +56,7 @@ namespace mfv {
  *   ALBEDO_RQMC:                     Σ B, the split sum's B on the same points
  *   ALBEDO_MIS:                      Σ x² of one replicate (the host uses only
  *                                    the replicates' sums: their spread)
+ *   BSDF_FLUX (iid):                 Σ x², the sum of squares
  * A new check states its own here (docs/adding-a-check.md). */
 #define MFV_SLOT_SUM 0
 #define MFV_SLOT_SECOND 1
@@ -63,7 +66,12 @@ namespace mfv {
 #define MFV_SIDE_ABOVE 1   /* above (n·o > 0): reflection, or transmission entering */
 #define MFV_SIDE_BELOW (-1) /* below (n·o < 0): transmission leaving the medium */
 
-/* One integral: thirty-one 4-byte words, no padding. Every field has one
+/* IntegralSpec::lobe: which part of a BSDF's flux an integral takes. */
+#define MFV_LOBE_ALL 0u        /* the whole BSDF (every integral that is no BSDF's) */
+#define MFV_LOBE_REFLECT 1u    /* E_R: the reflected flux (o on the fixed direction's side) */
+#define MFV_LOBE_TRANSMIT 2u   /* E_T: the transmitted flux (o on the other side) */
+
+/* One integral: thirty-three 4-byte words, no padding. Every field has one
  * meaning; a check that needs another quantity gets a field of its own
  * (tests/test_abi.cpp lists every field once and checks its offset on the
  * device). */
@@ -85,6 +93,8 @@ struct IntegralSpec {
   /* -- the interface (transmission checks; reflection leaves the defaults) -- */
   float eta MFV_INIT(1);          /* relative IOR eta_t / eta_i, seen from the fixed direction's side */
   mfv_i32 side MFV_INIT(1);       /* MFV_SIDE_ABOVE or MFV_SIDE_BELOW: the fixed direction's side */
+  mfv_i32 bsdf MFV_INIT(-1);      /* MFV_BTDF_CODE (abi/bsdf.h) of the rough dielectric BSDF of d and g; -1: none */
+  mfv_u32 lobe MFV_INIT(0);       /* MFV_LOBE_*: the part of the BSDF's flux integrated */
   /* -- the fixed direction (the view; a whole model's light) -- */
   float cos_o MFV_INIT(1);        /* its cosine to n (> 0; `side` says which hemisphere) */
   float phi_o MFV_INIT(0);        /* its azimuth about n (0: in the xz-plane) */

@@ -1,0 +1,105 @@
+// The transmission checks' integrands (docs/transmission.md; their registry
+// entries: host/checks/registry.cpp). Needs estimators.cl (the mixture of
+// microfacet normals) and btdf.cl (the BTDF). Reference twin:
+// host/reference/transmission.cpp.
+#include "abi/integral.h"
+
+// The reflection lobe of the rough dielectric BSDF, by components: Walter et
+// al. 2007 eq. 20, f_r = F(i·h) G2(i, o, h) D(h) / (4 |i·n||o·n|), h the
+// normalized i + o, F the exact dielectric Fresnel (1 - T_dielectric) and G2
+// of the BTDF's form (btdf_g2), so that E_R + E_T is one BSDF's flux. Light
+// from below: both directions mirrored and eta -> 1/eta, as btdf_eval_c.
+static inline real bsdf_reflect_c(int d, int g, int form, real lx, real ly, real lz, real vx, real vy, real vz,
+                                  real pd, real pg, real eta) {
+  if (lz < R(0.0)) {
+    lx = -lx, ly = -ly, lz = -lz;
+    vx = -vx, vy = -vy, vz = -vz;
+    eta = R(1.0) / eta;
+  }
+  if (lz <= R(0.0) || vz <= R(0.0)) return R(0.0);  // not a reflected pair
+  real hx, hy, hz;
+  real len = normalize_sum(lx + vx, ly + vy, lz + vz, &hx, &hy, &hz);
+  if (!(len > R(0.0))) return R(0.0);
+  real IoH = lx * hx + ly * hy + lz * hz;
+  real D = eval_D(d, hz, hx * hx + hy * hy, pd);
+  if (D == R(0.0)) return R(0.0);
+  real a = eval_G1_aniso(g, lz, R(0.0), R(0.0), pg, pg);
+  real b = eval_G1_aniso(g, vz, R(0.0), R(0.0), pg, pg);
+  real F = R(1.0) - T_dielectric(IoH, eta);
+  return F * btdf_g2(form, a, b) * (D / (R(4.0) * lz)) / vz;
+}
+
+// Shares of mfv run's sphere proposal for a BSDF's flux (twin: kBsdfCos,
+// kBsdfReflect in host/reference/transmission.cpp): a cosine lobe on each
+// side (defensive), o reflected about and refracted through a normal m of the
+// conformance mixture (sample_m, the width of the model, never its formula).
+#define BSDF_COS R(0.1)      // each side's cosine lobe
+#define BSDF_REFLECT R(0.4)  // o = reflect(i, m); the rest (0.4): o = refract(i, m)
+
+// The proposal's density of o, in the frame where i is above (iz > 0) and
+// eta is the relative index seen from i: the cosine lobe of o's side plus
+// the reflection (Jacobian 1/(4 o·h), Walter et al. 2007 eq. 14) or the
+// refraction (η² |o·h| / (i·h + η o·h)², eq. 17) of the mixture's normals.
+static inline real bsdf_proposal_pdf(real ix, real iy, real iz, real ox, real oy, real oz, real w, real eta) {
+  real p = BSDF_COS * fabs(oz) * MFV_INV_PI;
+  real hx, hy, hz;
+  if (oz > R(0.0)) {
+    real len = normalize_sum(ix + ox, iy + oy, iz + oz, &hx, &hy, &hz);
+    real oh = ox * hx + oy * hy + oz * hz;
+    if (len > R(0.0) && hz > R(0.0) && oh > R(0.0))
+      p += BSDF_REFLECT * pdf_m(hz, hx * hx + hy * hy, w) / (R(4.0) * oh);
+    return p;
+  }
+  real len = normalize_sum(ix + eta * ox, iy + eta * oy, iz + eta * oz, &hx, &hy, &hz);
+  if (!(len > R(0.0))) return p;
+  if (hz < R(0.0)) hx = -hx, hy = -hy, hz = -hz;
+  real ih = ix * hx + iy * hy + iz * hz, oh = ox * hx + oy * hy + oz * hz;
+  if (ih > R(0.0) && oh < R(0.0))
+    p += (R(1.0) - BSDF_COS * R(2.0) - BSDF_REFLECT) * pdf_m(hz, hx * hx + hy * hy, w) * eta * eta * (-oh) / (len * len);
+  return p;
+}
+
+// One sample of a BSDF's flux (MFV_CHECK_BSDF_FLUX, the flux form of
+// docs/transmission.md): E(i) = ∫ f(i, o) |o·n| do over the sphere of o, i
+// the fixed direction at cos_o on `side`; f is the reflection lobe
+// (bsdf_reflect_c) where o lies on i's side and the BTDF (btdf_eval_c) on
+// the other, and `lobe` keeps one of the two. The proposal (above) is drawn
+// in the frame where i is above (eta -> 1/eta from below) and mirrored back,
+// so that the BSDF itself sees i on its side.
+static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), index);
+  real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
+  const real below = s->side == MFV_SIDE_BELOW ? R(-1.0) : R(1.0);
+  const real eta = s->side == MFV_SIDE_BELOW ? R(1.0) / s->eta : s->eta;  // seen from i
+  real ix = sqrt(sin2_from_cos(s->cos_o)), iy = R(0.0), iz = s->cos_o;
+  real ox, oy, oz;
+  if (u_branch < R(2.0) * BSDF_COS) {
+    cosine_direction(u_phi, u_r, &ox, &oy, &oz);
+    if (u_branch < BSDF_COS) oz = -oz;  // the other side's lobe
+  } else {
+    real c, s2;
+    real3 m = sample_m(u_pick, u_phi, u_r, s->width, &c, &s2);
+    real im = ix * m.x + iy * m.y + iz * m.z;
+    if (im <= R(0.0)) return R(0.0);  // a facet facing away: no output
+    if (u_branch < R(2.0) * BSDF_COS + BSDF_REFLECT) {
+      ox = R(2.0) * im * m.x - ix, oy = R(2.0) * im * m.y - iy, oz = R(2.0) * im * m.z - iz;
+      if (oz <= R(0.0)) return R(0.0);
+    } else {
+      // Walter et al. 2007 eq. 40 with η_i/η_o = 1/eta: none under total internal reflection
+      real k = R(1.0) / eta, t2 = R(1.0) - k * k * (R(1.0) - im * im);
+      if (t2 <= R(0.0)) return R(0.0);
+      real a = k * im - sqrt(t2);
+      ox = a * m.x - k * ix, oy = a * m.y - k * iy, oz = a * m.z - k * iz;
+      if (oz >= R(0.0)) return R(0.0);
+    }
+  }
+  const bool reflected = oz > R(0.0);
+  if (reflected != (s->lobe == MFV_LOBE_REFLECT) && s->lobe != MFV_LOBE_ALL) return R(0.0);
+  real p = bsdf_proposal_pdf(ix, iy, iz, ox, oy, oz, s->width, eta);
+  if (!(p > R(0.0))) return R(0.0);
+  // back to the surface's frame: i (and o) mirrored when i is below
+  real f = reflected ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg,
+                                      s->eta)
+                     : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg, s->eta);
+  return f * fabs(oz) / p;
+}
