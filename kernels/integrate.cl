@@ -117,6 +117,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     case MFV_CHECK_ALBEDO_RQMC_B: return albedo_rqmc_value(s, rqmc_shift(s, seed), index).y;
     case MFV_CHECK_ALBEDO_MIS: return albedo_mis_value(s, seed, index);
     case MFV_CHECK_BSDF_FLUX: return bsdf_flux_value(s, seed, index);
+    case MFV_CHECK_MASKING_T: return masking_t_value(s, seed, index);
     default: return NAN;  // no integrand for this check id
   }
 }

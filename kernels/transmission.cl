@@ -103,3 +103,20 @@ static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, u
                      : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg, s->eta);
   return f * fabs(oz) / p;
 }
+
+// One sample of the weak white furnace on the transmitted side
+// (MFV_CHECK_MASKING_T; Heitz 2014 eq. 19 for o below the surface):
+// ∫ G1(o, m) max(0, -o·m) D(m) dm = |o·n|, o at cos_o below, with the G1 the
+// BTDF masks a direction below the surface with (btdf_eval_c: the Smith G1
+// at |o·n|, χ+((o·m)/(o·n)) its orientation test), m from the mixture.
+static inline real masking_t_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), index);
+  real u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
+  real co = s->cos_o, ox = sqrt(sin2_from_cos(co)), oz = -co;
+  real c, s2;
+  real3 m = sample_m(u_pick, u_phi, u_r, s->width, &c, &s2);
+  real om = ox * m.x + oz * m.z;
+  if (om >= R(0.0)) return R(0.0);  // χ+: o below sees the facets with o·m < 0
+  real g1 = eval_G1_aniso(s->g, co, R(0.0), R(0.0), s->pg, s->pg);
+  return g1 * eval_D(s->d, c, s2, s->pd) * -om / (pdf_m(c, s2, s->width) * co);
+}

@@ -24,6 +24,19 @@ inline const Plant kGgxNoHorizon = {
     "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return NoH <= R(0.0) ? R(0.0) : d;",
     "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return d;"};
 
+// The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
+// of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
+// transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).
+inline const Plant kBtdfEtaNotSquared = {"the BTDF with eta_o in place of eta_o^2", "btdf.cl",
+                                         "variant == MFV_BTDF_BAD_NO_ETA2 ? R(1.0) : eta * eta;",
+                                         "variant == MFV_BTDF_BAD_NO_ETA2 ? R(1.0) : eta;"};
+
+// smith_ggx's G1 with half its Λ (kernels/terms_g.cl): it under-masks GGX's D,
+// from above and from below (issue 29: transmission_masking sees it).
+inline const Plant kGgxG1HalfLambda = {"smith_ggx's G1 with half its Lambda", "terms_g.cl",
+                                       "return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));",
+                                       "return R(1.0) / (R(1.0) + R(0.5) * Lambda_ggx(NoV, alpha));"};
+
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
 }  // namespace mfv::test

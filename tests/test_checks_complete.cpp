@@ -4,6 +4,7 @@
 // the points its sources give, and its report line. A kind registered with a
 // piece missing fails here with a message naming the piece; the companion
 // test plants one kind per missing piece and shows each message firing.
+#include "abi/bsdf.h"
 #include "albedo_spec.hpp"
 #include "checks/integrate.hpp"
 #include "checks/registry.hpp"
@@ -36,6 +37,11 @@ IntegralSpec probe_spec(const CheckKind& k) {
   IntegralSpec s = test::albedo_spec("ggx", "smith_ggx_correlated", "none", 0.3, 0.7, 0.0, 0.0, 1, k.kind);
   if (k.kind == IntegralKind::DNorm || k.kind == IntegralKind::EavgRqmc) s.strata = kProbeSamples;
   if (k.kind == IntegralKind::AlbedoMis) s.points = kProbeSamples / 4;
+  if (k.domain == Domain::Sphere) {  // a rough dielectric BSDF's: glass, entered, the transmitted flux
+    s.bsdf = MFV_BTDF_CODE(MFV_BTDF_CORRELATED, MFV_BTDF_OK);
+    s.eta = 1.5f;
+    s.lobe = MFV_LOBE_TRANSMIT;
+  }
   return s;
 }
 

@@ -66,6 +66,10 @@ Expectation expect_bsdf_furnace(const ExpectPoint& p) {
   return {};
 }
 
+// The BTDF's G1 from below is D's Smith G1 where G belongs to D (as masking
+// from above): the known-bad entry with another D's G1 fails, the rest hold.
+Expectation expect_transmission_masking(const ExpectPoint& p) { return expect_masking(p); }
+
 std::vector<CheckKind> make_kinds() {
   std::vector<CheckKind> k;
   auto add = [&](const char* name) -> CheckKind& {
@@ -201,6 +205,21 @@ std::vector<CheckKind> make_kinds() {
         "facet-space truth with the total-internal-reflection cut, whose E_R + E_T <= 1 (two-sided)";
   }
   {
+    CheckKind& c = add("transmission_masking");
+    c.kind = IntegralKind::MaskingT;
+    c.terms_read = 2;
+    c.base_samples = kSuiteBaseSamples;
+    c.n_view = 8;
+    c.sources = kSourceBsdf;
+    c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) mask a direction below the surface";
+    c.expect = expect_transmission_masking;
+    c.verdict = "as masking: holds where the BTDF's G1 is its D's Smith G1 (within the fit); the entry with another "
+                "D's G1 (walter_ggx_beckmann_g1) must fail";
+    c.summary =
+        "the BTDF's G1 below the surface: the weak white furnace integral of G1(o,m) max(0,-o.m) D(m) is |o.n| "
+        "(Heitz 2014 eq. 19, two-sided)";
+  }
+  {
     CheckKind& c = add("energy_mu");
     c.runner = Runner::Table;
     c.kind = IntegralKind::AlbedoRqmc;
@@ -295,6 +314,7 @@ Shape shape_of(const CheckKind& k) {
       if (!k.upper_only) return Shape::Exact;
       return k.fs == FSet::None ? Shape::Furnace : Shape::Energy;
     case IntegralKind::BsdfFlux: return Shape::BsdfFlux;
+    case IntegralKind::MaskingT: return Shape::MaskingT;
     default: return Shape::None;
   }
 }

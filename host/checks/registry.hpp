@@ -118,8 +118,9 @@ std::string suite_check_list();
 // where `kds` has one, diffuse_of); an albedo against the model's own exact
 // value (two-sided); reciprocity pairs; a rough dielectric BSDF's reflected
 // and transmitted flux over the sphere against the facet-space truth
-// (BsdfFlux, two-sided); none (pointwise passes, tables).
-enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, BsdfFlux, None };
+// (BsdfFlux, two-sided); the weak white furnace for a direction below the
+// surface (MaskingT); none (pointwise passes, tables).
+enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, BsdfFlux, MaskingT, None };
 Shape shape_of(const CheckKind& k);
 bool diffuse_of(const CheckKind& k);  // an Energy kind whose points add a Lambert kd > 0
 

@@ -111,8 +111,9 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
       if (!in_range(*b.d, alpha) || !in_range(*b.g, alpha)) continue;
       used = true;
       const Expectation e = kind.expect ? kind.expect({b.d, b.g, alpha, 0, 0, &b}) : Expectation{};
-      for (double eta : kBsdfEtas)
-        for (int side : {MFV_SIDE_ABOVE, MFV_SIDE_BELOW})
+      // the flux from both sides at each index; the other kinds read no eta (o below)
+      for (double eta : flux ? kBsdfEtas : std::vector<double>{1.0})
+        for (int side : flux ? std::vector<int>{MFV_SIDE_ABOVE, MFV_SIDE_BELOW} : std::vector<int>{MFV_SIDE_BELOW})
           for (double co : views) {
             const TruthKey key{&truth_entry(b), alpha, eta, side, co};
             if (flux) keys.push_back(key);
@@ -134,9 +135,10 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
               PointResult r;
               r.check = kind.check;
               r.model = b.id;
-              r.params = {{"alpha", alpha}, {"eta", eta}, {"side", side}, {"cos_i", co}};
+              r.params = {{"alpha", alpha}, {"side", side}, {flux ? "cos_i" : "cos_o", co}};
+              if (flux) r.params["eta"] = eta;
               if (lobe != MFV_LOBE_ALL) r.params["lobe"] = lobe;
-              r.expected = kind.expected;
+              r.expected = kind.expected;  // the flux: its truth, below
               r.upper_only = kind.upper_only;
               r.expect = e.expect;
               r.reason = e.reason;
@@ -189,7 +191,7 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
 PointSource bsdf_source(const SuiteOptions& opt) {
   return {kSourceBsdf, "the rough dielectric BSDFs", [&opt](const CheckKind& k, std::vector<Plan>& plans) {
             const Shape shape = shape_of(k);
-            if (shape != Shape::BsdfFlux) return false;
+            if (shape != Shape::BsdfFlux && shape != Shape::MaskingT) return false;
             Plan p = bsdf_plan(k, opt);
             if (!p.specs.empty()) plans.push_back(std::move(p));
             return true;

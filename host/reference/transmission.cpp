@@ -112,4 +112,17 @@ double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
   return f * std::fabs(o.z) / p;
 }
 
+double masking_t(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  // Heitz 2014 eq. 19 for o below: ∫ G1(o, m) max(0, -o·m) D(m) dm / |o·n| = 1,
+  // G1 the Smith G1 at |o·n| with Walter et al. 2007 eq. 23's orientation test
+  const auto r = philox(seed, s.stream, draw_word(s, 0), index);
+  const double u_pick = u01_open(r[1]), u_phi = u01_open(r[2]), u_r = u01_open(r[3]);
+  const glm::dvec3 o(std::sqrt((1.0 - s.cos_o) * (1.0 + s.cos_o)), 0.0, -s.cos_o);
+  double c, s2;
+  const glm::dvec3 m = sample_m(u_pick, u_phi, u_r, s.width, c, s2);
+  const double om = glm::dot(o, m);
+  if (om * o.z <= 0.0) return 0.0;  // χ+((o·m)/(o·n))
+  return s.brdf.g->ref_g1(s.cos_o, s.brdf.pg) * d_at(s, m) * std::fabs(om) / (pdf_m(c, s2, s.width) * s.cos_o);
+}
+
 }  // namespace mfv::ref

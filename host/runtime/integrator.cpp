@@ -117,7 +117,8 @@ Sampling sampling_of(int32_t check) {
     case IntegralKind::Albedo:
     case IntegralKind::AlbedoRqmc:
     case IntegralKind::AlbedoRqmcB:
-    case IntegralKind::BsdfFlux: return Sampling::Iid;
+    case IntegralKind::BsdfFlux:
+    case IntegralKind::MaskingT: return Sampling::Iid;
   }
   throw Error(fmt::format("internal: check id {} has no integrand (runtime/integrator.cpp sampling_of)", check));
 }
