@@ -4,6 +4,7 @@
 #include "checks/streams.hpp"
 #include "checks/stability.hpp"
 #include "rng/philox.hpp"
+#include "stats/verdict.hpp"
 #include "user/time_limit.hpp"
 #include "user/user_detail.hpp"
 #include "user/user_power.hpp"
@@ -15,6 +16,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <map>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -273,6 +276,38 @@ void run_user_reciprocity(Runtime& rt, const cl::Program& prog, Integrator& in, 
   if (!failing.empty()) describe_reciprocity(rt, prog, opt.seed, at, failing);
 }
 
+// Per-point sample sizing (user/user_power.hpp): the upper-limit points of
+// `plan` (rep.points[first..]) whose pass lacks the power to detect a 5 %
+// gain are extended with fresh samples (samples n .. n' - 1 of their own
+// streams), grouped by n', and each estimate becomes the mean over all n'.
+// Returns the evaluations it took.
+double size_for_power(Integrator& in, const Plan& plan, SuiteReport& rep, size_t first, double z, uint64_t seed,
+                      const std::function<void(double, const std::string&)>& arm) {
+  std::map<uint64_t, std::vector<size_t>> by;
+  for (size_t j = 0; j < plan.specs.size(); ++j) {
+    const PointResult& p = rep.points[first + j];
+    const uint64_t need = samples_for_power(p, z);
+    if (need > p.samples) by[need].push_back(j);
+  }
+  double evals = 0;
+  for (auto& [need, idx] : by) {
+    std::vector<IntegralSpec> specs;
+    for (size_t j : idx) specs.push_back(plan.specs[j]);
+    const uint64_t n0 = rep.points[first + idx.front()].samples;  // one pass: every point has the same
+    arm(double(need - n0) * double(specs.size()), "the " + plan.check + " integrals sized for power");
+    const std::vector<Estimate> ext = in.run(specs, need - n0, seed, n0);
+    for (size_t k = 0; k < idx.size(); ++k) {
+      PointResult& p = rep.points[first + idx[k]];
+      const double a = double(p.samples), b = double(ext[k].samples), n = a + b;
+      p.estimate = (a * p.estimate + b * ext[k].mean) / n;
+      p.stderr_ = std::sqrt(a * a * p.stderr_ * p.stderr_ + b * b * ext[k].stderr_ * ext[k].stderr_) / n;
+      p.samples = p.samples + ext[k].samples;
+    }
+    evals += double(need - n0) * double(specs.size());
+  }
+  return evals;
+}
+
 // Seconds per evaluation of the user's brdf, from a small launch of the
 // furnace integrand at the defaults (itself under the minimum step limit).
 double calibrate(Integrator& in, const UserBrdf& u) {
@@ -355,14 +390,23 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& user, const std::optiona
   auto arm = [&](double evals, const std::string& step) {
     watchdog_arm(std::max(kMinStepSeconds, 100.0 * per_eval * evals), step);
   };
-  for (auto& plan : make_plans(u, opt, checks)) {
+  std::vector<Plan> plans = make_plans(u, opt, checks);
+  // the per-integral threshold judge() will test at: the integrals are its tests
+  size_t tests = 0;
+  for (auto& plan : plans) tests += plan.specs.size();
+  const double z = stats::per_integral_threshold(stats::split_family_alpha(sopt.family_alpha).per_integral, tests);
+  for (auto& plan : plans) {
     arm(double(plan.samples) * double(plan.specs.size()), "the " + plan.check + " integrals");
     const size_t first = rep.points.size();
     run_plan(in, plan, sopt, rep);
-    if (!twin) continue;
-    // kf - kd on the integrals' own first samples (streams set, stratified)
-    std::vector<double> r = twin_rounding(rt, prog, *twin, plan.specs, kTwinSamples, opt.seed);
-    for (size_t j = 0; j < r.size(); ++j) rep.points[first + j].rounding_bound = r[j];
+    if (twin) {
+      // kf - kd on the integrals' own first samples (streams set, stratified)
+      std::vector<double> r = twin_rounding(rt, prog, *twin, plan.specs, kTwinSamples, opt.seed);
+      for (size_t j = 0; j < r.size(); ++j) rep.points[first + j].rounding_bound = r[j];
+    }
+    // sized at the default sample count or above; fewer (--samples, --scale
+    // below 1) asks for a quick look, each integral at that count
+    if (check_kind(plan.check).upper_only && opt.scale >= 1.0) size_for_power(in, plan, rep, first, z, opt.seed, arm);
   }
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
   // pointwise steps: a few thousand evaluations per setting (a bound of their count)

@@ -31,6 +31,20 @@ void mark_inconclusive(SuiteReport& rep, size_t first) {
   }
 }
 
+uint64_t samples_for_power(const PointResult& p, double z) {
+  constexpr double kGain = 0.05, kPowerZ = 1.6448536269514722;  // one-sided 0.95
+  const uint64_t n = p.samples;
+  if (p.bounded || !p.upper_only || n == 0 || !std::isfinite(p.stderr_) || !std::isfinite(p.estimate)) return n;
+  const double room = kGain * std::fabs(p.expected) - p.rounding_bound;  // what noise may take of the gain
+  const double need_se = (z + kPowerZ) * p.stderr_;
+  if (need_se <= room) return n;
+  if (!(room > 0)) return n;  // the bias alone hides the gain: no sample count helps
+  const double factor = (need_se / room) * (need_se / room);
+  uint64_t m = 2;
+  while (m < kMaxSizing && double(m) < factor) m *= 2;
+  return n * m;
+}
+
 std::string power_statement(const SuiteReport& rep) {
   constexpr double kGain = 0.05, kPowerZ = 1.6448536269514722;  // one-sided 0.95
   struct Power {

@@ -35,6 +35,17 @@ constexpr double kNegligible = 1e-3;
 // judge().
 void mark_inconclusive(SuiteReport& rep, size_t first);
 
+// Per-point sample sizing (issue 28): the samples an upper-limit point needs
+// so that a 5 % gain at it is detected with probability 0.95 at the
+// per-integral threshold z. Its pass of n samples measured the standard
+// error se, which falls as 1/sqrt(n), so n ((z + 1.645) se / (0.05 |E| - b))^2,
+// b its float rounding bound, rounded up to n times a power of 2. n where the
+// pass already has the power; at most kMaxSizing n, which a gain the bias
+// alone hides (b >= 0.05 |E|), or a lobe the estimator does not reach, is
+// also given (the power statement then names the point).
+constexpr uint64_t kMaxSizing = 64;
+uint64_t samples_for_power(const PointResult& p, double z);
+
 // After judge(): for the upper-limit checks (furnace, energy), the gain each
 // detects with probability 0.95 at the run's threshold, (z + 1.645) SE +
 // bias, at its least powerful point, and at how many points a 5 % gain is
