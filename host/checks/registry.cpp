@@ -68,7 +68,17 @@ Expectation expect_bsdf_furnace(const ExpectPoint& p) {
 
 // The BTDF's G1 from below is D's Smith G1 where G belongs to D (as masking
 // from above): the known-bad entry with another D's G1 fails, the rest hold.
-Expectation expect_transmission_masking(const ExpectPoint& p) { return expect_masking(p); }
+// A fit used beyond its alpha_max (Beckmann's G1 for Phong and Blinn rho) is
+// off by 4-7 % at alpha 0.3-0.4, which the transmission-masking estimator's
+// SE at grazing view (0.097 at 512 samples, cos_o 0.01) cannot resolve on
+// every seed: the 20-seed test saw 15 of 80 such groups pass. There a failure
+// is allowed, not required.
+Expectation expect_transmission_masking(const ExpectPoint& p) {
+  Expectation e = expect_masking(p);
+  const SmithFit* fit = p.g && p.d && !p.g->smith_for.empty() ? p.g->fit_for(p.d->id) : nullptr;
+  if (e.expect == Expect::Fail && fit && p.alpha > fit->alpha_max) e.expect = Expect::May;
+  return e;
+}
 
 std::vector<CheckKind> make_kinds() {
   std::vector<CheckKind> k;
