@@ -24,6 +24,12 @@ Expectation expect_masking(const ExpectPoint& p) {
   const SmithFit* fit = g->fit_for(d->id);
   if (g->smith_for.empty()) {
     if (!g->masking_exact.empty()) return {Expect::Hold, "", 0};
+    // an engine's own-lobe G (hammon_clamped fits height-correlated Smith-GGX
+    // closely): its masking error is below the check's power on some seeds
+    // (ggx/hammon_clamped passed at seed 20 of the 20-seed test), so may fail
+    if (g->own_lobe)
+      return {Expect::May, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved",
+              0};
     return {Expect::Fail, g->id + " is no Smith G1 of any D (Heitz 2014 §5.4): its projected area is not conserved", 0};
   }
   if (!fit) return {Expect::Fail, g->id + "'s G1 belongs to " + g->smith_for.front().d + ", not to " + d->id, 0};
