@@ -215,13 +215,54 @@ static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, 
   return share * brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
 }
 
+// The same estimator for every other albedo integral of mfv run (anisotropic
+// terms, whole models, a scene's glTF lobes, a user's BRDF): the view o at
+// its azimuth (spec_view), the BRDF through spec_brdf, and proposals (a) and
+// (b) stretched to the widths (width, width_y) where the spec has two
+// (vis_pdf_i_aniso, sample_vis_aniso_c, pdf_slope_aniso; sample_m_aniso_c
+// for the slopes), the same points, shares and weights as
+// albedo_mis_microfacet, which it equals up to rounding at one width and
+// phi_o = 0. Needs a width > 0 (a user file that declares no roughness keeps
+// the defensive mixture of widths: host/user/user_check.cpp). Twin:
+// albedo_mis in host/reference/estimators.cpp.
+static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shift, uint k, uint n) {
+  uint n_def = n / 10u, n_vis = 8u * n_def;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_def;
+  uint j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
+  real u_phi, u_r;
+  owen_sobol_2d(j, vis ? shift.x : cosine ? shift.w : shift.z, vis ? shift.y : cosine ? shift.z : shift.w, &u_phi, &u_r);
+  real wx = s->width, wy = spec_stretched(s) ? s->width_y : s->width;
+  real3 o = spec_view(s);
+  real ix, iy, iz;
+  if (cosine) {
+    cosine_direction(u_phi, u_r, &ix, &iy, &iz);
+  } else {
+    real mx, my, mz, s2;
+    if (vis) sample_vis_aniso_c(o.x, o.y, o.z, u_phi, u_r, wx, wy, &mx, &my, &mz);
+    else sample_m_aniso_c(false, u_phi, u_r, wx, wy, &mx, &my, &mz, &s2);
+    real om2 = R(2.0) * (o.x * mx + o.y * my + o.z * mz);
+    ix = om2 * mx - o.x;
+    iy = om2 * my - o.y;
+    iz = om2 * mz - o.z;
+  }
+  if (iz <= R(0.0)) return R(0.0);
+  real hx, hy, hz;
+  real oh = R(0.5) * normalize_sum(ix + o.x, iy + o.y, iz + o.z, &hx, &hy, &hz);
+  real q = MIS_C_VIS * vis_pdf_i_aniso(hx, hy, hz, o.x, o.y, o.z, wx, wy) +
+           MIS_C_SLOPE * pdf_slope_aniso(hx, hy, hz, wx, wy) / (R(4.0) * oh) + MIS_C_COS * iz * MFV_INV_PI;
+  real share = vis ? R(1.171875) : R(0.3125);
+  return share * spec_brdf(s, (real3)(ix, iy, iz), o) * iz / q;
+}
+
 static inline real albedo_mis_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-#ifdef MFV_USER_BRDF
-  return NAN;  // the host sends no AlbedoMis integral to user code (mfv check)
-#else
   uint n = s->points;
-  return albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o,
-                               mis_shift(s, seed, (uint)(index / n)), (uint)(index % n), n);
+  uint4 shift = mis_shift(s, seed, (uint)(index / n));
+  if (!spec_is_microfacet(s)) return albedo_mis_general(s, shift, (uint)(index % n), n);
+#ifdef MFV_USER_BRDF
+  return NAN;  // unreachable: spec_is_microfacet is false in user programs
+#else
+  return albedo_mis_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift,
+                               (uint)(index % n), n);
 #endif
 }
 

@@ -340,6 +340,47 @@ static inline void sample_vis_c(real vx, real vy, real vz, real u_phi, real u_r,
   *mz = hz * r;
 }
 
+// The anisotropic GGX *shape* of widths (wx, wy) along (t, b), for mfv
+// run's albedo outside the isotropic catalog grid (albedo_mis_general):
+// D_w(h) = 1 / (π wx wy (h_z² + (h_x/wx)² + (h_y/wy)²)²) for unit h (Heitz
+// 2014, "Understanding the masking-shadowing function", anisotropic GGX)
+// and its Smith G1(o) = 2 o_z / (o_z + sqrt(o_z² + wx² o_x² + wy² o_y²))
+// (eq. 72's Λ at the view's projected width, "anisotropic distributions"), so the
+// pdf of i = reflect(o, h) for a visible h, G1(o) (o·h) D_w(h) / o_z times
+// 1 / (4 o·h), is D_w(h) / (2 (o_z + sqrt(...))), as vis_pdf_i at wx = wy.
+static inline real vis_pdf_i_aniso(real hx, real hy, real hz, real ox, real oy, real oz, real wx, real wy) {
+  real tx = hx / wx, ty = hy / wy;
+  real k = hz * hz + tx * tx + ty * ty;
+  return R(1.0) / (MFV_PI * wx * wy * k * k) / (R(2.0) * (oz + sqrt(oz * oz + wx * wx * ox * ox + wy * wy * oy * oy)));
+}
+
+// A visible normal of that shape at o (Dupuy & Benyoub 2023, Listing 3:
+// stretch o by (wx, wy), draw from the spherical cap, unstretch the normal).
+static inline void sample_vis_aniso_c(real vx, real vy, real vz, real u_phi, real u_r, real wx, real wy, real* mx,
+                                      real* my, real* mz) {
+  real ox = wx * vx, oy = wy * vy, oz = vz;
+  real inv = rsqrt(ox * ox + oy * oy + oz * oz);
+  ox *= inv;
+  oy *= inv;
+  oz *= inv;
+  real z = (R(1.0) - u_r) * (R(1.0) + oz) - oz;
+  real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
+  real2 sc = sincos_2pi(u_phi);
+  real hx = wx * (st * sc.y + ox), hy = wy * (st * sc.x + oy), hz = z + oz;
+  real len2 = hx * hx + hy * hy + hz * hz;
+  real r = len2 > R(0.0) ? rsqrt(len2) : R(0.0);
+  *mx = hx * r;
+  *my = hy * r;
+  *mz = hz * r;
+}
+
+// The stretched Cauchy slopes alone (pdf_m_aniso_c without its cosine share).
+static inline real pdf_slope_aniso(real mx, real my, real mz, real wx, real wy) {
+  real tx = mx / wx, ty = my / wy;
+  real k = mz * mz + tx * tx + ty * ty;
+  return R(1.0) / (R(2.0) * MFV_PI * wx * wy * k * sqrt(k));
+}
+
 static inline real3 sample_vis(real3 o, real u_phi, real u_r, real w) {
   real mx, my, mz;
   sample_vis_c(o.x, o.y, o.z, u_phi, u_r, w, &mx, &my, &mz);

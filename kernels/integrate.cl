@@ -208,6 +208,17 @@ MFV_SAMPLE_VALUES(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd
 MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
 #endif
 
+// The other AlbedoMis integrals (albedo_mis_general: anisotropic terms,
+// whole models, user code), in every program, laid out as albedo_mis_values.
+__kernel MFV_NO_IMPLICIT_VECTORIZE void albedo_mis_general_values(__global const IntegralSpec* restrict specs, ulong seed,
+                                                                  uint replicates, uint row0,
+                                                                  __global float* restrict values) {
+  size_t k = get_global_id(0), row = row0 + get_global_id(1);
+  __global const IntegralSpec* s = specs + row / replicates;
+  uint4 shift = mis_shift(s, seed, (uint)(row % replicates));
+  values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_general(s, shift, (uint)k, s->points);
+}
+
 #ifndef MFV_USER_BRDF
 // d_norm (stratified) and masking of isotropic microfacet integrals
 // (spec_is_microfacet) with one sample per work-item, as albedo_values:

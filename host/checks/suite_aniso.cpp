@@ -142,16 +142,15 @@ PointSource aniso_source(const SuiteOptions& opt) {
               }
             break;
           case Shape::Furnace:
-            // white furnace (F = 1): albedo <= 1 for the matched anisotropic pairs, with the
-            // defensive mixture (Albedo): albedo_mis_microfacet takes isotropic terms only
-            // (docs/adding-a-check.md, What remains)
+            // white furnace (F = 1): albedo <= 1 for the matched anisotropic pairs, by the
+            // kind's own estimator (AlbedoMis: kernels/albedo.cl albedo_mis_general)
             p.terms.d = aniso_terms_of(Kind::D);
             p.terms.g = aniso_terms_of(Kind::G);
             p.terms.f = {none};
             for (auto* d : p.terms.d)
               for (auto* g : p.terms.g) {
                 if (!g->fit_for(d->id) || !suite_model_wanted(opt.models, d->id + "/" + g->id + "/none")) continue;
-                add_views(p, IntegralKind::Albedo, *d, g, none,
+                add_views(p, k.kind, *d, g, none,
                           [&k](PointResult& pt, const glm::dvec3&, const Widths&) { pt.upper_only = k.upper_only; });
               }
             break;

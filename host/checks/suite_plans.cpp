@@ -109,7 +109,7 @@ bool add_model_plans(const CheckKind& k, const SuiteOptions& opt, std::vector<Pl
       for (double co : view_cosines(kModelLights * opt.density)) {
         const double closed = m.ref_albedo ? m.ref_albedo(co, c.p.data()) : std::nan("");
         if (exact && std::isnan(closed)) continue;
-        p.specs.push_back(model_spec(IntegralKind::Albedo, m, c.p, co));
+        p.specs.push_back(model_spec(k.kind, m, c.p, co));  // energy: AlbedoMis; closed_form: Albedo
         PointResult r;
         r.check = k.check;
         r.model = name;

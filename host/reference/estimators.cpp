@@ -59,10 +59,14 @@ glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c
 // Anisotropic widths (wx, wy) along (t, b) = (+x, +y): the Cauchy slopes
 // stretched, slope density (1/(2π wx wy)) (1 + sx²/wx² + sy²/wy²)^(-3/2),
 // over solid angle divided by cos³θ (twin of pdf_m_aniso_c in kernels/estimators.cl).
-double pdf_m_aniso(const glm::dvec3& m, double wx, double wy) {
+double pdf_slope_aniso(const glm::dvec3& m, double wx, double wy) {
   const double c = m.z, sx = m.x / c, sy = m.y / c;
   const double slope = std::pow(1.0 + sx * sx / (wx * wx) + sy * sy / (wy * wy), -1.5) / (2.0 * M_PI * wx * wy);
-  return kMixCos * c / M_PI + (1.0 - kMixCos) * slope / (c * c * c);
+  return slope / (c * c * c);
+}
+
+double pdf_m_aniso(const glm::dvec3& m, double wx, double wy) {
+  return kMixCos * m.z / M_PI + (1.0 - kMixCos) * pdf_slope_aniso(m, wx, wy);
 }
 
 glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, double wy) {
@@ -152,18 +156,34 @@ double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double w) {
   return g1 * d / (4.0 * o.z);
 }
 
+// The anisotropic GGX shape of widths (wx, wy) along (+x, +y), from its
+// slopes (Heitz 2014, anisotropic distributions): D = 1 / (π wx wy cos⁴θ
+// (1 + sx²/wx² + sy²/wy²)²) with (sx, sy) = -(h.x, h.y) / h.z up to sign,
+// Smith G1(o) = 2 / (1 + sqrt(1 + (wx² o.x² + wy² o.y²) / o.z²)) (eq. 72 at
+// the view's projected width); the pdf of i as above.
+double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double wx, double wy) {
+  const double ch = h.z, sx = h.x / ch, sy = h.y / ch;
+  const double k = 1.0 + sx * sx / (wx * wx) + sy * sy / (wy * wy);
+  const double d = 1.0 / (M_PI * wx * wy * ch * ch * ch * ch * k * k);
+  const double a2t2 = (wx * wx * o.x * o.x + wy * wy * o.y * o.y) / (o.z * o.z);
+  const double g1 = 2.0 / (1.0 + std::sqrt(1.0 + a2t2));
+  return g1 * d / (4.0 * o.z);
+}
+
 // A visible normal of the GGX shape at o, by stretching to w = 1 and drawing
 // from the spherical cap (Dupuy & Benyoub 2023, Listing 3).
-glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) {
-  const glm::dvec3 os = glm::normalize(glm::dvec3(w * o.x, w * o.y, o.z));
+glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, double wy) {
+  const glm::dvec3 os = glm::normalize(glm::dvec3(wx * o.x, wy * o.y, o.z));
   const double phi = 2.0 * M_PI * u_phi;
   const double z = (1.0 - u_r) * (1.0 + os.z) - os.z;
   const double st = std::sqrt(std::clamp(1.0 - z * z, 0.0, 1.0));
   const glm::dvec3 hs = glm::dvec3(st * std::cos(phi), st * std::sin(phi), z) + os;
-  const glm::dvec3 h(w * hs.x, w * hs.y, hs.z);
+  const glm::dvec3 h(wx * hs.x, wy * hs.y, hs.z);
   const double len = glm::length(h);
   return len > 0.0 ? h / len : glm::dvec3(0.0);
 }
+
+glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) { return sample_vis(o, u_phi, u_r, w, w); }
 
 namespace {
 
@@ -198,14 +218,16 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
   return m.z > 0.0 ? energy_weight(s.brdf, m, o, s.width) * jac * jv : 0.0;
 }
 
-// mfv run's albedo (twin of albedo_mis_microfacet in kernels/albedo.cl):
-// point k of replicate r (index = r n + k, n = s.points = 5·2^(m-2)); the
-// first 4n/5 points take o reflected about a visible normal of the GGX shape
-// (scramble seeds: Philox draw 3 at counter r, words 0 and 1), the next n/10
-// a Cauchy slope of width w (words 2, 3), the last n/10 the cosine lobe
-// (words 3, 2), each on Owen-scrambled Sobol points from its own index 0.
-// Balance heuristic over the mixture c = (15/16, 1/32, 1/32) (Veach 1997
-// eq. 9.13), each point weighted c_t n / n_t: f cos / (Σ c_t p_t).
+// mfv run's albedo (twin of albedo_mis_microfacet and albedo_mis_general in
+// kernels/albedo.cl): point k of replicate r (index = r n + k, n = s.points
+// = 5·2^(m-2)); the first 4n/5 points take o reflected about a visible
+// normal of the GGX shape (scramble seeds: Philox draw 3 at counter r, words
+// 0 and 1), the next n/10 a Cauchy slope (words 2, 3), the last n/10 the
+// cosine lobe (words 3, 2), each on Owen-scrambled Sobol points from its own
+// index 0; the shape and the slopes stretched to (width, width_y) where the
+// spec has a second width, the view at its azimuth phi_o. Balance heuristic
+// over the mixture c = (15/16, 1/32, 1/32) (Veach 1997 eq. 9.13), each point
+// weighted c_t n / n_t: f cos / (Σ c_t p_t).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const uint32_t n = s.points, k = uint32_t(index % n), n_def = n / 10, n_vis = n - 2 * n_def;
   const auto shift = philox(seed, s.stream, draw_word(s, 3), index / n);
@@ -215,22 +237,22 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   if (vis) owen_sobol_2d(j, shift[0], shift[1], u_phi, u_r);
   else if (cosine) owen_sobol_2d(j, shift[3], shift[2], u_phi, u_r);
   else owen_sobol_2d(j, shift[2], shift[3], u_phi, u_r);
-  const double w = s.width;
-  const glm::dvec3 o(std::sqrt(1.0 - s.cos_o * s.cos_o), 0.0, s.cos_o);
+  const double wx = s.width, wy = s.width_y > 0 ? s.width_y : s.width;
+  const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
+  const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
   glm::dvec3 i;
   if (cosine) {
     const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
     i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
   } else {
-    double c, s2;
-    const glm::dvec3 m = vis ? sample_vis(o, u_phi, u_r, w) : sample_m(1.0, u_phi, u_r, w, c, s2);
+    const glm::dvec3 m = vis ? sample_vis(o, u_phi, u_r, wx, wy) : sample_m_aniso(1.0, u_phi, u_r, wx, wy);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
   if (i.z <= 0.0) return 0.0;
   const glm::dvec3 h = glm::normalize(i + o);
   const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
-  const double p_slope = pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h));
-  const double q = c_vis * vis_pdf_i(h, o, w) + c_def * p_slope + c_def * i.z / M_PI;
+  const double p_slope = pdf_slope_aniso(h, wx, wy) / (4.0 * glm::dot(o, h));
+  const double q = c_vis * vis_pdf_i(h, o, wx, wy) + c_def * p_slope + c_def * i.z / M_PI;
   const double share = vis ? c_vis * n / n_vis : c_def * n / n_def;
   return share * spec_brdf(s.brdf, i, o) * i.z / q;
 }

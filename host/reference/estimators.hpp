@@ -70,10 +70,13 @@ double pdf_slope(double c, double s2, double w);  // 2D Cauchy slopes of width w
 double pdf_m(double c, double s2, double w);      // the conformance mixture: cosine lobe + Cauchy slopes
 glm::dvec3 sample_m(double u_pick, double u_phi, double u_r, double w, double& c, double& s2);
 double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double w);  // light direction reflect(o, h)
+double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double wx, double wy);  // stretched to (wx, wy)
 // The anisotropic proposal (brdf.aniso(): Cauchy slopes stretched by (wx, wy)).
+double pdf_slope_aniso(const glm::dvec3& m, double wx, double wy);  // the stretched slopes alone
 double pdf_m_aniso(const glm::dvec3& m, double wx, double wy);
 glm::dvec3 sample_m_aniso(double u_pick, double u_phi, double u_r, double wx, double wy);
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
+glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, double wy);
 // Point k of the Owen-scrambled 2D Sobol sequence with scramble seeds s0, s1 (AlbedoMis's points).
 void owen_sobol_2d(uint32_t k, uint32_t s0, uint32_t s1, double& u0, double& u1);
 

@@ -276,7 +276,13 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
 std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
   std::vector<Sums> out(specs.size() * kMisReplicates);
   std::map<std::string, std::vector<size_t>> by_kernel;  // specialized per term pair where the program has it
-  for (size_t i = 0; i < specs.size(); ++i) by_kernel[kernel_for("albedo_mis_values", specs[i])].push_back(i);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    // isotropic catalog terms take the vectorized albedo_mis_microfacet (specialized where the
+    // program has it); anisotropic terms, whole models and user code albedo_mis_general
+    const IntegralSpec& s = specs[i];
+    const bool iso = s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && fast_albedo_available_;
+    by_kernel[iso ? kernel_for("albedo_mis_values", s) : std::string("albedo_mis_general_values")].push_back(i);
+  }
   for (const auto& [kernel, at] : by_kernel) {
     std::vector<IntegralSpec> group;
     for (size_t i : at) group.push_back(specs[i]);
@@ -380,9 +386,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   std::map<std::pair<std::string, std::string>, std::vector<size_t>> fast_at;  // by values kernel, specialized
   for (size_t j = 0; j < specs.size(); ++j) {
     if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
-      if (specs[j].model != 0 || specs[j].pd2 > 0 || specs[j].width_y > 0 || specs[j].phi_o != 0 || !(specs[j].width > 0) ||
-          !fast_albedo_available_)
-        throw Error("internal: AlbedoMis takes isotropic microfacet integrals of the catalog's program only");
+      if (!(specs[j].width > 0) || specs[j].estimator != 0)
+        throw Error("internal: AlbedoMis takes integrals with a proposal width > 0 (kernels/albedo.cl albedo_mis_general)");
       mis.push_back(specs[j]);
       mis_at.push_back(j);
       continue;

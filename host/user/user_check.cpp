@@ -190,15 +190,18 @@ using namespace user_detail;
 // ---- integrals -----------------------------------------------------------------
 
 // The user's BRDF as a point source crossed with the registry (the kinds in
-// `checks` that it takes). The albedo kinds integrate with the defensive
-// mixture (Albedo): albedo_mis_microfacet takes catalog terms only
-// (docs/adding-a-check.md, What remains).
+// `checks` that it takes). The albedo kinds integrate with their own
+// estimator (AlbedoMis: kernels/albedo.cl albedo_mis_general) wherever the
+// file gives a proposal width; a file that declares no roughness (width 0:
+// no width to shape visible normals on) keeps the defensive mixture of
+// widths (Albedo), as its d_norm and masking do (docs/cli/check.md).
 std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, const std::vector<std::string>& checks) {
   auto add = [&](Plan& plan, IntegralKind kind, const Values& v, double co, int ch, bool upper) {
+    if (kind == IntegralKind::AlbedoMis && !(u.width(v) > 0)) kind = IntegralKind::Albedo;
     plan.specs.push_back(user_spec(u, kind, v, co, ch));
     PointResult p = point_of(u, plan.check, v);
     if (kind != IntegralKind::DNorm) p.params["cos_o"] = co;
-    if (ch >= 0 && kind == IntegralKind::Albedo) p.params["channel"] = ch;  // 0 r, 1 g, 2 b
+    if (ch >= 0 && kind != IntegralKind::DNorm && kind != IntegralKind::Masking) p.params["channel"] = ch;  // 0 r, 1 g, 2 b
     p.expected = 1.0;
     p.upper_only = upper;
     plan.points.push_back(p);
@@ -224,14 +227,14 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
                            p = new_plan(k.check, uint64_t(double(k.base_samples) * std::max(1.0, share)), opt.scale);
                            for (auto& v : grid)
                              for (double co : view_cosines(32))
-                               for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, k.upper_only);
+                               for (int ch : opt.channels) add(p, k.kind, v, co, ch, k.upper_only);
                            break;
                          }
                          case Shape::Energy:
                            for (auto& r : roughness_grid(u, suite_alphas(), 6))
                              for (auto& v : corners(u, r))
                                for (double co : view_cosines(16))
-                                 for (int ch : opt.channels) add(p, IntegralKind::Albedo, v, co, ch, k.upper_only);
+                                 for (int ch : opt.channels) add(p, k.kind, v, co, ch, k.upper_only);
                            break;
                          default: return false;
                        }
