@@ -5,6 +5,7 @@
 #include "catalog/models.hpp"
 #include "checks/pointwise.hpp"
 #include "checks/pointwise_inputs.hpp"
+#include "checks/streams.hpp"
 #include "reference/brdf.hpp"
 #include "reference/btdf.hpp"
 #include "runtime/dispatch.hpp"
@@ -23,6 +24,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <thread>
 
 namespace mfv {
@@ -353,6 +355,18 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   const double ftz_floor = !opt.fp64 && !rt.device().fp32_denorms ? std::numeric_limits<float>::min() : 0.0;
 
+  // Each case's Philox stream is a hash of its name (checks/streams.hpp), not
+  // its position in the list: adding a term, or selecting cases with --only,
+  // leaves every other case's inputs, and so its record, unchanged.
+  std::vector<uint32_t> streams;
+  std::map<uint32_t, std::string> seen;
+  for (const Case& c : cases) {
+    const uint32_t st = static_cast<uint32_t>(stream_of_key("agree " + c.name));
+    if (auto [it, fresh] = seen.emplace(st, c.name); !fresh)
+      throw Error(fmt::format("internal: agree cases '{}' and '{}' hash to one stream", it->second, c.name));
+    streams.push_back(st);
+  }
+
   progress::Task task("agree: cases", cases.size());
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
@@ -367,7 +381,7 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
       // Sentinel: an unwritten record reads as NaN and cannot pass.
       rt.queue().enqueueFillBuffer(rec_buf, std::numeric_limits<float>::quiet_NaN(), 0, n * kRecord * sizeof(float));
       kern.setArg(0, static_cast<cl_ulong>(opt.seed));
-      kern.setArg(1, static_cast<cl_uint>(ci));
+      kern.setArg(1, static_cast<cl_uint>(streams[ci]));
       kern.setArg(2, static_cast<cl_ulong>(first));
       kern.setArg(3, static_cast<cl_int>(c.mode));
       kern.setArg(4, static_cast<cl_int>(c.model ? int(c.model->number()) : c.d ? term_index(*c.d) : 0));
