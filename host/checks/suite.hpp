@@ -58,6 +58,12 @@ struct PointResult {
   Expect expect = Expect::Hold;
   double tolerance = 0;  // documented approximation tolerance (relative)
   std::string reason;    // why the point is expected to (or may) fail
+  // The registry's expectation of this point (checks/registry.hpp: expect()).
+  void take(const Expectation& e) {
+    expect = e.expect;
+    reason = e.reason;
+    tolerance = e.tolerance;
+  }
   // A measured maximum tested against the fixed `bound` (reciprocity, the
   // finiteness census, pointwise agreement) rather than a z-test; `measure`
   // names it and `detail` gives the input where it was worst.

@@ -140,9 +140,7 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
               if (lobe != MFV_LOBE_ALL) r.params["lobe"] = lobe;
               r.expected = kind.expected;  // the flux: its truth, below
               r.upper_only = kind.upper_only;
-              r.expect = e.expect;
-              r.reason = e.reason;
-              r.tolerance = e.tolerance;
+              r.take(e);
               p.points.push_back(r);
             }
           }

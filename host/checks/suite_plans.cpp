@@ -76,10 +76,7 @@ void add_point(Plan& plan, IntegralKind kind, const Term* d, const Term* g, cons
   p.params = std::move(params);
   p.expected = expected;
   p.upper_only = upper;
-  Expectation e = expect(plan.check, d, g, alpha, f0, kd);
-  p.expect = e.expect;
-  p.reason = e.reason;
-  p.tolerance = e.tolerance;
+  p.take(expect(plan.check, d, g, alpha, f0, kd));
   plan.points.push_back(p);
 }
 

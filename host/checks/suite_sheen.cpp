@@ -139,9 +139,7 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
         if (a < d->params[0].lo || a > d->params[0].hi) continue;
         p.specs.push_back(sheen_spec(kind.kind, d, nullptr, nullptr, a, 1.0));
         PointResult pt = sheen_point(kind.check, d, nullptr, nullptr, a);
-        const Expectation e = expect(kind.check, d, nullptr, a, 0, 0);
-        pt.expect = e.expect;
-        pt.reason = e.reason;
+        pt.take(expect(kind.check, d, nullptr, a, 0, 0));
         p.points.push_back(pt);
       }
     }
@@ -191,10 +189,7 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
           p.specs.push_back(sheen_spec(kind.kind, &d, &g, nullptr, a, co));
           PointResult pt = sheen_point(kind.check, &d, &g, nullptr, a);
           pt.params["cos_o"] = co;
-          const Expectation e = expect(kind.check, &d, &g, a, 0, 0);
-          pt.expect = e.expect;
-          pt.reason = e.reason;
-          pt.tolerance = e.tolerance;
+          pt.take(expect(kind.check, &d, &g, a, 0, 0));
           p.points.push_back(pt);
         }
     });
@@ -224,10 +219,7 @@ bool add_sheen_plans(const CheckKind& kind, const SuiteOptions& opt, std::vector
             pt.params[lp.f->params[0].name] = fp.p0;
             if (lp.f->params.size() > 1) pt.params[lp.f->params[1].name] = fp.p1;
             pt.upper_only = kind.upper_only;
-            const Expectation e = expect(kind.check, lp.d, lp.g, a, fp.p0, 0);
-            pt.expect = e.expect;
-            pt.reason = e.reason;
-            pt.tolerance = e.tolerance;
+            pt.take(expect(kind.check, lp.d, lp.g, a, fp.p0, 0));
             p.points.push_back(pt);
           }
     }

@@ -74,9 +74,7 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
   p.params = std::move(params);
   p.expected = check_kind(sp.plan.check).expected;
   p.upper_only = upper;
-  p.expect = e.expect;
-  p.reason = e.reason;
-  p.tolerance = e.tolerance;
+  p.take(e);
   sp.plan.points.push_back(p);
 }
 
