@@ -190,8 +190,9 @@ std::vector<CheckKind> make_kinds() {
     c.runner = Runner::Pointwise;
     c.base_samples = 4096;  // inputs per term or BRDF at scale 1 (mfv agree's default: 10^6)
     c.expected = 0.0;
-    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels;
-    c.not_taken = "a scene's and a user's code are compared by mfv check and mfv agree --scene";
+    // a user's file (mfv check) against its double twin (user/user_twin.hpp)
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels | kSourceUser;
+    c.not_taken = "a scene's materials are compared by mfv agree --scene";
     c.verdict = "holds for every term, BRDF and model: kernel and reference agree within the ULP table";
     c.summary = "kernel and double reference agree on identical inputs within each term's ULP budget";
   }
@@ -204,6 +205,20 @@ std::vector<CheckKind> make_kinds() {
     c.not_taken = "a scene's models are swept by mfv stability --scene";
     c.verdict = "holds for every case the catalog marks stable; the others are reported by mfv stability";
     c.summary = "no NaN, Inf or out-of-domain value on in-domain extreme inputs (stable terms and BRDFs)";
+  }
+  {
+    // mfv check's census of a user's code (user/user_pointwise.cpp): the
+    // stability sweep's extreme inputs, judged finite and non-negative (a
+    // user's file has no catalog entry to say which cases are stable).
+    CheckKind& c = add("finite");
+    c.runner = Runner::Pointwise;
+    c.base_samples = 0;  // a fixed deterministic sweep
+    c.expected = 0.0;
+    c.in_run = false;
+    c.sources = kSourceUser;
+    c.not_taken = "the catalog's models are swept by stability, which knows which cases are stable";
+    c.verdict = "holds for a correct BRDF: no NaN, Inf or negative value of brdf, D or G1 on the sweep's inputs";
+    c.summary = "no NaN, Inf or negative value on the stability sweep's extreme inputs (mfv check)";
   }
   {
     CheckKind& c = add("bsdf_furnace");

@@ -24,9 +24,14 @@
 
 namespace mfv {
 
+// The registry's kinds that the user source takes (CheckKind::sources), in registry order.
 const std::vector<std::string>& user_checks() {
-  static const std::vector<std::string> c = {"d_norm",      "masking", "furnace", "energy",
-                                             "reciprocity", "finite",  "agree"};
+  static const std::vector<std::string> c = [] {
+    std::vector<std::string> out;
+    for (const CheckKind& k : check_kinds())
+      if (k.sources & kSourceUser) out.push_back(k.check);
+    return out;
+  }();
   return c;
 }
 
@@ -351,10 +356,7 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& user, const std::optiona
   } else {
     for (auto& c : checks) {
       if (std::find(user_checks().begin(), user_checks().end(), c) == user_checks().end())
-        throw Error(
-            fmt::format("unknown check '{}' (mfv check runs: d_norm, masking, furnace, energy, reciprocity, "
-                        "finite, agree)",
-                        c));
+        throw Error(fmt::format("unknown check '{}' (mfv check runs: {})", c, fmt::join(user_checks(), ", ")));
       if (!available(c).empty()) throw Error(fmt::format("--check {}: {} {}", c, u.path, available(c)));
     }
   }

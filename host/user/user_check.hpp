@@ -23,7 +23,7 @@ struct UserCheckOptions {
   std::vector<int> channels = {0, 1, 2};
 };
 
-const std::vector<std::string>& user_checks();  // d_norm, masking, furnace, energy, reciprocity, finite, agree
+const std::vector<std::string>& user_checks();  // the registry's kinds with kSourceUser: d_norm ... agree, finite
 
 // Relative error beyond input conditioning above which a user BRDF does not
 // implement its claimed model (float code measures ~1e-6; see docs/cli/check.md).
