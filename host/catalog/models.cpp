@@ -370,10 +370,20 @@ std::vector<Model> build_models() {
     // sheen_others 0 with sheen 1: max3 = 1 either way; a red sheen (1, 0, 0)
     // is its red channel here, where max3 = sheen (its green channel, sheen 0
     // and sheen_others 1, only scales the base)
-    m.cases = {hold("sheen chrome,s=1,sr=0.5", {0.25, 1.0, 1.0, 0.04, 0.5, 1.0, 1.0}),
-               hold("red sheen chrome,R,sr=0.3", {0.25, 1.0, 1.0, 0.04, 0.3, 1.0, 0.0}),
+    // A sheen lobe of weight 1 gains energy at grazing light whatever its
+    // roughness: measured by a 800 x 1600 midpoint rule over the view
+    // hemisphere (tests/test_sheen.cpp checks the first), E at cos_l = 0.006 / 0.02 / 0.05 is
+    // 1.055 / 1.027 / 0.975 at sr = 0.5, 1.057 / 1.022 / 0.967 at sr = 0.3,
+    // 1.030 / 0.965 / 0.864 at sr = 0.1. Found when furnace and energy moved
+    // to AlbedoMis (issue 27): the defensive mixture's SE at cos_l = 0.006 was
+    // 0.02, too coarse to see it; AlbedoMis's is 0.004.
+    auto sheen_gain = [&](std::string label, ModelParams p) {
+      return ModelCase{std::move(label), p, Expect::May, kGltfSheenTableClamp, Expect::Hold, ""};
+    };
+    m.cases = {sheen_gain("sheen chrome,s=1,sr=0.5", {0.25, 1.0, 1.0, 0.04, 0.5, 1.0, 1.0}),
+               sheen_gain("red sheen chrome,R,sr=0.3", {0.25, 1.0, 1.0, 0.04, 0.3, 1.0, 0.0}),
                hold("red sheen chrome,G,sr=0.3", {0.25, 1.0, 1.0, 0.04, 0.3, 0.0, 1.0}),
-               hold("sheen grey plastic,s=1,sr=0.1", {0.49, 0.0, 0.5, 0.04, 0.1, 1.0, 1.0}),
+               sheen_gain("sheen grey plastic,s=1,sr=0.1", {0.49, 0.0, 0.5, 0.04, 0.1, 1.0, 1.0}),
                // may, not must: the gain sits at grazing light, where this estimator's proposal (the base's
                // width) leaves the sheen lobe to the cosine lobe: flagged at seed 1, not at seed 11, scale 0.5
                // (the lobe alone, charlie/charlie_sheen furnace, fails at every seed)
@@ -420,6 +430,12 @@ const Model* model_by_number(uint32_t number) {
   if (number == 0 || number > models().size()) return nullptr;
   return &models()[number - 1];
 }
+
+const char* const kGltfSheenTableClamp =
+    "the albedo scaling reads E from a 16 x 16 table at cell centres, clamped below mu = 1/32: at cos_l = 0.006 "
+    "it reads E_sheen(1/32) (0.752 at sr = 0.3) where the lobe reflects E_sheen(0.006) = 0.811 (mfv energy "
+    "--at), so the base keeps 0.248 of its albedo instead of 0.189 and E = 1.057 by quadrature; a LUT sampled "
+    "with clamp-to-edge, as engines do, gains the same";
 
 const char* const kGltfFresnelMixGain =
     "glTF 2.0 Appendix B (\"Coupling Diffuse and Specular Reflection\"): fresnel_mix weights the diffuse base by "

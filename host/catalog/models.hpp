@@ -81,6 +81,8 @@ const char* expect_name(Expect e);                                // "hold", "fa
 std::string model_case_name(const Model& m, const ModelCase& c);  // "phong_004[n=1]"
 // Why a glTF dielectric may reflect more than it receives (the "gltf" model's cases, mfv run --scene).
 extern const char* const kGltfFresnelMixGain;
+// Why gltf_sheen with a sheen lobe may gain energy at grazing light (its albedo table is clamped below mu = 1/32).
+extern const char* const kGltfSheenTableClamp;
 // Parameter values checked at the boundary, as validate_param for terms.
 void validate_model_param(const Model& m, size_t index, double value);
 // The defaults p[i] = params[i].fallback, zero past the model's count.

@@ -187,12 +187,14 @@ std::vector<WholePoint> SceneMaterial::whole_points() const {
     // small sheen roughness: mfv energy's table) the layer may gain energy
     double e_max = 0;
     for (int m = 0; m < 64; ++m) e_max = std::max(e_max, ref::sheen_albedo_table((m + 0.5) / 64, p[4]));
+    // Any sheen lobe may gain at grazing light: the layer's albedo table is
+    // clamped below mu = 1/32 (kGltfSheenTableClamp, the catalog's cases)
     const bool gain = p[5] > 0.0 && e_max > 1.0;
-    out.push_back({&gltf_sheen_model(), p, gain ? Expect::May : Expect::Hold,
+    out.push_back({&gltf_sheen_model(), p, p[5] > 0.0 ? Expect::May : Expect::Hold,
                    gain ? fmt::format("E_sheen reaches {:.3g} at grazing for sheenRoughness {:g} (the Charlie "
                                       "visibility's fitted Lambda under-masks there)",
                                       e_max, p[4])
-                        : "",
+                        : p[5] > 0.0 ? kGltfSheenTableClamp : "",
                    Expect::Hold, ""});
   }
   if (!coat_checked) return out;
