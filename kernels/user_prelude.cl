@@ -101,6 +101,52 @@ MFV_SHADING_BUILTINS(float4)
 // 2^24, so that max(x, 0) on a float x is not ambiguous)
 MFV_OVL int mfv_g_abs(int x) { return abs(x); }
 
+// 3x3 matrices (host/user/dialect_matrix.cpp): c holds glsl's columns or
+// hlsl's rows, in the order the constructor's arguments come in both.
+// GLSL 4.60 §5.4.2, §5.10: m * v = sum v_i c_i, v * m = (v.c_i), column j
+// of a * b = a * b.c_j. HLSL mul(M, v) = (row_i . v), mul(v, M) = sum v_i
+// row_i, rows of mul(A, B) = those of A times B: mfv_hmul(x, y) is glsl's
+// y * x on the rows, and mul of two vectors is their dot product.
+typedef struct { float3 c[3]; } mfv_mat3;
+MFV_OVL mfv_mat3 mfv_mat3_make(float3 a, float3 b, float3 c) { mfv_mat3 m = {{a, b, c}}; return m; }
+MFV_OVL mfv_mat3 mfv_mat3_make(float s) {
+  return mfv_mat3_make((float3)(s, 0.0f, 0.0f), (float3)(0.0f, s, 0.0f), (float3)(0.0f, 0.0f, s));
+}
+MFV_OVL mfv_mat3 mfv_mat3_make(float a, float b, float c, float d, float e, float f, float g, float h, float i) {
+  return mfv_mat3_make((float3)(a, b, c), (float3)(d, e, f), (float3)(g, h, i));
+}
+MFV_OVL mfv_mat3 mfv_mat3_make(mfv_mat3 m) { return m; }
+MFV_OVL mfv_mat3 mfv_transpose(mfv_mat3 m) {
+  return mfv_mat3_make((float3)(m.c[0].x, m.c[1].x, m.c[2].x), (float3)(m.c[0].y, m.c[1].y, m.c[2].y),
+                       (float3)(m.c[0].z, m.c[1].z, m.c[2].z));
+}
+MFV_OVL float3 mfv_mul(mfv_mat3 m, float3 v) { return m.c[0] * v.x + m.c[1] * v.y + m.c[2] * v.z; }
+MFV_OVL float3 mfv_mul(float3 v, mfv_mat3 m) { return (float3)(dot(v, m.c[0]), dot(v, m.c[1]), dot(v, m.c[2])); }
+MFV_OVL mfv_mat3 mfv_mul(mfv_mat3 a, mfv_mat3 b) {
+  return mfv_mat3_make(mfv_mul(a, b.c[0]), mfv_mul(a, b.c[1]), mfv_mul(a, b.c[2]));
+}
+MFV_OVL mfv_mat3 mfv_mul(mfv_mat3 a, float s) { return mfv_mat3_make(a.c[0] * s, a.c[1] * s, a.c[2] * s); }
+MFV_OVL mfv_mat3 mfv_mul(float s, mfv_mat3 a) { return mfv_mat3_make(s * a.c[0], s * a.c[1], s * a.c[2]); }
+MFV_OVL float3 mfv_hmul(mfv_mat3 m, float3 v) { return mfv_mul(v, m); }
+MFV_OVL float3 mfv_hmul(float3 v, mfv_mat3 m) { return mfv_mul(m, v); }
+MFV_OVL mfv_mat3 mfv_hmul(mfv_mat3 a, mfv_mat3 b) { return mfv_mul(b, a); }
+MFV_OVL mfv_mat3 mfv_hmul(mfv_mat3 a, float s) { return mfv_mul(a, s); }
+MFV_OVL mfv_mat3 mfv_hmul(float s, mfv_mat3 a) { return mfv_mul(s, a); }
+// the other factors of a product chain that holds a matrix, as `*` computes them
+#define MFV_MUL_VECTORS(T)                                       \
+  MFV_OVL T mfv_mul(T a, T b) { return a * b; }                  \
+  MFV_OVL T mfv_mul(T a, float s) { return a * s; }              \
+  MFV_OVL T mfv_mul(float s, T a) { return s * a; }              \
+  MFV_OVL float mfv_hmul(T a, T b) { return dot(a, b); }         \
+  MFV_OVL T mfv_hmul(T a, float s) { return a * s; }             \
+  MFV_OVL T mfv_hmul(float s, T a) { return s * a; }
+MFV_MUL_VECTORS(float2)
+MFV_MUL_VECTORS(float3)
+MFV_MUL_VECTORS(float4)
+#undef MFV_MUL_VECTORS
+MFV_OVL float mfv_mul(float a, float b) { return a * b; }
+MFV_OVL float mfv_hmul(float a, float b) { return a * b; }
+
 #pragma clang attribute push(__attribute__((overloadable)), apply_to = function)
 #endif
 

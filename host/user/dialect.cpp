@@ -1,5 +1,7 @@
 #include "user/dialect.hpp"
 
+#include "user/dialect_detail.hpp"
+
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -30,6 +32,8 @@ Dialect dialect_of(const std::string& name, const std::string& path) {
     if (ext == e) return Dialect::Hlsl;
   return Dialect::OpenCL;
 }
+
+using namespace dialect_detail;
 
 namespace {
 
@@ -85,37 +89,6 @@ std::vector<const Token*> code_tokens(const ReadUnit& u) {
   return out;
 }
 
-bool is(const Token* t, const char* s) { return t && t->text == s; }
-
-// Index of the token closing the bracket opened at `open`, or toks.size().
-size_t matching(const std::vector<const Token*>& toks, size_t open) {
-  const std::string o = toks[open]->text, c = o == "(" ? ")" : o == "[" ? "]" : "}";
-  int depth = 0;
-  for (size_t k = open; k < toks.size(); ++k) {
-    if (toks[k]->text == o) ++depth;
-    if (toks[k]->text == c && --depth == 0) return k;
-  }
-  return toks.size();
-}
-
-// The parameters of the list opened at `open`: [first, last) token ranges.
-std::vector<std::pair<size_t, size_t>> parameters(const std::vector<const Token*>& toks, size_t open, size_t close) {
-  std::vector<std::pair<size_t, size_t>> out;
-  size_t start = open + 1;
-  int depth = 0;
-  for (size_t k = open + 1; k <= close; ++k) {
-    const std::string& s = toks[k]->text;
-    if (s == "(" || s == "[" || s == "{") ++depth;
-    if ((s == ")" || s == "]" || s == "}") && k != close) --depth;
-    if ((s == "," && depth == 0) || k == close) {
-      if (k > start) out.push_back({start, k});
-      start = k + 1;
-    }
-  }
-  if (out.size() == 1 && out[0].second - out[0].first == 1 && toks[out[0].first]->text == "void") out.clear();
-  return out;
-}
-
 // The name of a parameter declaration: its last identifier before any '['.
 size_t param_name(const std::vector<const Token*>& toks, std::pair<size_t, size_t> p, bool& array) {
   size_t end = p.second;
@@ -153,12 +126,40 @@ std::vector<size_t> functions_at_file_scope(const std::vector<const Token*>& tok
   return out;
 }
 
-struct Edit {
-  size_t at, len;
-  std::string text;
-};
-
 }  // namespace
+
+namespace dialect_detail {
+
+bool is(const Token* t, const char* s) { return t && t->text == s; }
+
+size_t matching(const std::vector<const Token*>& toks, size_t open) {
+  const std::string o = toks[open]->text, c = o == "(" ? ")" : o == "[" ? "]" : "}";
+  int depth = 0;
+  for (size_t k = open; k < toks.size(); ++k) {
+    if (toks[k]->text == o) ++depth;
+    if (toks[k]->text == c && --depth == 0) return k;
+  }
+  return toks.size();
+}
+
+std::vector<std::pair<size_t, size_t>> parameters(const std::vector<const Token*>& toks, size_t open, size_t close) {
+  std::vector<std::pair<size_t, size_t>> out;
+  size_t start = open + 1;
+  int depth = 0;
+  for (size_t k = open + 1; k <= close; ++k) {
+    const std::string& s = toks[k]->text;
+    if (s == "(" || s == "[" || s == "{") ++depth;
+    if ((s == ")" || s == "]" || s == "}") && k != close) --depth;
+    if ((s == "," && depth == 0) || k == close) {
+      if (k > start) out.push_back({start, k});
+      start = k + 1;
+    }
+  }
+  if (out.size() == 1 && out[0].second - out[0].first == 1 && toks[out[0].first]->text == "void") out.clear();
+  return out;
+}
+
+}  // namespace dialect_detail
 
 std::string canonical_type(const std::string& t) {
   for (Dialect d : {Dialect::Glsl, Dialect::Hlsl}) {
@@ -217,6 +218,7 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
   std::set<size_t> done;            // tokens already rewritten
   int depth = 0;
   auto fns = functions_at_file_scope(toks);
+  matrix_edits(toks, d, edits, done, [&](const Token* t, const std::string& what) { throw fail(t, what); });
   for (size_t k = 0; k < toks.size(); ++k) {
     const Token* t = toks[k];
     const std::string& s = t->text;
@@ -306,7 +308,7 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
       continue;
     }
     if (!shading) continue;
-    if (matrix_type(s, d)) throw fail(t, fmt::format("'{}' (matrices and their products)", s));
+    if (matrix_type(s, d)) throw fail(t, fmt::format("'{}' (matrices other than 3x3)", s));
     std::string sv = scalar_or_vector(s, d);
     if (!sv.empty()) {
       bool vector = std::isdigit(static_cast<unsigned char>(sv.back()));
@@ -362,7 +364,14 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
       const size_t first = is(prev, "static") ? k - 1 : k;  // the statement's first token
       if (one_line && (first == 0 || toks[first - 1]->line < toks[first]->line)) {
         std::string type;
+        bool matrix = false;  // no cast to a struct: the constructor's value
         for (size_t j = k + 1; j + 1 < eq; ++j) {
+          if (supported_matrix(toks[j]->text, d)) {  // its type's edit gives way to this one
+            matrix = true;
+            edits.erase(std::remove_if(edits.begin(), edits.end(),
+                                       [&](const Edit& e) { return e.at == toks[j]->begin && e.len; }),
+                        edits.end());
+          }
           std::string sj = scalar_or_vector(toks[j]->text, d);
           type += (type.empty() ? "" : " ") +
                   (sj.empty() ? (names.structs.count(toks[j]->text) ? kPrefix : "") + toks[j]->text : sj);
@@ -371,7 +380,7 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
         }
         if (is(prev, "static")) set(prev, "");
         set(t, "#define");
-        set(toks[eq], "((" + type + ")(");
+        set(toks[eq], matrix ? "((" : "((" + type + ")(");
         set(toks[semi], "))");
         done.insert(eq);
         done.insert(semi);
@@ -395,9 +404,11 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
     }
     std::smatch m;
     static const std::regex def("^#\\s*define\\s+[A-Za-z_][A-Za-z0-9_]*(\\([^)]*\\))?");
-    if (u.text.compare(t.begin, t.end - t.begin, t.text) != 0 || !std::regex_search(t.text, m, def)) continue;
+    // the body as written, over its line splices (token offsets into the file)
+    const std::string raw = u.text.substr(t.begin, t.end - t.begin);
+    if (!std::regex_search(raw, m, def)) continue;
     const size_t base = t.begin + size_t(m.length(0));
-    auto body = tokenize(u.path, t.text.substr(size_t(m.length(0))));
+    auto body = tokenize(u.path, raw.substr(size_t(m.length(0))));
     for (size_t j = 0; j < body.size(); ++j) {
       const Token& b = body[j];
       const std::string& s = b.text;
@@ -427,7 +438,9 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
       if (!to.empty() && to != s) edits.push_back({base + b.begin, b.end - b.begin, to});
     }
   }
-  std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.at < b.at; });
+  // by offset; at one offset, insertions (in the order made) before the replacement
+  std::stable_sort(edits.begin(), edits.end(),
+                   [](const Edit& a, const Edit& b) { return a.at < b.at || (a.at == b.at && a.len == 0 && b.len); });
   std::string out;
   size_t pos = 0;
   for (auto& e : edits) {
@@ -438,6 +451,10 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
   return out + u.text.substr(pos);
 }
 
-std::string user_terms(const std::string& log) { return std::regex_replace(log, std::regex("\\bmfv_u_"), ""); }
+// PoCL's own names of the built-ins (_cl_clamp) and where its headers spell them go too.
+std::string user_terms(const std::string& log) {
+  static const std::regex renamed("\\bmfv_u_|\\bmfv_g_|\\b_cl_(?=[a-z])| <Spelling=[^>]*>");
+  return std::regex_replace(log, renamed, "");
+}
 
 }  // namespace mfv

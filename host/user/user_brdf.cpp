@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <cctype>
 #include <regex>
 #include <sstream>
 
@@ -316,6 +317,17 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
   std::vector<std::string> texts;
   for (size_t i = 0; i < src.units.size(); ++i) texts.push_back(translate(src, i, u.dialect, names));
   for (size_t i : src.top) u.sources.push_back({src.units[i].path, with_includes(src.units, texts, i)});
+  // --define reaches the compiler as it reached the reader: before the first
+  // file, its floating value in float for glsl/hlsl (as the files' literals)
+  std::string head;
+  for (auto& [name, value] : ropt.defines)
+    head += fmt::format("#define {} {}{}\n", name, value,
+                        u.dialect != Dialect::OpenCL && floating_literal(value) &&
+                                std::isdigit(static_cast<unsigned char>(value.back()))
+                            ? "f"
+                            : "");
+  if (!head.empty() && !u.sources.empty())
+    u.sources.front().text = head + fmt::format("#line 1 \"{}\"\n", u.sources.front().name) + u.sources.front().text;
   return u;
 }
 
