@@ -40,6 +40,18 @@ void describe_reciprocity(Runtime& rt, const cl::Program& prog, uint64_t seed, c
 // Pointwise agreement with a claimed catalog model (check 'agree'). With the
 // double twin (user/user_twin.hpp) the verdict is the twin's (formula error),
 // and the float code's own deviation is named float conditioning.
+// agree's measure at one input: the error of v (the twin's or the float
+// code's value, as the float record holds it) against the reference rv
+// beyond what rounding explains, relative to rv: max(0, |v - rv| - 2 dev -
+// rounding) / max(|rv|, FLT_MIN). dev: what the model itself moves when a
+// direction moves by one float rounding; rounding: the value's own
+// rounding at this input (rounding_at). Infinite where v is not finite.
+double agree_error(double v, double rv, double dev, double rounding);
+// The absolute rounding of a value at one input: half an ulp of `v` in
+// float (the record's own rounding: 2^-24 |v|, 2^-150 below FLT_MIN), plus,
+// where the float code's value `kf` is finite, |kf - v|: with the double
+// twin's v, the float code's own rounding at this very input (kf - kd).
+double rounding_at(double v, double kf);
 void run_agreement(Runtime& rt, const cl::Program& prog, const cl::Program* twin, const UserBrdf& u, const Claim& claim,
                    const UserCheckOptions& opt, SuiteReport& rep);
 
