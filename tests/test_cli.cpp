@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdio>
+#include <map>
 #include <string>
 
 namespace {
@@ -48,6 +49,30 @@ TEST_CASE("mfv list --json is valid JSON with ranges for every parameter", "[cli
     for (auto& p : t["params"]) CHECK(p["min"].get<double>() <= p["max"].get<double>());
   }
   CHECK(j[4]["known_bad"].get<std::string>().find("pi/4") != std::string::npos);
+}
+
+TEST_CASE("mfv list --json shows each BSDF's transmission checks with the verdict the catalog expects",
+          "[cli][transmission]") {
+  Run r = run_mfv("list --json");
+  REQUIRE(r.code == 0);
+  std::map<std::string, std::map<std::string, std::string>> expect;  // bsdf -> check -> expect
+  for (auto& e : nlohmann::json::parse(r.out))
+    if (e["kind"] == "bsdf")
+      for (auto& c : e["checks"]) expect[e["id"]][c["check"]] = c["expect"];
+  REQUIRE(expect.size() == mfv::bsdfs().size());
+  CHECK(expect["walter_ggx_correlated"] == std::map<std::string, std::string>{{"agree", "hold"},
+                                                                             {"stability", "hold"},
+                                                                             {"bsdf_furnace", "hold"},
+                                                                             {"transmission_masking", "hold"},
+                                                                             {"bsdf_reciprocity", "hold"}});
+  CHECK(expect["walter_ggx_no_eta2"]["bsdf_furnace"] == "fail");
+  CHECK(expect["walter_ggx_no_eta2"]["bsdf_reciprocity"] == "fail");
+  CHECK(expect["walter_ggx_no_eta2"]["transmission_masking"] == "hold");
+  CHECK(expect["walter_ggx_same_side"]["bsdf_reciprocity"] == "hold");  // dropping chi+ is symmetric in i and o
+  CHECK(expect["walter_ggx_beckmann_g1"]["transmission_masking"] == "fail");
+  r = run_mfv("list");
+  CHECK(r.out.find("checks: agree hold; stability hold; bsdf_furnace hold; transmission_masking hold; "
+                   "bsdf_reciprocity hold") != std::string::npos);
 }
 
 TEST_CASE("mfv devices lists at least one OpenCL device", "[cli][device]") {

@@ -75,3 +75,34 @@ TEST_CASE("smith_ggx's G1 with half its Lambda fails transmission_masking", "[de
   if (!test::device_runtime()) return;
   check_plant_fails(test::kGgxG1HalfLambda, "transmission_masking");
 }
+
+TEST_CASE("bsdf_reciprocity passes the GGX BSDFs symmetric in i and o and fails the three that are not on seeds 1, 2 and 3",
+          "[device][suite][transmission]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  for (uint64_t seed : {1, 2, 3}) {
+    CAPTURE(seed);
+    const SuiteReport rep = run_suite(*rt, ggx_bsdfs("bsdf_reciprocity", seed));
+    for (const char* ok :
+         {"walter_ggx_separable", "walter_ggx_correlated", "walter_ggx_same_side", "walter_ggx_beckmann_g1"})
+      CHECK(test::verdict_of(rep, "bsdf_reciprocity", ok) == Verdict::Pass);
+    for (const char* bad : {"walter_ggx_f_at_n", "walter_ggx_no_eta2", "walter_ggx_jacobian_sum"})
+      CHECK(test::verdict_of(rep, "bsdf_reciprocity", bad) == Verdict::XFail);
+    CHECK(rep.gate_ok());
+  }
+}
+
+TEST_CASE("A BTDF kernel with eta_o in place of eta_o^2 fails bsdf_reciprocity, its double twin does not",
+          "[device][suite][transmission][plant]") {
+  if (!test::device_runtime()) return;
+  SuiteOptions opt = ggx_bsdfs("bsdf_reciprocity", 1);
+  opt.models = {"walter_ggx_correlated"};
+  const test::Plant& plant = test::kBtdfEtaNotSquared;
+  const SuiteReport bad = test::planted_suite(plant.file, plant.from, plant.to, opt);
+  CHECK(test::verdict_of(bad, "bsdf_reciprocity", "walter_ggx_correlated") == Verdict::Fail);
+  CHECK_FALSE(bad.gate_ok());
+  for (const PointResult& p : bad.points) {
+    CAPTURE(p.detail);
+    CHECK((p.params.at("twin") == 1.0) == (p.estimate == 0));  // the kernel's points fail, the twin's pass
+  }
+}

@@ -445,4 +445,20 @@ PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64) {
   return r;
 }
 
+cl::Program build_pointwise_program(Runtime& rt, bool fp64) { return build_agree_program(rt, fp64); }
+
+RecordAllowance btdf_record_allowance(const Bsdf& b, const float* rec, bool fp64, double ftz_floor, bool conditioned) {
+  const Case c{b.id, EvalMode::Btdf, b.d, b.g, &find_term("dielectric"), b.ulp_budget, b.abs_floor, nullptr, &b};
+  const Evaluator ev{c, rec, fp64};
+  RecordAllowance a;
+  a.reference = ev.eval(-1, 0.0);
+  // as check_range: the ULP budget (or the floors), then twice the conditioning at 4 roundings
+  a.allowed = std::max({(fp64 ? 2.0 : 1.0) * c.ulp_budget * ulp_of(a.reference, fp64), c.abs_floor, ftz_floor});
+  if (conditioned && std::isfinite(a.reference))
+    a.allowed = std::max(a.allowed, 2.0 * input_sensitivity(
+                                              ev.inputs(), 4, fp64, [&](int j, double bump) { return ev.eval(j, bump); },
+                                              a.reference));
+  return a;
+}
+
 }  // namespace mfv

@@ -77,4 +77,18 @@ struct PointValue {
 };
 PointValue eval_point(Runtime& rt, const PointSpec& p, bool fp64);
 
+// The program of mfv agree and mfv eval (its kernel eval_records evaluates
+// records in place: kernels/agree.cl).
+cl::Program build_pointwise_program(Runtime& rt, bool fp64);
+// What mfv agree allows a kernel's value of the BTDF b at one record
+// (kernels/abi/pointwise.h, mode PW_BTDF): the reference there and the error
+// allowed, its ULP budget (or the absolute and flush-to-zero floors) and,
+// where `conditioned`, twice what the exact function moves when one input
+// moves by 4 roundings (its conditioning allowance): bsdf_reciprocity's
+// account of the kernel (checks/bsdf_reciprocity.cpp).
+struct RecordAllowance {
+  double reference = 0, allowed = 0;
+};
+RecordAllowance btdf_record_allowance(const Bsdf& b, const float* rec, bool fp64, double ftz_floor, bool conditioned);
+
 }  // namespace mfv

@@ -1,5 +1,6 @@
 #include "checks/registry.hpp"
 
+#include "abi/bsdf.h"
 #include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
@@ -84,6 +85,18 @@ Expectation expect_transmission_masking(const ExpectPoint& p) {
   const SmithFit* fit = p.g && p.d && !p.g->smith_for.empty() ? p.g->fit_for(p.d->id) : nullptr;
   if (e.expect == Expect::Fail && fit && p.alpha > fit->alpha_max) e.expect = Expect::May;
   return e;
+}
+
+// Generalized reciprocity f_t(i,o)/eta_o^2 = f_t(o,i)/eta_i^2: the known-bad
+// entries whose bug is not symmetric in i and o fail it (eta_o^2 dropped, F
+// at n.i, the Jacobian's unweighted sum); a same-side count and another D's
+// G1 keep it (tests/test_btdf.cpp shows both on the reference).
+Expectation expect_bsdf_reciprocity(const ExpectPoint& p) {
+  if (!p.bsdf) return {};
+  const int v = p.bsdf->variant;
+  if (v == MFV_BTDF_BAD_NO_ETA2 || v == MFV_BTDF_BAD_F_AT_N || v == MFV_BTDF_BAD_JACOBIAN)
+    return {Expect::Fail, p.bsdf->id + ": " + p.bsdf->known_bad + " (not symmetric under i <-> o)", 0};
+  return {};
 }
 
 std::vector<CheckKind> make_kinds() {
@@ -191,7 +204,7 @@ std::vector<CheckKind> make_kinds() {
     c.base_samples = 4096;  // inputs per term or BRDF at scale 1 (mfv agree's default: 10^6)
     c.expected = 0.0;
     // a user's file (mfv check) against its double twin (user/user_twin.hpp)
-    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels | kSourceUser;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels | kSourceBsdf | kSourceUser;
     c.not_taken = "a scene's materials are compared by mfv agree --scene";
     c.verdict = "holds for every term, BRDF and model: kernel and reference agree within the ULP table";
     c.summary = "kernel and double reference agree on identical inputs within each term's ULP budget";
@@ -201,7 +214,7 @@ std::vector<CheckKind> make_kinds() {
     c.runner = Runner::Pointwise;
     c.base_samples = 0;  // a fixed deterministic sweep (mfv stability's)
     c.expected = 0.0;
-    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels;
+    c.sources = kSourceGrid | kSourceAniso | kSourceSheen | kSourceModels | kSourceBsdf;
     c.not_taken = "a scene's models are swept by mfv stability --scene";
     c.verdict = "holds for every case the catalog marks stable; the others are reported by mfv stability";
     c.summary = "no NaN, Inf or out-of-domain value on in-domain extreme inputs (stable terms and BRDFs)";
@@ -249,6 +262,21 @@ std::vector<CheckKind> make_kinds() {
     c.summary =
         "the BTDF's G1 below the surface: the weak white furnace integral of G1(o,m) max(0,-o.m) D(m) is |o.n| "
         "(Heitz 2014 eq. 19, two-sided)";
+  }
+  {
+    CheckKind& c = add("bsdf_reciprocity");
+    c.runner = Runner::Pointwise;
+    c.domain = Domain::Sphere;
+    c.base_samples = 1024;  // pairs per BSDF, width and index at scale 1 (checks/bsdf_reciprocity.cpp)
+    c.expected = 0.0;
+    c.sources = kSourceBsdf;
+    c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
+    c.expect = expect_bsdf_reciprocity;
+    c.verdict = "holds for every rough dielectric BSDF but the known-bad entries not symmetric in i and o (eta_o^2 "
+                "dropped, F at n.i, the Jacobian's sum), which must fail";
+    c.summary =
+        "rough dielectric BTDF, radiance form: f_t(i,o)/eta_o^2 = f_t(o,i)/eta_i^2 over random, grazing, "
+        "near-critical and refracted pairs, float kernel and double twin each within its derived bound";
   }
   {
     CheckKind& c = add("energy_mu");

@@ -9,6 +9,7 @@
 #include "checks/profile.hpp"
 #include "checks/registry.hpp"
 #include "checks/suite.hpp"
+#include "checks/suite_bsdf.hpp"
 #include "checks/transmission_truth.hpp"
 #include "util/parallel.hpp"
 
@@ -194,6 +195,21 @@ PointSource bsdf_source(const SuiteOptions& opt) {
             if (!p.specs.empty()) plans.push_back(std::move(p));
             return true;
           }};
+}
+
+std::vector<BsdfCheck> bsdf_checks(const Bsdf& b) {
+  std::vector<BsdfCheck> out;
+  for (const CheckKind& k : check_kinds()) {
+    if (!(k.sources & kSourceBsdf)) continue;
+    BsdfCheck c{&k, Expect::Hold, ""};
+    for (double alpha : kBsdfAlphas) {  // the group's verdict: its worst point's (a Fail anywhere fails it)
+      if (!in_range(*b.d, alpha) || !in_range(*b.g, alpha) || !k.expect) continue;
+      const Expectation e = k.expect({b.d, b.g, alpha, 0, 0, &b});
+      if (e.expect != Expect::Hold && c.expect != Expect::Fail) c.expect = e.expect, c.reason = e.reason;
+    }
+    out.push_back(c);
+  }
+  return out;
 }
 
 std::vector<std::string> bsdf_model_names() {

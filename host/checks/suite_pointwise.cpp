@@ -1,13 +1,15 @@
 // mfv run's pointwise kinds (checks/registry.hpp, Runner::Pointwise): an agree
-// pass (kernel and double reference on identical inputs, checks/agree.hpp)
-// and a stability pass (the deterministic sweep of extreme inputs,
-// checks/stability.hpp) at a CI-sized budget, each case one bounded point of
+// pass (kernel and double reference on identical inputs, checks/agree.hpp),
+// a stability pass (the deterministic sweep of extreme inputs,
+// checks/stability.hpp) at a CI-sized budget and the BTDF's generalized
+// reciprocity (checks/bsdf_reciprocity.cpp), each case one bounded point of
 // the report, so that their verdicts share the report, the JUnit file and the
 // exit code with the integrals. `mfv agree` and `mfv stability` run the same
 // checks at their full budgets.
 #include "checks/agree.hpp"
 #include "checks/stability.hpp"
 #include "checks/suite.hpp"
+#include "checks/suite_bsdf.hpp"
 
 #include <fmt/format.h>
 
@@ -84,6 +86,7 @@ void run_stability_pass(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep) 
 void run_pointwise_kinds(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep) {
   if (suite_check_wanted(opt, "agree")) run_agree_pass(rt, opt, rep);
   if (suite_check_wanted(opt, "stability")) run_stability_pass(rt, opt, rep);
+  if (suite_check_wanted(opt, "bsdf_reciprocity")) run_bsdf_reciprocity_pass(rt, opt, rep);
 }
 
 }  // namespace mfv

@@ -2,6 +2,7 @@
 #include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
+#include "checks/suite_bsdf.hpp"
 #include "cli/shared_options.hpp"
 #include "runtime/opencl.hpp"
 
@@ -113,6 +114,14 @@ struct ListCommand : SharedValues {
       j["params"].push_back({{"name", p->name}, {"min", p->lo}, {"max", p->hi}, {"default", p->fallback}, {"doc", p->doc}});
     if (!b.known_bad.empty()) j["known_bad"] = b.known_bad;
     if (!b.g1_fit.empty()) j["g1_fit"] = b.g1_fit;
+    // the registry's kinds that take it (mfv run --check), each with the form
+    // it tests in its summary and the verdict the catalog expects
+    j["checks"] = nlohmann::json::array();
+    for (const BsdfCheck& c : bsdf_checks(b)) {
+      nlohmann::json cj{{"check", c.kind->check}, {"expect", expect_name(c.expect)}, {"summary", c.kind->summary}};
+      if (!c.reason.empty()) cj["why"] = c.reason;
+      j["checks"].push_back(cj);
+    }
     return j;
   }
 
@@ -136,6 +145,10 @@ struct ListCommand : SharedValues {
       fmt::print("T {:<22} D {} x G1 of {}, G2 {}; params {}, {}, eta in [{:g}, {:g}]\n", b.id, b.d->id, b.g->id,
                  btdf_form_name(b.form), b.d->params[0].name, b.g->params[0].name, b.eta.lo, b.eta.hi);
       fmt::print("  {:<22} source: {}{}\n", "", b.source, b.known_bad.empty() ? "" : "  [known bad: " + b.known_bad + "]");
+      std::string checks;
+      for (const BsdfCheck& c : bsdf_checks(b))
+        checks += fmt::format("{}{} {}", checks.empty() ? "" : "; ", c.kind->check, expect_name(c.expect));
+      fmt::print("  {:<22} checks: {}\n", "", checks);
     }
     if (!bsdfs().empty()) fmt::print("T: rough dielectric BTDFs; {}\n", kBtdfConvention);
   }
