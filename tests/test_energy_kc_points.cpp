@@ -83,7 +83,7 @@ size_t cells_beyond_3(const EnergyReport& rep, const std::vector<double>& mu, co
     CHECK(rep.alpha[c.a] == r[c.a] * r[c.a]);
     const Truth q = truth_of(energy_eval_mu(rep.mu[c.m]), energy_eval_alpha(*t.d, rep.alpha[c.a]));
     const Cell& e = t.E[c.c];
-    const double bias = q.at_point.error + q.abi_error + q.abi_shift + energy_rounding_bound(t, e.mean, true);
+    const double bias = q.at_point.error + q.abi_error + q.abi_shift + energy_rounding_bound(rep, t, c.a, e.mean);
     const double total = e.se + bias;
     const double dev = e.mean - q.at_point.value;
     CAPTURE(rep.mu[c.m], rep.alpha[c.a], e.mean, e.se, q.at_point.value, q.at_point.error, q.abi_shift, dev / total);

@@ -168,7 +168,9 @@ class PilotThenFresh {
         p.b_sum.assign(R, 0.0);
         for (size_t r = 0; r < R; ++r) {
           p.sum[r] = est[offset[k] + r].mean * double(used);
-          p.b_sum[r] = est[offset[k] + r].b_mean * double(used);
+          // B: the albedo's second channel, or a glass cell's E_T (its second integral)
+          p.b_sum[r] = (units_[group[k]].has_second ? est[offset[k] + R + r].mean : est[offset[k] + r].b_mean) *
+                       double(used);
         }
         p.done = used;
         worst[group[k]] = record_unit(rep_, units_[group[k]], p.sum, p.b_sum, p.done);
@@ -256,6 +258,9 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   PilotThenFresh(rep, in, units).run(stream);
 
   if (rep.midpoint_mu) add_quadrature_cross_check(rep);
+  // a glass table's E_avg: the midpoint rule over its mu cells, with the rule's error (energy_judge.hpp)
+  for (EnergyTable& t : rep.tables)
+    if (t.bsdf) t.eavg = t.eavg_quad;
   track_largest_error(rep);
   judge_model_gains(rep);
   if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units, opt.fp64);

@@ -22,6 +22,7 @@
 // proposal width taken from the model's roughness-like parameter.
 #pragma once
 
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/baseline.hpp"
@@ -56,6 +57,10 @@ struct EnergyOptions {
   std::vector<double> mu_axis, alpha_axis, roughness;
   bool paired = false;
   std::string layout;  // a layout's name (checks/energy_layouts.hpp), or empty
+  // A glass layout (issue 33): per width, the relative index of refraction
+  // the light sees (> 1 entering, < 1 leaving the medium), the widths then
+  // being the (eta, roughness) pairs, eta slowest. Empty: no BSDF tables.
+  std::vector<double> eta;
   bool fp64 = false;   // the energy kernels in double (cl_khr_fp64)
   double target = 1e-4;  // standard error per cell
   uint64_t seed = 1;
@@ -79,12 +84,16 @@ struct CellAt {
 struct EnergyTable {
   const Term* d = nullptr;
   const Term* g = nullptr;
+  // A glass table (rough dielectric BSDF, flux form): E = E_R + E_T, A holds
+  // E_R and B holds E_T (E_R = E - E_T on the same points, as A = E - B), and
+  // E_avg is the midpoint rule over the mu cells with its rule error.
+  const Bsdf* bsdf = nullptr;
   std::vector<double> pd, pg;    // native parameters per alpha
   std::vector<Cell> E, A, B;     // index a * n_mu + m
   std::vector<uint64_t> points;  // points per replicate used, per cell
   std::vector<Cell> eavg;        // per alpha, its own integral (mu drawn with density 2mu)
   std::vector<Cell> eavg_quad;   // per alpha, midpoint rule over the mu grid (cross-check); se: noise + rule error
-  std::string name() const { return d->id + "/" + g->id; }
+  std::string name() const;  // "d/g", or the BSDF's id
 };
 
 // One whole model at one parameter point: E per mu of the light.

@@ -34,6 +34,12 @@ std::vector<double> parse_energy_axis(const std::string& what, const std::string
       if (n == 1 && a != b) throw Error(fmt::format("{} {}: one value needs A = B", what, text));
       for (uint64_t i = 0; i < n; ++i) v.push_back(n == 1 ? a : a + (b - a) * double(i) / double(n - 1));
       if (n > 1) v.back() = b;  // exactly B, not B up to rounding
+    } else if (form == "log" && f.size() == 4) {
+      const double a = parse_finite(what + " log:A", f[1]), b = parse_finite(what + " log:B", f[2]);
+      const uint64_t n = axis_count(what, "log:A:B", f[3], 2);
+      if (!(a > 0 && b > 0)) throw Error(fmt::format("{} {}: log spacing needs A, B > 0", what, text));
+      for (uint64_t i = 0; i < n; ++i) v.push_back(a * std::pow(b / a, double(i) / double(n - 1)));
+      v.front() = a, v.back() = b;  // exactly A and B
     } else if ((form == "centers" || form == "centres") && f.size() == 2) {
       const uint64_t n = axis_count(what, "centers", f[1], 1);
       for (uint64_t i = 0; i < n; ++i) v.push_back((double(i) + 0.5) / double(n));
@@ -41,7 +47,7 @@ std::vector<double> parse_energy_axis(const std::string& what, const std::string
       const uint64_t n = axis_count(what, "edges", f[1], 2);
       for (uint64_t i = 0; i < n; ++i) v.push_back(double(i) / double(n - 1));
     } else {
-      throw Error(fmt::format("{} '{}': not a list or lin:A:B:N, centers:N, edges:N", what, text));
+      throw Error(fmt::format("{} '{}': not a list or lin:A:B:N, log:A:B:N, centers:N, edges:N", what, text));
     }
     return v;
   }

@@ -13,7 +13,8 @@
 namespace mfv {
 
 // An axis: "0.1,0.5,1" (values in the given order), "lin:A:B:N" (N values
-// from A to B, both included), "centers:N" ((i + 1/2)/N) or "edges:N"
+// from A to B, both included), "log:A:B:N" (N values log-spaced from A to B,
+// both included, A, B > 0), "centers:N" ((i + 1/2)/N) or "edges:N"
 // (i/(N-1), N >= 2). `what` names the option in messages.
 std::vector<double> parse_energy_axis(const std::string& what, const std::string& text);
 

@@ -86,19 +86,29 @@ TheirTable empty_quantity(const std::string& file, const std::string& q, size_t 
 
 // Every cell written once: else the first missing one is named.
 void require_complete(const TheirTable& t, const std::vector<double>& mu, const std::vector<double>& width,
-                      bool per_cell) {
+                      const std::vector<double>& eta, bool per_cell) {
   for (size_t c = 0; c < t.value.size(); ++c)
     if (t.where[c].empty()) {
-      const size_t nm = mu.size();
-      throw Error(per_cell ? fmt::format("{}: wrong cell count: no {} at mu = {:.9g}, width = {:.9g} ({} cells)",
-                                         t.file, t.quantity, mu[c % nm], width[c / nm], t.value.size())
-                           : fmt::format("{}: wrong cell count: no {} at width = {:.9g} ({} widths)", t.file,
-                                         t.quantity, width[c], t.value.size()));
+      const size_t nm = mu.size(), w = per_cell ? c / nm : c;
+      const std::string at = fmt::format("width = {:.9g}{}", width[w], eta.empty() ? "" : fmt::format(", eta = {:.9g}", eta[w]));
+      throw Error(per_cell ? fmt::format("{}: wrong cell count: no {} at mu = {:.9g}, {} ({} cells)", t.file,
+                                         t.quantity, mu[c % nm], at, t.value.size())
+                           : fmt::format("{}: wrong cell count: no {} at {} ({} widths)", t.file, t.quantity, at,
+                                         t.value.size()));
     }
 }
 
+// A glass layout's widths are (eta, roughness) pairs, eta slowest: the
+// roughness axis (the widths of the first eta) and the eta axis.
+size_t widths_per_eta(const std::vector<double>& eta) {
+  size_t n = 0;
+  while (n < eta.size() && eta[n] == eta[0]) ++n;
+  return std::max<size_t>(1, n);
+}
+
 std::vector<TheirTable> read_csv(const std::string& path, const EnergyLayout& layout, const std::vector<double>& mu,
-                                 const std::vector<double>& alpha, const std::vector<double>& roughness) {
+                                 const std::vector<double>& alpha, const std::vector<double>& roughness,
+                                 const std::vector<double>& eta) {
   const std::string text = read_text_file(path, "--compare");
   const std::vector<std::string> lines = split(text, '\n');
   size_t row = 0;
@@ -112,14 +122,14 @@ std::vector<TheirTable> read_csv(const std::string& path, const EnergyLayout& la
     break;
   }
   if (head.empty()) throw Error(fmt::format("{}: no header line", path));
-  int col_mu = -1, col_r = -1, col_alpha = -1;
+  int col_mu = -1, col_r = -1, col_alpha = -1, col_eta = -1;
   std::map<std::string, int> qcol, secol;  // a quantity's column and its standard error's, where the file has one
   for (size_t i = 0; i < head.size(); ++i) {
     const std::string h = lower(head[i]);
     if (h == "mu" || h == "nov" || h == "cos_theta") col_mu = int(i);
     if (h == "roughness" || h == "r" || h == "perceptual_r") col_r = int(i);
     if (h == "alpha") col_alpha = int(i);
-    if (h == "eta") throw Error(fmt::format("{}: an eta column (a glass table): no layout with an eta axis yet", path));
+    if (h == "eta" || h == "ior") col_eta = int(i);
     for (auto& q : layout.quantities) {
       if (head[i] == q) qcol[q] = int(i);
       if (head[i] == q + "_se") secol[q] = int(i);
@@ -133,6 +143,16 @@ std::vector<TheirTable> read_csv(const std::string& path, const EnergyLayout& la
     throw Error(fmt::format("{}: a roughness column, but layout {} reads widths as alpha", path, layout.name));
   const std::vector<double>& waxis = use_r ? roughness : alpha;
   const std::string wname = use_r ? "roughness" : "alpha";
+  if ((col_eta >= 0) != !eta.empty())
+    throw Error(col_eta >= 0 ? fmt::format("{}: an eta column (a glass table), but layout {} has no eta axis", path,
+                                           layout.name)
+                             : fmt::format("{}: layout {} has an eta axis; the header has no eta column", path,
+                                           layout.name));
+  // a glass layout: the width index of (eta, roughness) is k * n_r + a
+  const size_t n_r = widths_per_eta(eta);
+  const std::vector<double> r_axis(waxis.begin(), waxis.begin() + long(eta.empty() ? waxis.size() : n_r));
+  std::vector<double> eta_axis;
+  for (size_t w = 0; w < eta.size(); w += n_r) eta_axis.push_back(eta[w]);
   // per-cell quantities with a mu column, or E_avg per width without one
   std::vector<std::string> qs;
   for (auto& [q, c] : qcol)
@@ -153,7 +173,11 @@ std::vector<TheirTable> read_csv(const std::string& path, const EnergyLayout& la
                               head.size()));
     auto field = [&](int c) { return fmt::format("{} field {} ({})", where, c + 1, head[size_t(c)]); };
     const double w = cell_number(field(col_w), f[size_t(col_w)]);
-    const size_t a = axis_index(field(col_w), wname, w, printed_half_unit(trim(f[size_t(col_w)])), waxis);
+    size_t a = axis_index(field(col_w), wname, w, printed_half_unit(trim(f[size_t(col_w)])), r_axis);
+    if (col_eta >= 0) {
+      const double e = cell_number(field(col_eta), f[size_t(col_eta)]);
+      a += n_r * axis_index(field(col_eta), "eta", e, printed_half_unit(trim(f[size_t(col_eta)])), eta_axis);
+    }
     size_t c = a;
     if (col_mu >= 0) {
       const double m = cell_number(field(col_mu), f[size_t(col_mu)]);
@@ -172,7 +196,7 @@ std::vector<TheirTable> read_csv(const std::string& path, const EnergyLayout& la
       }
     }
   }
-  for (auto& t : out) require_complete(t, mu, waxis, col_mu >= 0);
+  for (auto& t : out) require_complete(t, mu, waxis, eta, col_mu >= 0);
   return out;
 }
 
@@ -328,11 +352,12 @@ std::vector<TheirTable> read_exr(const std::string& path, const EnergyLayout& la
   const std::vector<std::string> qs = image_quantities(path, layout, mu.size(), alpha.size(), w, h);
   std::vector<TheirTable> out;
   for (size_t j = 0; j < qs.size(); ++j) {
-    const ExrChannel* ch = qs.size() == 1 ? img.find("Y") : img.find(std::string(1, "RG"[j]));
+    const ExrChannel* ch = qs.size() == 1 ? img.find("Y") : img.find(std::string(1, "RGB"[j]));
     if (!ch && qs.size() == 1) ch = img.channels.size() == 1 ? &img.channels[0] : img.find("R");
     if (!ch)
-      throw Error(fmt::format("{}: no channel {} for {} (layout {}: {})", path, qs.size() == 1 ? "Y" : std::string(1, "RG"[j]),
-                              qs[j], layout.name, qs.size() == 1 ? "Y, R or a single channel" : "R = A, G = B"));
+      throw Error(fmt::format("{}: no channel {} for {} (layout {}: {})", path,
+                              qs.size() == 1 ? "Y" : std::string(1, "RGB"[j]), qs[j], layout.name,
+                              qs.size() == 1 ? "Y, R or a single channel" : layout.image_channels));
     TheirTable t = empty_quantity(path, qs[j], w * h);
     for (size_t c = 0; c < t.value.size(); ++c) {
       t.value[c] = double(ch->pixel[c]);
@@ -351,10 +376,10 @@ std::vector<TheirTable> read_exr(const std::string& path, const EnergyLayout& la
 
 std::vector<TheirTable> read_their_table(const std::string& path, const EnergyLayout& layout,
                                          const std::vector<double>& mu, const std::vector<double>& alpha,
-                                         const std::vector<double>& roughness) {
+                                         const std::vector<double>& roughness, const std::vector<double>& eta) {
   const std::string ext = lower(path.substr(path.find_last_of('.') == std::string::npos ? path.size()
                                                                                          : path.find_last_of('.')));
-  if (ext == ".csv") return read_csv(path, layout, mu, alpha, roughness);
+  if (ext == ".csv") return read_csv(path, layout, mu, alpha, roughness, eta);
   if (ext == ".h" || ext == ".hpp" || ext == ".c" || ext == ".cpp" || ext == ".inl" || ext == ".hlsl" ||
       ext == ".glsl")
     return read_c_arrays(path, layout, mu, alpha);

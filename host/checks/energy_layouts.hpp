@@ -20,6 +20,10 @@ struct EnergyLayout {
   std::string models;                   // the D/G it is made of unless --models says
   std::string source;                   // who ships it, and where it is defined
   std::string image_channels;           // what a PNG/EXR of it holds, channel by channel
+  // A glass layout's index axis: a range form with N left out ("log:1.01:10"),
+  // the relative indices entered; the layout holds them and their inverses
+  // (leaving), ascending. Empty: no eta axis.
+  std::string eta_form;
 };
 
 const std::vector<EnergyLayout>& energy_layouts();
@@ -35,7 +39,15 @@ LayoutChoice parse_energy_layout(const std::string& text);
 // Sets opt's axes, layout name and (when opt.models is empty) its models.
 void apply_energy_layout(EnergyOptions& opt, const LayoutChoice& choice);
 
-// A cell quantity (E, A, B) or a per-width one (E_avg).
+// A layout's eta axis at size n: the inverses of the entered indices, then
+// the indices, ascending (empty without an eta axis).
+std::vector<double> layout_eta_axis(const EnergyLayout& l, int n);
+
+// A table's cells of quantity q: E; A or E_R (a glass table keeps E_R in A);
+// B or E_T (in B); E_avg.
+const std::vector<Cell>& table_quantity(const EnergyTable& t, const std::string& q);
+
+// A cell quantity (E, A, B, E_R, E_T) or a per-width one (E_avg).
 bool layout_quantity_per_cell(const std::string& q);
 
 }  // namespace mfv

@@ -3,6 +3,7 @@
 #include "checks/check_table.hpp"
 #include "checks/integrate.hpp"
 #include "checks/suite.hpp"
+#include "abi/bsdf.h"
 #include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
@@ -31,6 +32,8 @@ double energy_min_alpha(const Term& d) {
   const double lo = alpha_from_native(d.roughness, p.lo), hi = alpha_from_native(d.roughness, p.hi);
   return std::min(lo, hi) > 0 ? std::min(lo, hi) : std::max(lo, hi);
 }
+
+std::string EnergyTable::name() const { return bsdf ? bsdf->id : d->id + "/" + g->id; }
 
 double energy_eval_mu(double mu) { return std::max(mu, kEnergyMuFloor); }
 
@@ -65,13 +68,21 @@ void validate_energy_options(const EnergyOptions& o) {
   // Every filter must match something, or the user made a typo.
   for (auto& f : o.models) {
     bool hit = false;
-    if (o.tables)
+    if (o.tables && !o.eta.empty())
+      for (const Bsdf& b : bsdfs()) hit = hit || b.id.find(f) != std::string::npos;
+    else if (o.tables)
       for (auto [d, g] : energy_table_pairs()) hit = hit || (d->id + "/" + g->id).find(f) != std::string::npos;
     if (o.catalog_models)
       for (auto& m : models())
         for (auto& c : m.cases) hit = hit || model_case_name(m, c).find(f) != std::string::npos;
-    if (!hit) throw Error(fmt::format("--models '{}' matches no D/G combination or model[case] (see 'mfv list')", f));
+    if (!hit)
+      throw Error(fmt::format("--models '{}' matches no {} (see 'mfv list')", f,
+                              o.eta.empty() ? "D/G combination or model[case]" : "rough dielectric BSDF"));
   }
+  if (!o.eta.empty() && o.eta.size() != o.alpha_axis.size()) throw Error("internal: one eta per width");
+  for (double e : o.eta)
+    if (!(e >= 0.1 && e <= 10) || e == 1)
+      throw Error(fmt::format("eta = {}: a relative index in [0.1, 10] (the BSDFs' declared range), not 1", e));
   for (auto& mp : o.model_points)
     for (size_t i = 0; i < mp.model->params.size(); ++i) validate_model_param(*mp.model, i, mp.p[i]);
 }
@@ -144,12 +155,56 @@ void add_row_units(std::vector<EnergyUnit>& units, const CheckRow& row, const st
   }
 }
 
+// A glass table's cells (rep.opt.eta per width): bsdf_furnace's integrand
+// (IntegralKind::BsdfFlux, kernels/transmission.cl, as host/checks/suite_bsdf.cpp
+// builds it) at each (eta, roughness, mu): E over the whole sphere of o
+// (MFV_LOBE_ALL) and E_T (MFV_LOBE_TRANSMIT) on the same streams. eta < 1 is
+// the light leaving: the fixed direction below, relative index 1/eta.
+void glass_units(std::vector<EnergyUnit>& units, const EnergyReport& rep, size_t ti, size_t R, uint32_t& stream) {
+  const EnergyTable& t = rep.tables[ti];
+  const size_t nm = rep.mu.size();
+  for (size_t a = 0; a < rep.alpha.size(); ++a) {
+    const double eta = rep.opt.eta[a];
+    for (size_t m = 0; m < nm; ++m) {
+      MicrofacetIntegral mi;
+      mi.kind = IntegralKind::BsdfFlux;
+      mi.d = t.d, mi.g = t.g;
+      mi.pd = t.pd[a], mi.pg = t.pg[a];
+      mi.width = energy_eval_alpha(*t.d, rep.alpha[a]);
+      mi.cos_o = energy_eval_mu(rep.mu[m]);
+      IntegralSpec s = spec_of(mi);
+      s.eta = float(eta > 1 ? eta : 1.0 / eta);
+      s.side = eta > 1 ? MFV_SIDE_ABOVE : MFV_SIDE_BELOW;
+      s.bsdf = t.bsdf->code();
+      s.lobe = MFV_LOBE_ALL;
+      EnergyUnit u{ti, a * nm + m, false, s, stream, false};
+      u.has_second = true;
+      u.second = s;
+      u.second.lobe = MFV_LOBE_TRANSMIT;
+      units.push_back(u);
+      stream += uint32_t(R);
+    }
+  }
+}
+
 }  // namespace
 
 TermSelection add_energy_subjects(EnergyReport& rep) {
   const EnergyOptions& opt = rep.opt;
   const size_t nm = rep.mu.size();
   TermSelection sel;
+  if (!opt.eta.empty()) {  // a glass layout: the rough dielectric BSDFs, nothing else
+    for (const Bsdf& b : bsdfs()) {
+      if (!opt.tables || !suite_model_wanted(opt.models, b.id)) continue;
+      rep.tables.push_back(empty_table(*b.d, *b.g, rep.alpha, rep.n_cells()));
+      rep.tables.back().bsdf = &b;
+      add_once(sel.d, b.d);
+      add_once(sel.g, b.g);
+    }
+    if (rep.tables.empty()) throw Error("no rough dielectric BSDF selected");
+    sel.f = {&find_term("none")};
+    return sel;
+  }
   for (auto [d, g] : energy_table_pairs()) {
     if (!opt.tables || !suite_model_wanted(opt.models, d->id + "/" + g->id)) continue;
     rep.tables.push_back(empty_table(*d, *g, rep.alpha, rep.n_cells()));
@@ -178,6 +233,10 @@ std::vector<EnergyUnit> energy_units(const EnergyReport& rep, uint32_t& next_str
   uint32_t stream = 0;
   for (size_t ti = 0; ti < rep.tables.size(); ++ti) {
     const EnergyTable& t = rep.tables[ti];
+    if (t.bsdf) {
+      glass_units(units, rep, ti, R, stream);
+      continue;
+    }
     for (size_t a = 0; a < rep.alpha.size(); ++a) {
       auto spec_at = [&](IntegralKind kind, double cos_o) {
         MicrofacetIntegral m;
@@ -205,10 +264,13 @@ std::vector<EnergyUnit> energy_units(const EnergyReport& rep, uint32_t& next_str
 
 std::vector<IntegralSpec> specs_of(const EnergyUnit& u, size_t R) {
   std::vector<IntegralSpec> v;
-  for (size_t r = 0; r < R; ++r) {
-    IntegralSpec s = u.base;
-    s.stream = u.first_stream + uint32_t(r);
-    v.push_back(s);
+  for (const IntegralSpec* base : {&u.base, &u.second}) {
+    if (base == &u.second && !u.has_second) break;
+    for (size_t r = 0; r < R; ++r) {
+      IntegralSpec s = *base;
+      s.stream = u.first_stream + uint32_t(r);
+      v.push_back(s);
+    }
   }
   return v;
 }

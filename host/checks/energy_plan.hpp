@@ -26,6 +26,10 @@ struct EnergyUnit {
   IntegralSpec base;  // its stream is first_stream + the replicate
   uint32_t first_stream;
   bool model = false;  // `table` indexes rep.models
+  // A glass cell: `base` integrates E (both lobes) and `second` E_T on the
+  // same streams, hence the same points (E_R = E - E_T, as A = E - B).
+  bool has_second = false;
+  IntegralSpec second{};
 };
 
 // rep.tables and rep.models as rep.opt selects them (cells not yet run), and
@@ -36,7 +40,8 @@ TermSelection add_energy_subjects(EnergyReport& rep);
 // opt.replicates streams each from stream 0 on; `next_stream` gets the first free one.
 std::vector<EnergyUnit> energy_units(const EnergyReport& rep, uint32_t& next_stream);
 
-// A unit's R replicate integrals, on streams first_stream + r.
+// A unit's R replicate integrals, on streams first_stream + r (then, for a
+// glass cell, its second integral's R on the same streams).
 std::vector<IntegralSpec> specs_of(const EnergyUnit& u, size_t R);
 
 }  // namespace mfv

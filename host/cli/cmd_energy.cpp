@@ -52,7 +52,7 @@ struct EnergyCommand : SharedValues {
                     "these, e.g. ggx/ or '[' for the whole models (default: every D x G and every whole-model case)");
     cmd->add_option("--grid", grid, "MUxALPHA cells, e.g. 32x32 (default): mu = (m+1/2)/MU, alpha log-spaced 1e-3..1");
     cmd->add_option("--mu", mu,
-                    "view cosines, exactly these in this order: a list 0.1,0.5,1 or lin:A:B:N, centers:N ((i+1/2)/N), "
+                    "view cosines, exactly these in this order: a list 0.1,0.5,1 or lin:A:B:N, log:A:B:N, centers:N ((i+1/2)/N), "
                     "edges:N (i/(N-1)); with --alpha, in place of --grid");
     cmd->add_option("--alpha", alpha,
                     "widths, as --mu (read as --roughness says); alpha = 0 (a mirror) is evaluated at the D's "
@@ -61,8 +61,8 @@ struct EnergyCommand : SharedValues {
                     "how --alpha and --at read: alpha (the width, default) or r2 (perceptual roughness r, alpha = r^2)");
     cmd->add_option("--at", at, "one point MU,ALPHA (repeatable): E, A, B and E_avg there, nothing else");
     cmd->add_option("--layout", layout,
-                    "an engine's table layout, NAME or NAME:N (default N = 32): kulla-conty, split-sum, sheen "
-                    "(docs/energy-layouts.md); sets the axes and, without --models, the D/G");
+                    "an engine's table layout, NAME or NAME:N (default N = 32): kulla-conty, split-sum, sheen, glass "
+                    "(docs/energy-layouts.md); sets the axes and, without --models, the D/G (glass: the BSDF)");
     cmd->add_flag("--fp64", opt.fp64,
                   "the energy kernels in double (needs cl_khr_fp64; PoCL has it): no float32 rounding in the values");
     cmd->add_option("--compare", compare,
@@ -121,13 +121,13 @@ struct EnergyCommand : SharedValues {
     // their table first: bad input stops before any work, never after a partial verdict
     const std::vector<TheirTable> theirs =
         compare.empty() ? std::vector<TheirTable>{}
-                        : read_their_table(compare, *lay.layout, opt.mu_axis, opt.alpha_axis, opt.roughness);
+                        : read_their_table(compare, *lay.layout, opt.mu_axis, opt.alpha_axis, opt.roughness, opt.eta);
     const std::string base_text = baseline.empty() ? "" : read_text_file(baseline, "--baseline");
     prepare_out();
     Runtime rt(g.device, g.kernel_dir);
     EnergyReport rep = run_energy(rt, opt);
     if (!compare.empty() && rep.tables.size() != 1)
-      throw Error(fmt::format("--compare: --models selects {} D/G tables; name one (e.g. ggx/smith_ggx_correlated)",
+      throw Error(fmt::format("--compare: --models selects {} tables; name one (e.g. ggx/smith_ggx_correlated)",
                               rep.tables.size()));
     print_energy_console(rep);
     CompareResult cmp;

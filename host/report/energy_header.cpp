@@ -56,8 +56,9 @@ std::string energy_c_header(const EnergyReport& rep) {
       rep.paired ? "#define MFV_ENERGY_POINTS 1 /* value i at (MU[i], ALPHA[i]) */\n" : "", nm, float_list(rep.mu), na,
       float_list(rep.alpha));
   for (auto& t : rep.tables) {
-    const std::string id = ident(t.d->id + "_" + t.g->id);
-    s += fmt::format("\n/* D = {}, G = {} */\n", t.d->id, t.g->id);
+    const std::string id = ident(t.bsdf ? t.bsdf->id : t.d->id + "_" + t.g->id);
+    s += t.bsdf ? fmt::format("\n/* BSDF = {} (glass: A = E_R, B = E_T) */\n", t.bsdf->id)
+                : fmt::format("\n/* D = {}, G = {} */\n", t.d->id, t.g->id);
     s += quantity_array(rep, "MFV_E_" + id, t.E);
     s += quantity_array(rep, "MFV_A_" + id, t.A);
     s += quantity_array(rep, "MFV_B_" + id, t.B);
@@ -72,16 +73,18 @@ void print_energy_cells(const EnergyReport& rep) {
   constexpr size_t kMaxLines = 200;
   size_t lines = 0;
   for (auto& t : rep.tables) {
-    fmt::print("{}:\n  {:>10} {:>10} {:>24} {:>24} {:>24} {:>24}\n", t.name(), "mu", "alpha", "E", "A", "B",
-               "E_avg(alpha)");
+    const bool glass = t.bsdf != nullptr;
+    fmt::print("{}:\n  {:>10} {:>10} {:>24} {:>24} {:>24} {:>24}{}\n", t.name(), "mu", "alpha", "E", glass ? "E_R" : "A",
+               glass ? "E_T" : "B", "E_avg(alpha)", glass ? "  eta" : "");
     for (const CellAt& c : rep.cells()) {
       if (++lines > kMaxLines) {
         fmt::print("  ... (every cell is in energy.json and the CSV files: --out DIR)\n");
         return;
       }
       auto v = [](const Cell& x) { return fmt::format("{:.9f}±{:.1e}", x.mean, x.se); };
-      fmt::print("  {:>10.6g} {:>10.6g} {:>24} {:>24} {:>24} {:>24}\n", rep.mu[c.m], rep.alpha[c.a], v(t.E[c.c]),
-                 v(t.A[c.c]), v(t.B[c.c]), v(t.eavg[c.a]));
+      fmt::print("  {:>10.6g} {:>10.6g} {:>24} {:>24} {:>24} {:>24}{}\n", rep.mu[c.m], rep.alpha[c.a], v(t.E[c.c]),
+                 v(t.A[c.c]), v(t.B[c.c]), v(t.eavg[c.a]),
+                 glass ? fmt::format("  {:.6g}", rep.opt.eta[c.a]) : std::string());
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "report/energy_layout_out.hpp"
 
+#include "report/energy_plots.hpp"
 #include "report/energy_report.hpp"
 #include "util/error.hpp"
 #include "util/exr.hpp"
@@ -14,10 +15,6 @@
 namespace mfv {
 
 namespace {
-
-const std::vector<Cell>& quantity_of(const EnergyTable& t, const std::string& q) {
-  return q == "E" ? t.E : q == "A" ? t.A : q == "B" ? t.B : t.eavg;
-}
 
 std::string stem(const EnergyLayout& l) {
   std::string s = l.name;
@@ -34,7 +31,7 @@ std::string exr_table(const EnergyTable& t, const std::vector<std::string>& qs, 
   for (size_t k = 0; k < qs.size(); ++k) {
     ExrChannel c;
     c.name = qs.size() == 1 ? "Y" : std::string(1, "RGB"[k]);
-    for (const Cell& v : quantity_of(t, qs[k])) c.pixel.push_back(float(v.mean));
+    for (const Cell& v : table_quantity(t, qs[k])) c.pixel.push_back(float(v.mean));
     img.channels.push_back(c);
   }
   std::sort(img.channels.begin(), img.channels.end(),
@@ -86,24 +83,32 @@ std::vector<std::pair<std::string, std::string>> energy_layout_files(const Energ
   std::vector<std::string> per_cell, per_width;
   for (auto& q : l.quantities) (layout_quantity_per_cell(q) ? per_cell : per_width).push_back(q);
   for (auto& t : rep.tables) {
-    const std::string base = dir + "/layout/" + stem(l) + (rep.tables.size() > 1 ? "_" + t.d->id + "__" + t.g->id : "");
-    const std::string head = fmt::format("# mfv energy --layout {}: D = {}, G = {}, F = none; {}; seed {}\n",
-                                         rep.opt.layout, t.d->id, t.g->id, l.source, rep.opt.seed);
+    const std::string base = dir + "/layout/" + stem(l) + (rep.tables.size() > 1 ? "_" + energy_file_stem(t) : "");
+    const std::string head = fmt::format("# mfv energy --layout {}: {}{}, F = none; {}; seed {}\n", rep.opt.layout,
+                                         t.bsdf ? "BSDF = " + t.bsdf->id + ", " : "", "D = " + t.d->id + ", G = " + t.g->id,
+                                         l.source, rep.opt.seed);
     // CSV: one row per cell, mu fastest; the layout's parametrization names the width column
-    std::string csv = head + "mu," + wname;
+    // a glass layout adds the eta column (its widths are (eta, roughness) pairs, eta slowest)
+    const bool glass = !rep.opt.eta.empty();
+    auto eta_at = [&](size_t a) { return glass ? fmt::format(",{:.9g}", rep.opt.eta[a]) : std::string(); };
+    std::string csv = head + "mu," + wname + (glass ? ",eta" : "");
     for (auto& q : per_cell) csv += "," + q + "," + q + "_se";
     csv += "\n";
     for (const CellAt& c : rep.cells()) {
-      csv += fmt::format("{:.9g},{:.9g}", rep.mu[c.m], w[c.a]);
-      for (auto& q : per_cell) csv += fmt::format(",{:.9g},{:.3e}", quantity_of(t, q)[c.c].mean, quantity_of(t, q)[c.c].se);
+      csv += fmt::format("{:.9g},{:.9g}", rep.mu[c.m], w[c.a]) + eta_at(c.a);
+      for (auto& q : per_cell) csv += fmt::format(",{:.9g},{:.3e}", table_quantity(t, q)[c.c].mean, table_quantity(t, q)[c.c].se);
       csv += "\n";
     }
     files.push_back({base + ".csv", csv});
     // C/C++: one flat float array per quantity, [width][mu] order (mu fastest)
+    const size_t n_r = glass ? size_t(std::count(rep.opt.eta.begin(), rep.opt.eta.end(), rep.opt.eta[0])) : na;
     std::string h = "/* " + head.substr(2, head.size() - 3) + ".\n * " + rep.opt.layout +
-                    fmt::format(": {} widths x {} mu, index [{} index * {} + mu index]. */\n", na, nm, wname, nm);
+                    (glass ? fmt::format(": {} eta x {} {} x {} mu, index [(eta index * {} + {} index) * {} + mu "
+                                         "index], eta ascending (leaving, 1/eta, first). */\n",
+                                         na / n_r, n_r, wname, nm, n_r, wname, nm)
+                           : fmt::format(": {} widths x {} mu, index [{} index * {} + mu index]. */\n", na, nm, wname, nm));
     for (auto& q : l.quantities) {
-      const auto& v = quantity_of(t, q);
+      const auto& v = table_quantity(t, q);
       h += fmt::format("static const float mfv_{}_{}[{}] = {{", stem(l), q, v.size());
       for (size_t i = 0; i < v.size(); ++i) h += fmt::format("{}{}{:.9g}f", i ? "," : "", i % 8 ? " " : "\n  ", v[i].mean);
       h += "\n};\n";
@@ -113,15 +118,15 @@ std::vector<std::pair<std::string, std::string>> energy_layout_files(const Energ
     std::vector<double> px;
     const size_t ch = per_cell.size() == 1 ? 1 : 3;
     for (size_t c = 0; c < nm * na; ++c)
-      for (size_t k = 0; k < ch; ++k) px.push_back(k < per_cell.size() ? quantity_of(t, per_cell[k])[c].mean : 0.0);
+      for (size_t k = 0; k < ch; ++k) px.push_back(k < per_cell.size() ? table_quantity(t, per_cell[k])[c].mean : 0.0);
     files.push_back({base + ".png", png16(px, nm, na, ch)});
     // OpenEXR, 32-bit float: the same pixels; Y for one quantity, R and G for two (A, B)
     files.push_back({base + ".exr", exr_table(t, per_cell, nm, na)});
     for (auto& q : per_width) {
-      std::string e = head + wname + "," + q + "," + q + "_se\n";
+      std::string e = head + wname + (glass ? ",eta," : ",") + q + "," + q + "_se\n";
       std::vector<double> row;
       for (size_t a = 0; a < na; ++a) {
-        e += fmt::format("{:.9g},{:.9g},{:.3e}\n", w[a], t.eavg[a].mean, t.eavg[a].se);
+        e += fmt::format("{:.9g}{},{:.9g},{:.3e}\n", w[a], eta_at(a), t.eavg[a].mean, t.eavg[a].se);
         row.push_back(t.eavg[a].mean);
       }
       files.push_back({base + "_" + q + ".csv", e});
@@ -154,15 +159,20 @@ std::vector<std::pair<std::string, std::string>> compare_files(const CompareResu
   const std::vector<double>& w = rep.opt.roughness.empty() ? rep.alpha : rep.opt.roughness;
   std::string csv = fmt::format("# mfv energy --compare {} --layout {}: mfv's {}; Holm, family-wise {:g}\n", r.file,
                                 r.layout, r.table, r.alpha_fw);
-  csv += "quantity,where,width,mu,theirs,mfv,mfv_se,mfv_rounding,their_precision,total_uncertainty,z,p,fails\n";
+  csv += "quantity,where,width,eta,mu,theirs,mfv,mfv_se,mfv_rounding,their_precision,total_uncertainty,z,p,"
+         "one_sided,fails\n";
   nlohmann::json cells = nlohmann::json::array();
   for (size_t i : r.worst_first()) {
     const CompareCell& c = r.cells[i];
     const bool per_cell = layout_quantity_per_cell(c.quantity);
-    csv += fmt::format("{},\"{}\",{:.9g},{},{:.9g},{:.9g},{:.3e},{:.3e},{:.3e},{:.3e},{:.4g},{:.3e},{}\n", c.quantity,
-                       c.where, w[c.a], per_cell ? fmt::format("{:.9g}", rep.mu[c.m]) : "", c.theirs, c.ours, c.se,
-                       c.rounding, c.precision, c.total, c.z, c.p, c.fails ? 1 : 0);
+    const std::string eta = rep.opt.eta.empty() ? "" : fmt::format("{:.9g}", rep.opt.eta[c.a]);
+    csv += fmt::format("{},\"{}\",{:.9g},{},{},{:.9g},{:.9g},{:.3e},{:.3e},{:.3e},{:.3e},{:.4g},{:.3e},{},{}\n",
+                       c.quantity, c.where, w[c.a], eta, per_cell ? fmt::format("{:.9g}", rep.mu[c.m]) : "",
+                       c.theirs, c.ours, c.se, c.rounding, c.precision, c.total, c.z, c.p, c.one_sided ? 1 : 0,
+                       c.fails ? 1 : 0);
     cells.push_back({{"quantity", c.quantity}, {"where", c.where}, {"width", w[c.a]},
+                     {"eta", rep.opt.eta.empty() ? nlohmann::json(nullptr) : nlohmann::json(rep.opt.eta[c.a])},
+                     {"one_sided", c.one_sided},
                      {"mu", per_cell ? nlohmann::json(rep.mu[c.m]) : nlohmann::json(nullptr)},
                      {"theirs", c.theirs}, {"mfv", c.ours}, {"total_uncertainty", c.total}, {"z", c.z},
                      {"p", c.p}, {"fails", c.fails}});

@@ -11,7 +11,7 @@
 
 namespace mfv {
 
-std::string energy_file_stem(const EnergyTable& t) { return t.d->id + "__" + t.g->id; }
+std::string energy_file_stem(const EnergyTable& t) { return t.bsdf ? t.bsdf->id : t.d->id + "__" + t.g->id; }
 
 namespace {
 

@@ -163,13 +163,14 @@ nlohmann::json table_json(const EnergyReport& rep, const EnergyTable& t) {
          {"g_param", t.g->params.empty() ? json(nullptr) : json{{"name", t.g->params[0].name}, {"values", t.pg}}},
          {"E", grid(t.E, false)},
          {"E_se", grid(t.E, true)},
-         {"A", grid(t.A, false)},
-         {"A_se", grid(t.A, true)},
-         {"B", grid(t.B, false)},
-         {"B_se", grid(t.B, true)},
+         {t.bsdf ? "E_R" : "A", grid(t.A, false)},
+         {t.bsdf ? "E_R_se" : "A_se", grid(t.A, true)},
+         {t.bsdf ? "E_T" : "B", grid(t.B, false)},
+         {t.bsdf ? "E_T_se" : "B_se", grid(t.B, true)},
          {"points_per_replicate", pts},
          {"E_avg", line(t.eavg, false)},
          {"E_avg_se", line(t.eavg, true)}};
+  if (t.bsdf) j["bsdf"] = t.bsdf->id;  // a glass table: E_avg is the midpoint rule (E_avg_quadrature)
   if (rep.midpoint_mu) {  // the midpoint rule over mu applies to the midpoint grid only
     j["E_avg_quadrature"] = line(t.eavg_quad, false);
     j["E_avg_quadrature_se"] = line(t.eavg_quad, true);
@@ -233,6 +234,10 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   if (rep.paired) j["grid"]["points"] = true;
   if (!rep.opt.roughness.empty()) j["grid"]["roughness"] = rep.opt.roughness;  // the given r, alpha = r²
   if (!rep.opt.layout.empty()) j["grid"]["engine_layout"] = rep.opt.layout;
+  if (!rep.opt.eta.empty()) {  // a glass layout: the widths are (eta, roughness) pairs, eta slowest
+    j["grid"]["eta"] = rep.opt.eta;
+    j["grid"]["layout"] = "arrays are [width index][mu index], width = (eta, roughness) pair, eta slowest";
+  }
 
   const auto& o = rep.opt;
   j["options"] = {{"seed", o.seed},
@@ -423,9 +428,12 @@ std::vector<std::pair<std::string, std::string>> energy_outputs(const EnergyRepo
                                                                 const std::string& dir, const BaselineDiff* baseline) {
   std::vector<std::pair<std::string, std::string>> files;
   files.push_back({dir + "/energy.json", energy_json(rep, rt)});
-  for (auto& t : rep.tables) files.push_back({dir + "/csv/" + energy_file_stem(t) + ".csv", csv_of(rep, t)});
+  // a glass layout's tables (eta per width) are in energy.json and the layout's own files only
+  const bool dxg = rep.opt.eta.empty();
+  for (auto& t : rep.tables)
+    if (dxg) files.push_back({dir + "/csv/" + energy_file_stem(t) + ".csv", csv_of(rep, t)});
   std::vector<std::string> names;
-  if (!rep.tables.empty()) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
+  if (!rep.tables.empty() && dxg) {  // D x G tables: their E_avg, the Kulla-Conty data, the plots
     files.push_back({dir + "/csv/eavg.csv", eavg_csv(rep)});
     files.push_back({dir + "/kulla_conty.h", energy_c_header(rep)});
     // KHR_materials_sheen's E_sheen (kernels/abi/sheen_table.h), on the default grid only
