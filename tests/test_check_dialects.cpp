@@ -47,6 +47,8 @@ const Plant kPlants[] = {
     {"hlsl_view_clamp", "engine_brdf.hlsl", "Context.NoV = V.z;", "Context.NoV = max(V.z, 0.1);"},
     // Neubelt's sheen visibility used down to sheen roughness 0.07, where it gains energy (E ~ 1.6 at grazing views)
     {"glsl_sheen_gains", "sheen.glsl", "sheenRoughness 0.3 1", "sheenRoughness 0.07 1"},
+    // the same visibility saturated to <= 1 as engines ship it: still gains at 0.07 (E ~ 1.15 at grazing views)
+    {"hlsl_sheen_saturate_gains", "sheen.hlsl", "SheenRoughness 0.3 1", "SheenRoughness 0.07 1"},
 };
 
 const Plant& plant(const std::string& name) {
@@ -79,9 +81,11 @@ TEST_CASE("An engine-style GLSL and HLSL shading file passes every check behind 
     CHECK(r.code == 0);
     for (auto* c : {"d_norm", "furnace", "energy", "reciprocity", "finite", "agree"}) CHECK(has_line(r.out, "pass", c));
   }
-  Run sheen = run_mfv("check --brdf " + kShading + "sheen.glsl");
-  INFO(sheen.out);
-  CHECK(sheen.code == 0);
+  for (const char* sheen_file : {"sheen.glsl", "sheen.hlsl"}) {
+    Run sheen = run_mfv("check --brdf " + kShading + sheen_file);
+    INFO(sheen_file << ": " << sheen.out);
+    CHECK(sheen.code == 0);
+  }
 }
 
 TEST_CASE("Each planted engine defect fails the check it breaks, in GLSL and in HLSL",
@@ -117,13 +121,39 @@ TEST_CASE("Each planted engine defect fails the check it breaks, in GLSL and in 
 TEST_CASE("An energy-gaining sheen lobe fails the furnace at default settings on seeds 1 to 3",
           "[device][check][cli][dialect][planted]") {
   const Scratch s("mfv_dialect");
-  const std::string file = planted(s, plant("glsl_sheen_gains"));
-  for (int seed : {1, 2, 3}) {
-    Run r = run_mfv("check --brdf " + file + " --check furnace --seed " + std::to_string(seed));
-    INFO(seed << ": " << r.out);
-    CHECK(r.code == 1);
-    CHECK(has_line(r.out, "FAIL", "furnace"));
+  // Neubelt's visibility as written (sheen.glsl) and saturated to <= 1 as engines ship it (sheen.hlsl):
+  // both fail used down to 0.07 (where declared, sheen roughness >= 0.3, both pass: the test above)
+  for (const char* name : {"glsl_sheen_gains", "hlsl_sheen_saturate_gains"}) {
+    const std::string file = planted(s, plant(name));
+    for (int seed : {1, 2, 3}) {
+      Run r = run_mfv("check --brdf " + file + " --check furnace --seed " + std::to_string(seed));
+      INFO(name << " seed " << seed << ": " << r.out);
+      CHECK(r.code == 1);
+      CHECK(has_line(r.out, "FAIL", "furnace"));
+    }
   }
+}
+
+TEST_CASE("At default settings on seeds 1 to 3 each planted engine defect fails and the correct files pass",
+          "[device][check][cli][dialect][planted]") {
+  const Scratch s("mfv_dialect");
+  for (int seed : {1, 2, 3})
+    for (const std::string d : {"glsl", "hlsl"}) {
+      const std::string sd = " --seed " + std::to_string(seed);
+      Run ok = run_mfv("check " + engine_args(kShading + "engine_brdf." + d, d) + " --check d_norm reciprocity" + sd);
+      INFO(d << " seed " << seed << ": " << ok.out);
+      CHECK(ok.code == 0);
+      CHECK(has_line(ok.out, "pass", "d_norm"));
+      CHECK(has_line(ok.out, "pass", "reciprocity"));
+      for (auto [name, check] : {std::pair<std::string, std::string>{"_missing_pi", "d_norm"},
+                                 {"_floor_in_d", "d_norm"},
+                                 {"_view_clamp", "reciprocity"}}) {
+        Run r = run_mfv("check " + engine_args(planted(s, plant(d + name)), d) + " --check " + check + sd);
+        INFO(d << name << " seed " << seed << ": " << r.out);
+        CHECK(r.code == 1);
+        CHECK(has_line(r.out, "FAIL", check));
+      }
+    }
 }
 
 TEST_CASE("The --init templates check clean as they are", "[device][check][cli][dialect]") {
@@ -248,4 +278,32 @@ TEST_CASE("GLSL and HLSL with TBN matrices, macros and the engines' built-ins gi
     CHECK(ag.code == 0);
     CHECK(has_line(ag.out, "pass", "agree"));
   }
+}
+
+TEST_CASE("Verdict lines give a NaN its reason and a huge z in two significant digits", "[device][check][cli]") {
+  const Scratch s("mfv_dialect_msgs");
+  const std::string param = "// mfv: param alpha 0.01 1 default 0.3 roughness\n";
+  // zero everywhere: a z of -1e300 (se 0), printed as such, not in 300 digits
+  const std::string zero = s.file("zero.cl", param +
+                                                 "float D(float3 m, const float* params) { return 0.0f; }\n"
+                                                 "float3 brdf(float3 wi, float3 wo, const float* params) { return "
+                                                 "(float3)(0.0f); }\n");
+  Run z = run_mfv("check --brdf " + zero + " --check d_norm furnace --samples 256");
+  INFO(z.out);
+  CHECK(has_line(z.out, "FAIL", "d_norm"));
+  CHECK(std::regex_search(z.out, std::regex("z -?[0-9]\\.[0-9]e\\+[0-9]+\\)")));
+  CHECK(!std::regex_search(z.out, std::regex("[0-9]{40}")));
+  // a D that is NaN over part of the hemisphere: nan ± nan with its reason on the same line
+  const std::string nand = s.file("nan_d.cl", param +
+                                                  "float D(float3 m, const float* params) { return m.z > 0.5f ? NAN : "
+                                                  "1.0f; }\n"
+                                                  "float3 brdf(float3 wi, float3 wo, const float* params) { return "
+                                                  "(float3)(0.1f); }\n");
+  Run n = run_mfv("check --brdf " + nand + " --check d_norm --samples 256");
+  INFO(n.out);
+  CHECK(n.code == 1);
+  CHECK(n.out.find("nan ±") != std::string::npos);
+  const std::regex nan_line("[^\n]*\\bnan\\b[^\n]*");  // verdict, pooled and gate lines
+  for (std::sregex_iterator it(n.out.begin(), n.out.end(), nan_line), end; it != end; ++it)
+    CHECK(it->str().find("were NaN or infinite") != std::string::npos);
 }

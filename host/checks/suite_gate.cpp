@@ -15,6 +15,11 @@ std::string inputs(const PointResult& p) {
   return s.empty() ? "(no parameters)" : s;
 }
 
+// A NaN in a gate line says why (issue 28: no NaN without its reason).
+std::string nan_reason(double x) {
+  return std::isfinite(x) ? "" : " (some samples were NaN or infinite; the check 'finite' or mfv stability names them)";
+}
+
 // The statistical (or bounded) comparison of one point, with its bound.
 std::string comparison(const PointResult& p) {
   if (p.bounded)
@@ -23,8 +28,8 @@ std::string comparison(const PointResult& p) {
   if (p.upper_only)
     return fmt::format("estimate {:.6g} ± {:.2g} (SE) above {:g} + noise and tolerance: bound {:.6g}, at {}",
                        p.estimate, p.stderr_, p.expected, p.bound, inputs(p));
-  return fmt::format("estimate {:.6g} ± {:.2g} (SE) off {:g} by {:.3g}, beyond the allowed {:.3g}, at {}", p.estimate,
-                     p.stderr_, p.expected, p.deviation, p.bound, inputs(p));
+  return fmt::format("estimate {:.6g} ± {:.2g} (SE) off {:g} by {:.3g}, beyond the allowed {:.3g}, at {}{}", p.estimate,
+                     p.stderr_, p.expected, p.deviation, p.bound, inputs(p), nan_reason(p.estimate + p.stderr_));
 }
 
 }  // namespace
@@ -75,9 +80,10 @@ std::vector<std::string> SuiteReport::gate_failures() const {
     if (g.pooled.failed)
       out.push_back(
           fmt::format("{}: pooled over {} integrals, mean deviation {:+.3g} ± {:.2g} (bias bound {:.2g}) beyond "
-                      "{} {:.2f}",
+                      "{} {:.2f}{}",
                       who, g.pooled.n, g.pooled.mean, g.pooled.se, g.pooled.bias,
-                      g.pooled.upper_only ? "one-sided z" : "|z|", g.pooled.threshold));
+                      g.pooled.upper_only ? "one-sided z" : "|z|", g.pooled.threshold,
+                      nan_reason(g.pooled.mean + g.pooled.se)));
   }
   if (!reference_ok()) {
     if (reference_twin)

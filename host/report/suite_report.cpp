@@ -57,9 +57,10 @@ std::string worst_text(const SuiteReport& rep, const GroupResult& g) { return po
 // The pooled test of a group, one line (stats/verdict.hpp).
 std::string pooled_text(const GroupResult& g) {
   const stats::Pooled& p = g.pooled;
-  return fmt::format("pooled over {} integrals: mean deviation {:+.2e} ± {:.1e} (bias bound {:.1e}), {} {:.2f} -> {}",
+  return fmt::format("pooled over {} integrals: mean deviation {:+.2e} ± {:.1e} (bias bound {:.1e}), {} {:.2f} -> {}{}",
                      p.n, p.mean, p.se, p.bias, p.upper_only ? "one-sided z >" : "|z| >", p.threshold,
-                     p.failed ? "FAIL" : "pass");
+                     p.failed ? "FAIL" : "pass",
+                     std::isfinite(p.mean + p.se) ? "" : " (some samples were NaN or infinite)");
 }
 
 // The same-sample comparison in one line: the double twin's derived bounds
