@@ -307,3 +307,12 @@ TEST_CASE("Verdict lines give a NaN its reason and a huge z in two significant d
   for (std::sregex_iterator it(n.out.begin(), n.out.end(), nan_line), end; it != end; ++it)
     CHECK(it->str().find("were NaN or infinite") != std::string::npos);
 }
+
+TEST_CASE("File-scope matrix and vector constants, matrix chains and bit casts compile and check as a Lambert",
+          "[device][check][cli][dialect]") {
+  const std::string file = std::string(MFV_KERNEL_SOURCE_DIR) + "/../tests/data/shading/constructs.glsl";
+  Run r = run_mfv("check --brdf " + file + " --check furnace reciprocity finite --samples 256");
+  INFO(r.out);
+  CHECK(r.code == 0);
+  for (auto* c : {"furnace", "reciprocity", "finite"}) CHECK(has_line(r.out, "pass", c));
+}

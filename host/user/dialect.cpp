@@ -68,7 +68,8 @@ const std::map<std::string, std::string>& builtins(Dialect d) {
       {"abs", "mfv_g_abs"},     {"atan", "mfv_g_atan"},   {"pow", "mfv_g_pow"},           {"mod", "mfv_g_mod"},
       {"fract", "mfv_g_fract"}, {"inversesqrt", "rsqrt"}, {"saturate", "mfv_g_saturate"}, {"min", "mfv_g_min"},
       {"max", "mfv_g_max"},     {"clamp", "mfv_g_clamp"}, {"mix", "mfv_g_mix"},           {"reflect", "mfv_g_reflect"},
-      {"step", "mfv_g_step"}};
+      {"step", "mfv_g_step"},   {"floatBitsToUint", "as_uint"}, {"floatBitsToInt", "as_int"},
+      {"uintBitsToFloat", "as_float"}, {"intBitsToFloat", "as_float"}};
   static const std::map<std::string, std::string> hlsl = {
       {"abs", "mfv_g_abs"},           {"pow", "mfv_g_pow"},     {"frac", "mfv_g_fract"},      {"lerp", "mfv_g_mix"},
       {"saturate", "mfv_g_saturate"}, {"rcp", "mfv_g_rcp"},     {"mad", "mfv_g_mad"},         {"min", "mfv_g_min"},
@@ -356,8 +357,11 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
       size_t eq = k;
       while (eq < semi && !is(toks[eq], "=")) ++eq;
       bool one_line = semi < toks.size() && toks[semi]->line == t->line && eq < semi && eq > k + 1;
-      for (size_t j = eq; j < semi && one_line; ++j)
-        if (is(toks[j], ",") || is(toks[j], "[")) one_line = false;
+      int paren = 0;  // a comma inside a constructor's parentheses is not a second declarator
+      for (size_t j = eq; j < semi && one_line; ++j) {
+        paren += is(toks[j], "(") - is(toks[j], ")");
+        if ((is(toks[j], ",") && paren == 0) || is(toks[j], "[")) one_line = false;
+      }
       if (one_line) {
         for (size_t j = eq + 1; j < semi && one_line; ++j) one_line = toks[j]->line == t->line;
       }
