@@ -118,6 +118,7 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
     case MFV_CHECK_ALBEDO_MIS: return albedo_mis_value(s, seed, index);
     case MFV_CHECK_BSDF_FLUX: return bsdf_flux_value(s, seed, index);
     case MFV_CHECK_MASKING_T: return masking_t_value(s, seed, index);
+    case MFV_CHECK_BSDF_AVG: return bsdf_avg_value(s, seed, index);
     default: return NAN;  // no integrand for this check id
   }
 }

@@ -66,12 +66,11 @@ static inline real bsdf_proposal_pdf(real ix, real iy, real iz, real ox, real oy
 // the other, and `lobe` keeps one of the two. The proposal (above) is drawn
 // in the frame where i is above (eta -> 1/eta from below) and mirrored back,
 // so that the BSDF itself sees i on its side.
-static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), index);
+static inline real bsdf_flux_at(__global const IntegralSpec* s, uint4 r, real cos_i, int side, uint lobe) {
   real u_branch = u01_open(r.x), u_pick = u01_open(r.y), u_phi = u01_open(r.z), u_r = u01_open(r.w);
-  const real below = s->side == MFV_SIDE_BELOW ? R(-1.0) : R(1.0);
-  const real eta = s->side == MFV_SIDE_BELOW ? R(1.0) / s->eta : s->eta;  // seen from i
-  real ix = sqrt(sin2_from_cos(s->cos_o)), iy = R(0.0), iz = s->cos_o;
+  const real below = side == MFV_SIDE_BELOW ? R(-1.0) : R(1.0);
+  const real eta = side == MFV_SIDE_BELOW ? R(1.0) / s->eta : s->eta;  // seen from i
+  real ix = sqrt(sin2_from_cos(cos_i)), iy = R(0.0), iz = cos_i;
   real ox, oy, oz;
   if (u_branch < R(2.0) * BSDF_COS) {
     cosine_direction(u_phi, u_r, &ox, &oy, &oz);
@@ -94,7 +93,7 @@ static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, u
     }
   }
   const bool reflected = oz > R(0.0);
-  if (reflected != (s->lobe == MFV_LOBE_REFLECT) && s->lobe != MFV_LOBE_ALL) return R(0.0);
+  if (reflected != (lobe == MFV_LOBE_REFLECT) && lobe != MFV_LOBE_ALL) return R(0.0);
   real p = bsdf_proposal_pdf(ix, iy, iz, ox, oy, oz, s->width, eta);
   if (!(p > R(0.0))) return R(0.0);
   // back to the surface's frame: i (and o) mirrored when i is below
@@ -102,6 +101,24 @@ static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, u
                                       s->eta)
                      : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg, s->eta);
   return f * fabs(oz) / p;
+}
+static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  return bsdf_flux_at(s, mfv_philox(seed, s->stream, spec_draw(s, 0u), index), s->cos_o, s->side, s->lobe);
+}
+
+// One sample of the hemispherical averages' reciprocity (MFV_CHECK_BSDF_AVG;
+// Walter et al. 2007 eq. 21's η_o², generalized reciprocity integrated over
+// both directions): T_avg = 2 ∫ E_T(μ) μ dμ of the light from below
+// (relative index 1/η) less that from above (η) over η², each μ drawn with
+// density 2μ and its o from the proposal above: the mean is 0 exactly.
+static inline real bsdf_avg_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  uint4 u = mfv_philox(seed, s->stream, spec_draw(s, 2u), index);
+  real mu_below = sqrt(u01_open(u.x)), mu_above = sqrt(u01_open(u.y));
+  real leaving = bsdf_flux_at(s, mfv_philox(seed, s->stream, spec_draw(s, 0u), index), mu_below, MFV_SIDE_BELOW,
+                              MFV_LOBE_TRANSMIT);
+  real entering = bsdf_flux_at(s, mfv_philox(seed, s->stream, spec_draw(s, 1u), index), mu_above, MFV_SIDE_ABOVE,
+                               MFV_LOBE_TRANSMIT);
+  return leaving - entering / (s->eta * s->eta);
 }
 
 // One sample of the weak white furnace on the transmitted side

@@ -99,6 +99,22 @@ Expectation expect_bsdf_reciprocity(const ExpectPoint& p) {
   return {};
 }
 
+// The hemispherical averages' reciprocity T_avg(1/eta) = T_avg(eta)/eta^2 is
+// the pointwise identity integrated over both directions: the entries that
+// break that one break this one, as far as the averages' estimator resolves
+// (measured, mfv run seeds 1-3 at 16384 samples: eta_o^2 dropped |z| 19-37 at
+// every width; F at n.i |z| 8-46 at alpha >= 0.3 but at most 4 at 0.05 and
+// 1 at 1e-4, where F at n.i is nearly F at the facet; the Jacobian's sum,
+// which vanishes at o = -i, makes E_T diverge and the estimate's variance
+// infinite: -2.4e4 +- 1.4e4, no verdict).
+Expectation expect_bsdf_avg(const ExpectPoint& p) {
+  Expectation e = expect_bsdf_reciprocity(p);
+  if (e.expect != Expect::Fail) return e;
+  const int v = p.bsdf->variant;
+  if (v == MFV_BTDF_BAD_JACOBIAN || (v == MFV_BTDF_BAD_F_AT_N && p.alpha < 0.3)) e.expect = Expect::May;
+  return e;
+}
+
 std::vector<CheckKind> make_kinds() {
   std::vector<CheckKind> k;
   auto add = [&](const char* name) -> CheckKind& {
@@ -264,6 +280,22 @@ std::vector<CheckKind> make_kinds() {
         "(Heitz 2014 eq. 19, two-sided)";
   }
   {
+    CheckKind& c = add("bsdf_avg_reciprocity");
+    c.kind = IntegralKind::BsdfAvg;
+    c.domain = Domain::Sphere;
+    c.terms_read = 2;  // D and G (F is the exact dielectric one)
+    c.base_samples = 4 * kSuiteBaseSamples;
+    c.expected = 0.0;
+    c.sources = kSourceBsdf;
+    c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
+    c.expect = expect_bsdf_avg;
+    c.verdict = "holds for every rough dielectric BSDF but eta_o^2 dropped and F at n.i (at alpha >= 0.3), which "
+                "must fail; the Jacobian's sum may (its averages diverge)";
+    c.summary =
+        "rough dielectric BSDF, flux form: the hemispherical averages obey reciprocity, T_avg(1/eta) = "
+        "T_avg(eta)/eta^2 (two-sided; at alpha = 1e-4 the smooth interface's 1 - Fbar(1/eta) = (1 - Fbar(eta))/eta^2)";
+  }
+  {
     CheckKind& c = add("bsdf_reciprocity");
     c.runner = Runner::Pointwise;
     c.domain = Domain::Sphere;
@@ -374,6 +406,7 @@ Shape shape_of(const CheckKind& k) {
       return k.fs == FSet::None ? Shape::Furnace : Shape::Energy;
     case IntegralKind::BsdfFlux: return Shape::BsdfFlux;
     case IntegralKind::MaskingT: return Shape::MaskingT;
+    case IntegralKind::BsdfAvg: return Shape::BsdfAvg;
     default: return Shape::None;
   }
 }

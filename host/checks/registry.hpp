@@ -119,8 +119,10 @@ std::string suite_check_list();
 // value (two-sided); reciprocity pairs; a rough dielectric BSDF's reflected
 // and transmitted flux over the sphere against the facet-space truth
 // (BsdfFlux, two-sided); the weak white furnace for a direction below the
-// surface (MaskingT); none (pointwise passes, tables).
-enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, BsdfFlux, MaskingT, None };
+// surface (MaskingT); a BSDF's hemispherical averages from both sides at
+// each width and index (BsdfAvg, two-sided against 0); none (pointwise
+// passes, tables).
+enum class Shape { DNorm, Masking, Furnace, Energy, Exact, Pairs, BsdfFlux, MaskingT, BsdfAvg, None };
 Shape shape_of(const CheckKind& k);
 bool diffuse_of(const CheckKind& k);  // an Energy kind whose points add a Lambert kd > 0
 

@@ -101,9 +101,10 @@ bool in_range(const Term& t, double alpha) {
 Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
   Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
   const bool flux = shape_of(kind) == Shape::BsdfFlux;
+  const bool avg = shape_of(kind) == Shape::BsdfAvg;  // one integral a width and index: both sides, mu drawn
   const std::vector<uint32_t> lobes =
       flux ? std::vector<uint32_t>{MFV_LOBE_REFLECT, MFV_LOBE_TRANSMIT} : std::vector<uint32_t>{MFV_LOBE_ALL};
-  const std::vector<double> views = bsdf_views(kind.n_view * opt.density);
+  const std::vector<double> views = avg ? std::vector<double>{1.0} : bsdf_views(kind.n_view * opt.density);
   std::vector<TruthKey> keys;
   for (const Bsdf& b : bsdfs()) {
     if (!suite_model_wanted(opt.models, b.id)) continue;
@@ -112,9 +113,12 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
       if (!in_range(*b.d, alpha) || !in_range(*b.g, alpha)) continue;
       used = true;
       const Expectation e = kind.expect ? kind.expect({b.d, b.g, alpha, 0, 0, &b}) : Expectation{};
-      // the flux from both sides at each index; the other kinds read no eta (o below)
-      for (double eta : flux ? kBsdfEtas : std::vector<double>{1.0})
-        for (int side : flux ? std::vector<int>{MFV_SIDE_ABOVE, MFV_SIDE_BELOW} : std::vector<int>{MFV_SIDE_BELOW})
+      // the flux from both sides at each index (the averages take both in one
+      // integral); transmission masking reads no eta (o below)
+      for (double eta : flux || avg ? kBsdfEtas : std::vector<double>{1.0})
+        for (int side : flux  ? std::vector<int>{MFV_SIDE_ABOVE, MFV_SIDE_BELOW}
+                        : avg ? std::vector<int>{MFV_SIDE_ABOVE}
+                              : std::vector<int>{MFV_SIDE_BELOW})
           for (double co : views) {
             const TruthKey key{&truth_entry(b), alpha, eta, side, co};
             if (flux) keys.push_back(key);
@@ -136,8 +140,9 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
               PointResult r;
               r.check = kind.check;
               r.model = b.id;
-              r.params = {{"alpha", alpha}, {"side", side}, {flux ? "cos_i" : "cos_o", co}};
-              if (flux) r.params["eta"] = eta;
+              r.params = {{"alpha", alpha}};
+              if (!avg) r.params["side"] = side, r.params[flux ? "cos_i" : "cos_o"] = co;
+              if (flux || avg) r.params["eta"] = eta;
               if (lobe != MFV_LOBE_ALL) r.params["lobe"] = lobe;
               r.expected = kind.expected;  // the flux: its truth, below
               r.upper_only = kind.upper_only;
@@ -190,7 +195,7 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
 PointSource bsdf_source(const SuiteOptions& opt) {
   return {kSourceBsdf, "the rough dielectric BSDFs", [&opt](const CheckKind& k, std::vector<Plan>& plans) {
             const Shape shape = shape_of(k);
-            if (shape != Shape::BsdfFlux && shape != Shape::MaskingT) return false;
+            if (shape != Shape::BsdfFlux && shape != Shape::MaskingT && shape != Shape::BsdfAvg) return false;
             Plan p = bsdf_plan(k, opt);
             if (!p.specs.empty()) plans.push_back(std::move(p));
             return true;

@@ -441,6 +441,7 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index) {
     case Integral::AlbedoMis: return albedo_mis(s, seed, index);
     case Integral::BsdfFlux: return bsdf_flux(s, seed, index);
     case Integral::MaskingT: return masking_t(s, seed, index);
+    case Integral::BsdfAvg: return bsdf_avg(s, seed, index);
   }
   throw Error(fmt::format("reference: check id {} has no integrand (ref::sample_value)", int(s.kind)));
 }

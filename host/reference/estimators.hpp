@@ -24,7 +24,8 @@ enum class Integral {
   EavgRqmc = MFV_CHECK_EAVG_RQMC,
   AlbedoMis = MFV_CHECK_ALBEDO_MIS,
   BsdfFlux = MFV_CHECK_BSDF_FLUX,  // the rough dielectric BSDF's E_R or E_T (host/reference/transmission.cpp)
-  MaskingT = MFV_CHECK_MASKING_T   // the weak white furnace for o below the surface (the same file)
+  MaskingT = MFV_CHECK_MASKING_T,  // the weak white furnace for o below the surface (the same file)
+  BsdfAvg = MFV_CHECK_BSDF_AVG     // T_avg(1/eta) - T_avg(eta)/eta^2 (the same file)
 };
 
 struct IntegralRef {
@@ -60,9 +61,10 @@ enum class Estimator : uint32_t {
 
 // The index-th sample of the estimator: its mean over samples is the integral.
 double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);
-// BsdfFlux's and MaskingT's samples (host/reference/transmission.cpp).
+// BsdfFlux's, MaskingT's and BsdfAvg's samples (host/reference/transmission.cpp).
 double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index);
 double masking_t(const IntegralRef& s, uint64_t seed, uint64_t index);
+double bsdf_avg(const IntegralRef& s, uint64_t seed, uint64_t index);
 
 // The proposals on their own (twins of kernels/integrate.cl), for mfv
 // samplers' quadrature and chi-square tests. Densities are over solid angle.

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <cmath>
 
 namespace mfv::ref {
@@ -68,13 +69,11 @@ double proposal_pdf(const IntegralRef& s, const glm::dvec3& i, const glm::dvec3&
   return p;
 }
 
-}  // namespace
-
-double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  const auto r = philox(seed, s.stream, draw_word(s, 0), index);
+// One sample of the flux from i at cos_i on `side` into `lobe`, from the uniforms r.
+double flux_sample(const IntegralRef& s, const std::array<uint32_t, 4>& r, double cos_i, int side, uint32_t lobe) {
   const double u_branch = u01_open(r[0]), u_pick = u01_open(r[1]), u_phi = u01_open(r[2]), u_r = u01_open(r[3]);
-  const double up = s.side == MFV_SIDE_BELOW ? -1.0 : 1.0;
-  const glm::dvec3 i(std::sqrt((1.0 - s.cos_o) * (1.0 + s.cos_o)), 0.0, up * s.cos_o);
+  const double up = side == MFV_SIDE_BELOW ? -1.0 : 1.0;
+  const glm::dvec3 i(std::sqrt((1.0 - cos_i) * (1.0 + cos_i)), 0.0, up * cos_i);
   const double eta_i = up > 0 ? 1.0 : s.eta, eta_t = up > 0 ? s.eta : 1.0;
   glm::dvec3 o;
   if (u_branch < 2.0 * kBsdfCos) {
@@ -97,7 +96,7 @@ double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
     }
   }
   const bool reflected = o.z * up > 0.0;
-  if (s.lobe != MFV_LOBE_ALL && reflected != (s.lobe == MFV_LOBE_REFLECT)) return 0.0;
+  if (lobe != MFV_LOBE_ALL && reflected != (lobe == MFV_LOBE_REFLECT)) return 0.0;
   const double p = proposal_pdf(s, i, o);
   if (!(p > 0.0)) return 0.0;
   BtdfSpec b;
@@ -110,6 +109,26 @@ double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
   b.eta = s.eta;
   const double f = reflected ? reflection(s, i, o) : btdf(b, i, o);
   return f * std::fabs(o.z) / p;
+}
+
+}  // namespace
+
+double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  return flux_sample(s, philox(seed, s.stream, draw_word(s, 0), index), s.cos_o, s.side, s.lobe);
+}
+
+double bsdf_avg(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  // Hemispherical averages T_avg = 2 ∫ E_T(μ) μ dμ of the light from below
+  // (relative index 1/η) and from above (η), μ drawn with density 2μ for
+  // each: generalized reciprocity (Walter et al. 2007 eq. 21's η_o²; Veach
+  // 1997 §5.2) integrated over both directions gives T_avg(1/η) = T_avg(η)/η².
+  const auto u = philox(seed, s.stream, draw_word(s, 2), index);
+  const double mu_below = std::sqrt(u01_open(u[0])), mu_above = std::sqrt(u01_open(u[1]));
+  const double leaving =
+      flux_sample(s, philox(seed, s.stream, draw_word(s, 0), index), mu_below, MFV_SIDE_BELOW, MFV_LOBE_TRANSMIT);
+  const double entering =
+      flux_sample(s, philox(seed, s.stream, draw_word(s, 1), index), mu_above, MFV_SIDE_ABOVE, MFV_LOBE_TRANSMIT);
+  return leaving - entering / (s.eta * s.eta);
 }
 
 double masking_t(const IntegralRef& s, uint64_t seed, uint64_t index) {

@@ -118,7 +118,8 @@ Sampling sampling_of(int32_t check) {
     case IntegralKind::AlbedoRqmc:
     case IntegralKind::AlbedoRqmcB:
     case IntegralKind::BsdfFlux:
-    case IntegralKind::MaskingT: return Sampling::Iid;
+    case IntegralKind::MaskingT:
+    case IntegralKind::BsdfAvg: return Sampling::Iid;
   }
   throw Error(fmt::format("internal: check id {} has no integrand (runtime/integrator.cpp sampling_of)", check));
 }

@@ -35,7 +35,8 @@ enum class IntegralKind : int32_t {
   AlbedoRqmcB = MFV_CHECK_ALBEDO_RQMC_B,
   AlbedoMis = MFV_CHECK_ALBEDO_MIS,
   BsdfFlux = MFV_CHECK_BSDF_FLUX,  // the rough dielectric BSDF's E_R or E_T over the sphere (kernels/transmission.cl)
-  MaskingT = MFV_CHECK_MASKING_T   // the weak white furnace for o below the surface (kernels/transmission.cl)
+  MaskingT = MFV_CHECK_MASKING_T,  // the weak white furnace for o below the surface (kernels/transmission.cl)
+  BsdfAvg = MFV_CHECK_BSDF_AVG     // T_avg(1/eta) - T_avg(eta)/eta^2, the averages' reciprocity (transmission.cl)
 };
 
 // Replicates of an AlbedoMis integral. The error allowance is t·SE with the

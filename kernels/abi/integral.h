@@ -32,6 +32,7 @@ namespace mfv {
 /* The rough dielectric BSDF (bsdf, eta, side; kernels/transmission.cl): */
 #define MFV_CHECK_BSDF_FLUX 7       /* E_R or E_T (lobe) of the light from the fixed direction, o over the sphere, iid */
 #define MFV_CHECK_MASKING_T 8       /* the weak white furnace for o below the surface (the BTDF's G1), iid */
+#define MFV_CHECK_BSDF_AVG 9        /* T_avg(1/eta) - T_avg(eta)/eta^2: the averages' reciprocity, iid */
 
 /* IntegralSpec::estimator: mfv convergence's estimators (0: the check's own;
  * host: ref::Estimator). */
@@ -57,7 +58,7 @@ namespace mfv {
  *   ALBEDO_RQMC:                     Σ B, the split sum's B on the same points
  *   ALBEDO_MIS:                      Σ x² of one replicate (the host uses only
  *                                    the replicates' sums: their spread)
- *   BSDF_FLUX, MASKING_T (iid):      Σ x², the sum of squares
+ *   BSDF_FLUX, MASKING_T, BSDF_AVG:  Σ x², the sum of squares (iid)
  * A new check states its own here (docs/adding-a-check.md). */
 #define MFV_SLOT_SUM 0
 #define MFV_SLOT_SECOND 1
