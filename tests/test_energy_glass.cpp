@@ -91,6 +91,11 @@ TEST_CASE("the glass layout holds (eta, roughness) widths, eta and 1/eta ascendi
   }
   CHECK(o.models == std::vector<std::string>{"walter_ggx_correlated"});
   validate_energy_options(o);
+  // one side only: a renderer's entering table, and its leaving one, apart
+  const std::vector<double> enter = layout_eta_axis(*parse_energy_layout("glass-enter:4").layout, 4);
+  const std::vector<double> leave = layout_eta_axis(*parse_energy_layout("glass-leave:4").layout, 4);
+  CHECK(enter == std::vector<double>(eta.begin() + 4, eta.end()));
+  CHECK(leave == std::vector<double>(eta.begin(), eta.begin() + 4));
 }
 
 TEST_CASE("mfv energy --compare passes mfv's own glass table and flags a planted error and a transposition",
@@ -110,6 +115,16 @@ TEST_CASE("mfv energy --compare passes mfv's own glass table and flags a planted
     CHECK(r.code == 0);
     CHECK(r.out.find("PASS: 0 of") != std::string::npos);
   }
+  // one side's table alone (a renderer's entering table): its own C arrays pass (27 x 3 + 9 E_avg)
+  Run enter = run_mfv("energy --layout glass-enter:3 --replicates 16 --target 1e-3 --max-points 4096 --out " +
+                      s / "enter");
+  INFO(enter.out);
+  REQUIRE(enter.code == 0);
+  Run r1 = run_mfv("energy --layout glass-enter:3 --replicates 16 --target 1e-3 --max-points 4096 --compare " +
+                   s / "enter/layout/glass_enter.h");
+  CAPTURE(r1.out);
+  CHECK(r1.code == 0);
+  CHECK(r1.out.find("PASS: 0 of 90 cells") != std::string::npos);
   // a planted error in E_R of one entering cell (E_R is never one-sided), in
   // units of that cell's own standard error: 25 of them
   std::vector<std::string> rows = lines_of(csv);

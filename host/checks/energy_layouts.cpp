@@ -15,25 +15,35 @@ const std::vector<EnergyLayout>& energy_layouts() {
       // E(mu, r) and E_avg(r) on cell edges, mu = y/(N-1), r = x/(N-1), alpha = r².
       {"kulla-conty", "edges", "edges", RoughnessAxis::R2, {"E", "E_avg"}, "ggx/smith_ggx_correlated",
        "Kulla & Conty 2017 §2.2 energy compensation: E(mu, r) and E_avg(r), mu = y/(N-1), r = x/(N-1), alpha = r^2",
-       "E: gray (one channel), E_avg: a separate one-row image", ""},
+       "E: gray (one channel), E_avg: a separate one-row image", "", 0},
       // Karis 2013 ("Real Shading in Unreal Engine 4", split sum) as engines bake
       // it: texel centres, x = NoV, y = perceptual roughness, alpha = r².
       {"split-sum", "centers", "centers", RoughnessAxis::R2, {"A", "B"}, "ggx/smith_ggx_correlated",
        "Karis 2013 split-sum DFG: E_F = F0 A + F90 B, mu = (x+1/2)/N, r = (y+1/2)/N, alpha = r^2",
-       "R = A, G = B", ""},
+       "R = A, G = B", "", 0},
       // Estevez & Kulla 2017 Charlie sheen with its visibility (KHR_materials_sheen
       // "Albedo-scaling"): E_sheen(mu, r), texel centres, alpha = r².
       {"sheen", "centers", "centers", RoughnessAxis::R2, {"E"}, "charlie/charlie_sheen",
        "Estevez & Kulla 2017 Charlie sheen E (KHR_materials_sheen albedo scaling): mu = (x+1/2)/N, r = (y+1/2)/N, "
        "alpha = r^2",
-       "E: gray (one channel)", ""},
+       "E: gray (one channel)", "", 0},
       // Walter et al. 2007 rough dielectric (eq. 20 reflection, eq. 21 transmission), flux form, as a
       // renderer's glass energy tables per (mu, roughness, eta) hold it: texel centres, alpha = r², eta
       // log-spaced over the BSDFs' declared range, entering (eta) and leaving (1/eta).
       {"glass", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
        "Walter et al. 2007 rough dielectric flux: E = E_R + E_T of the light from mu; mu = (x+1/2)/N, "
        "r = (y+1/2)/N, alpha = r^2, eta: N indices log-spaced 1.01..10 and their inverses (leaving)",
-       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the 2N eta slices, N rows each, eta slowest", "log:1.01:10"},
+       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the 2N eta slices, N rows each, eta slowest", "log:1.01:10", 0},
+      // The same, one side only: a renderer's entering table and its leaving (inverse-eta) table apart.
+      {"glass-enter", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
+       "Walter et al. 2007 rough dielectric flux, entering: as glass, eta: N indices log-spaced 1.01..10",
+       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the N eta slices, N rows each, eta slowest", "log:1.01:10",
+       +1},
+      {"glass-leave", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
+       "Walter et al. 2007 rough dielectric flux, leaving: as glass, relative index 1/eta, eta: N indices log-spaced "
+       "1.01..10 (1/eta ascending)",
+       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the N 1/eta slices, N rows each, 1/eta slowest",
+       "log:1.01:10", -1},
   };
   return layouts;
 }
@@ -62,8 +72,9 @@ std::vector<double> layout_eta_axis(const EnergyLayout& l, int n) {
   if (l.eta_form.empty()) return {};
   const std::vector<double> in = parse_energy_axis("--layout eta", l.eta_form + ":" + std::to_string(n));
   std::vector<double> eta;
-  for (size_t k = in.size(); k-- > 0;) eta.push_back(1.0 / in[k]);  // leaving: 1/eta, ascending
-  eta.insert(eta.end(), in.begin(), in.end());
+  if (l.eta_sides <= 0)
+    for (size_t k = in.size(); k-- > 0;) eta.push_back(1.0 / in[k]);  // leaving: 1/eta, ascending
+  if (l.eta_sides >= 0) eta.insert(eta.end(), in.begin(), in.end());
   return eta;
 }
 

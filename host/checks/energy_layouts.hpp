@@ -24,6 +24,7 @@ struct EnergyLayout {
   // the relative indices entered; the layout holds them and their inverses
   // (leaving), ascending. Empty: no eta axis.
   std::string eta_form;
+  int eta_sides = 0;  // with eta_form: 0 both (1/eta then eta), +1 entering only, -1 leaving only
 };
 
 const std::vector<EnergyLayout>& energy_layouts();

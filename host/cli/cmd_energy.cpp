@@ -61,8 +61,9 @@ struct EnergyCommand : SharedValues {
                     "how --alpha and --at read: alpha (the width, default) or r2 (perceptual roughness r, alpha = r^2)");
     cmd->add_option("--at", at, "one point MU,ALPHA (repeatable): E, A, B and E_avg there, nothing else");
     cmd->add_option("--layout", layout,
-                    "an engine's table layout, NAME or NAME:N (default N = 32): kulla-conty, split-sum, sheen, glass "
-                    "(docs/energy-layouts.md); sets the axes and, without --models, the D/G (glass: the BSDF)");
+                    "an engine's table layout, NAME or NAME:N (default N = 32): kulla-conty, split-sum, sheen, glass, "
+                    "glass-enter, glass-leave (docs/energy-layouts.md); sets the axes and, without --models, the D/G "
+                    "(glass: the BSDF)");
     cmd->add_flag("--fp64", opt.fp64,
                   "the energy kernels in double (needs cl_khr_fp64; PoCL has it): no float32 rounding in the values");
     cmd->add_option("--compare", compare,
