@@ -101,37 +101,97 @@ MFV_SHADING_BUILTINS(float4)
 // 2^24, so that max(x, 0) on a float x is not ambiguous)
 MFV_OVL int mfv_g_abs(int x) { return abs(x); }
 
-// 3x3 matrices (host/user/dialect_matrix.cpp): c holds glsl's columns or
-// hlsl's rows, in the order the constructor's arguments come in both.
-// GLSL 4.60 §5.4.2, §5.10: m * v = sum v_i c_i, v * m = (v.c_i), column j
-// of a * b = a * b.c_j. HLSL mul(M, v) = (row_i . v), mul(v, M) = sum v_i
-// row_i, rows of mul(A, B) = those of A times B: mfv_hmul(x, y) is glsl's
-// y * x on the rows, and mul of two vectors is their dot product.
+// Square matrices, N = 2, 3, 4 (host/user/dialect_matrix.cpp): c holds
+// glsl's columns or hlsl's rows, in the order the constructor's arguments
+// come in both. GLSL 4.60 §5.4.2, §5.10: m * v = sum v_i c_i, v * m =
+// (v.c_i), column j of a * b = a * b.c_j; matN(matM) keeps the upper-left
+// part and fills the rest from the identity. HLSL mul(M, v) = (row_i . v),
+// mul(v, M) = sum v_i row_i, rows of mul(A, B) = those of A times B:
+// mfv_hmul(x, y) is glsl's y * x on the rows, and mul of two vectors is
+// their dot product.
+typedef struct { float2 c[2]; } mfv_mat2;
 typedef struct { float3 c[3]; } mfv_mat3;
+typedef struct { float4 c[4]; } mfv_mat4;
+MFV_OVL mfv_mat2 mfv_mat2_make(float2 a, float2 b) { mfv_mat2 m = {{a, b}}; return m; }
 MFV_OVL mfv_mat3 mfv_mat3_make(float3 a, float3 b, float3 c) { mfv_mat3 m = {{a, b, c}}; return m; }
+MFV_OVL mfv_mat4 mfv_mat4_make(float4 a, float4 b, float4 c, float4 d) { mfv_mat4 m = {{a, b, c, d}}; return m; }
+MFV_OVL mfv_mat2 mfv_mat2_make(float s) { return mfv_mat2_make((float2)(s, 0.0f), (float2)(0.0f, s)); }
 MFV_OVL mfv_mat3 mfv_mat3_make(float s) {
   return mfv_mat3_make((float3)(s, 0.0f, 0.0f), (float3)(0.0f, s, 0.0f), (float3)(0.0f, 0.0f, s));
+}
+MFV_OVL mfv_mat4 mfv_mat4_make(float s) {
+  return mfv_mat4_make((float4)(s, 0.0f, 0.0f, 0.0f), (float4)(0.0f, s, 0.0f, 0.0f), (float4)(0.0f, 0.0f, s, 0.0f),
+                       (float4)(0.0f, 0.0f, 0.0f, s));
+}
+MFV_OVL mfv_mat2 mfv_mat2_make(float a, float b, float c, float d) {
+  return mfv_mat2_make((float2)(a, b), (float2)(c, d));
 }
 MFV_OVL mfv_mat3 mfv_mat3_make(float a, float b, float c, float d, float e, float f, float g, float h, float i) {
   return mfv_mat3_make((float3)(a, b, c), (float3)(d, e, f), (float3)(g, h, i));
 }
+MFV_OVL mfv_mat4 mfv_mat4_make(float a, float b, float c, float d, float e, float f, float g, float h, float i,
+                               float j, float k, float l, float m, float n, float o, float p) {
+  return mfv_mat4_make((float4)(a, b, c, d), (float4)(e, f, g, h), (float4)(i, j, k, l), (float4)(m, n, o, p));
+}
+MFV_OVL mfv_mat2 mfv_mat2_make(mfv_mat2 m) { return m; }
 MFV_OVL mfv_mat3 mfv_mat3_make(mfv_mat3 m) { return m; }
+MFV_OVL mfv_mat4 mfv_mat4_make(mfv_mat4 m) { return m; }
+MFV_OVL mfv_mat2 mfv_mat2_make(mfv_mat3 m) { return mfv_mat2_make(m.c[0].xy, m.c[1].xy); }
+MFV_OVL mfv_mat2 mfv_mat2_make(mfv_mat4 m) { return mfv_mat2_make(m.c[0].xy, m.c[1].xy); }
+MFV_OVL mfv_mat3 mfv_mat3_make(mfv_mat4 m) { return mfv_mat3_make(m.c[0].xyz, m.c[1].xyz, m.c[2].xyz); }
+MFV_OVL mfv_mat3 mfv_mat3_make(mfv_mat2 m) {
+  return mfv_mat3_make((float3)(m.c[0], 0.0f), (float3)(m.c[1], 0.0f), (float3)(0.0f, 0.0f, 1.0f));
+}
+MFV_OVL mfv_mat4 mfv_mat4_make(mfv_mat3 m) {
+  return mfv_mat4_make((float4)(m.c[0], 0.0f), (float4)(m.c[1], 0.0f), (float4)(m.c[2], 0.0f),
+                       (float4)(0.0f, 0.0f, 0.0f, 1.0f));
+}
+MFV_OVL mfv_mat4 mfv_mat4_make(mfv_mat2 m) { return mfv_mat4_make(mfv_mat3_make(m)); }
+MFV_OVL mfv_mat2 mfv_transpose(mfv_mat2 m) {
+  return mfv_mat2_make((float2)(m.c[0].x, m.c[1].x), (float2)(m.c[0].y, m.c[1].y));
+}
 MFV_OVL mfv_mat3 mfv_transpose(mfv_mat3 m) {
   return mfv_mat3_make((float3)(m.c[0].x, m.c[1].x, m.c[2].x), (float3)(m.c[0].y, m.c[1].y, m.c[2].y),
                        (float3)(m.c[0].z, m.c[1].z, m.c[2].z));
 }
+MFV_OVL mfv_mat4 mfv_transpose(mfv_mat4 m) {
+  return mfv_mat4_make((float4)(m.c[0].x, m.c[1].x, m.c[2].x, m.c[3].x), (float4)(m.c[0].y, m.c[1].y, m.c[2].y, m.c[3].y),
+                       (float4)(m.c[0].z, m.c[1].z, m.c[2].z, m.c[3].z), (float4)(m.c[0].w, m.c[1].w, m.c[2].w, m.c[3].w));
+}
+MFV_OVL float2 mfv_mul(mfv_mat2 m, float2 v) { return m.c[0] * v.x + m.c[1] * v.y; }
 MFV_OVL float3 mfv_mul(mfv_mat3 m, float3 v) { return m.c[0] * v.x + m.c[1] * v.y + m.c[2] * v.z; }
+MFV_OVL float4 mfv_mul(mfv_mat4 m, float4 v) { return m.c[0] * v.x + m.c[1] * v.y + m.c[2] * v.z + m.c[3] * v.w; }
+MFV_OVL float2 mfv_mul(float2 v, mfv_mat2 m) { return (float2)(dot(v, m.c[0]), dot(v, m.c[1])); }
 MFV_OVL float3 mfv_mul(float3 v, mfv_mat3 m) { return (float3)(dot(v, m.c[0]), dot(v, m.c[1]), dot(v, m.c[2])); }
+MFV_OVL float4 mfv_mul(float4 v, mfv_mat4 m) {
+  return (float4)(dot(v, m.c[0]), dot(v, m.c[1]), dot(v, m.c[2]), dot(v, m.c[3]));
+}
+MFV_OVL mfv_mat2 mfv_mul(mfv_mat2 a, mfv_mat2 b) { return mfv_mat2_make(mfv_mul(a, b.c[0]), mfv_mul(a, b.c[1])); }
 MFV_OVL mfv_mat3 mfv_mul(mfv_mat3 a, mfv_mat3 b) {
   return mfv_mat3_make(mfv_mul(a, b.c[0]), mfv_mul(a, b.c[1]), mfv_mul(a, b.c[2]));
 }
-MFV_OVL mfv_mat3 mfv_mul(mfv_mat3 a, float s) { return mfv_mat3_make(a.c[0] * s, a.c[1] * s, a.c[2] * s); }
-MFV_OVL mfv_mat3 mfv_mul(float s, mfv_mat3 a) { return mfv_mat3_make(s * a.c[0], s * a.c[1], s * a.c[2]); }
-MFV_OVL float3 mfv_hmul(mfv_mat3 m, float3 v) { return mfv_mul(v, m); }
-MFV_OVL float3 mfv_hmul(float3 v, mfv_mat3 m) { return mfv_mul(m, v); }
-MFV_OVL mfv_mat3 mfv_hmul(mfv_mat3 a, mfv_mat3 b) { return mfv_mul(b, a); }
-MFV_OVL mfv_mat3 mfv_hmul(mfv_mat3 a, float s) { return mfv_mul(a, s); }
-MFV_OVL mfv_mat3 mfv_hmul(float s, mfv_mat3 a) { return mfv_mul(s, a); }
+MFV_OVL mfv_mat4 mfv_mul(mfv_mat4 a, mfv_mat4 b) {
+  return mfv_mat4_make(mfv_mul(a, b.c[0]), mfv_mul(a, b.c[1]), mfv_mul(a, b.c[2]), mfv_mul(a, b.c[3]));
+}
+// a matrix and a scalar, and hlsl's mul() (the same products on the rows), for each size
+#define MFV_MATRIX_SCALAR(M, V)                                                          \
+  MFV_OVL M mfv_mul(M a, float s) {                                                      \
+    for (int i = 0; i < (int)(sizeof(a.c) / sizeof(a.c[0])); ++i) a.c[i] = a.c[i] * s;  \
+    return a;                                                                            \
+  }                                                                                      \
+  MFV_OVL M mfv_mul(float s, M a) {                                                      \
+    for (int i = 0; i < (int)(sizeof(a.c) / sizeof(a.c[0])); ++i) a.c[i] = s * a.c[i];  \
+    return a;                                                                            \
+  }                                                                                      \
+  MFV_OVL V mfv_hmul(M m, V v) { return mfv_mul(v, m); }                                 \
+  MFV_OVL V mfv_hmul(V v, M m) { return mfv_mul(m, v); }                                 \
+  MFV_OVL M mfv_hmul(M a, M b) { return mfv_mul(b, a); }                                 \
+  MFV_OVL M mfv_hmul(M a, float s) { return mfv_mul(a, s); }                             \
+  MFV_OVL M mfv_hmul(float s, M a) { return mfv_mul(s, a); }
+MFV_MATRIX_SCALAR(mfv_mat2, float2)
+MFV_MATRIX_SCALAR(mfv_mat3, float3)
+MFV_MATRIX_SCALAR(mfv_mat4, float4)
+#undef MFV_MATRIX_SCALAR
 // the other factors of a product chain that holds a matrix, as `*` computes them
 #define MFV_MUL_VECTORS(T)                                       \
   MFV_OVL T mfv_mul(T a, T b) { return a * b; }                  \

@@ -180,12 +180,12 @@ TEST_CASE("Dialect errors name the user's file, line and construct, in the user'
   CHECK(one_error_line(u));
   CHECK(u.out.find("undef.glsl:2: #if reads 'QUALITY'") != std::string::npos);
   CHECK(u.out.find("--define QUALITY=VALUE") != std::string::npos);
-  // matrices other than 3x3, and the products mfv does not translate, are refused by name and line
+  // matrices that are not square, and the products mfv does not translate, are refused by name and line
   const std::string mat = s.file(
-      "mat.glsl", param + "vec3 brdf(vec3 wi, vec3 wo, float p[6]) {\n  mat4 m = mat4(1.0);\n  return wi;\n}\n");
+      "mat.glsl", param + "vec3 brdf(vec3 wi, vec3 wo, float p[6]) {\n  mat3x4 m = mat3x4(1.0);\n  return wi;\n}\n");
   Run m = run_mfv("check --brdf " + mat);
   CHECK(one_error_line(m));
-  CHECK(m.out.find("mat.glsl:3: 'mat4' (matrices other than 3x3)") != std::string::npos);
+  CHECK(m.out.find("mat.glsl:3: 'mat3x4' (matrices other than 2x2, 3x3 and 4x4)") != std::string::npos);
   const std::string times = s.file("times.glsl", param +
                                                      "vec3 brdf(vec3 wi, vec3 wo, float p[6]) {\n  mat3 m = mat3(1.0);\n"
                                                      "  m *= 2.0;\n  return m * wi;\n}\n");
@@ -198,7 +198,7 @@ TEST_CASE("Dialect errors name the user's file, line and construct, in the user'
                                                   "  return M * wi;\n}\n");
   Run h = run_mfv("check --brdf " + hm);
   CHECK(one_error_line(h));
-  CHECK(h.out.find("times.hlsl:4: '*' with a float3x3 (componentwise in HLSL: write mul(a, b))") != std::string::npos);
+  CHECK(h.out.find("times.hlsl:4: '*' with a matrix (componentwise in HLSL: write mul(a, b))") != std::string::npos);
   // a compile error points at the user's line, in the user's names
   const std::string bad = s.file("bad.hlsl", param +
                                                  "float Helper(float x) { return x; }\n"
@@ -308,11 +308,37 @@ TEST_CASE("Verdict lines give a NaN its reason and a huge z in two significant d
     CHECK(it->str().find("were NaN or infinite") != std::string::npos);
 }
 
-TEST_CASE("File-scope matrix and vector constants, matrix chains and bit casts compile and check as a Lambert",
+TEST_CASE("File-scope constants, 2x2, 3x3 and 4x4 matrices and bit casts check as a Lambert in GLSL and HLSL",
           "[device][check][cli][dialect]") {
-  const std::string file = std::string(MFV_KERNEL_SOURCE_DIR) + "/../tests/data/shading/constructs.glsl";
-  Run r = run_mfv("check --brdf " + file + " --check furnace reciprocity finite --samples 256");
-  INFO(r.out);
-  CHECK(r.code == 0);
-  for (auto* c : {"furnace", "reciprocity", "finite"}) CHECK(has_line(r.out, "pass", c));
+  // tests/data/shading/constructs.{glsl,hlsl}: a Lambert times a factor that is -1 where any matrix
+  // convention is read transposed; each planted transposition turns it negative and fails finite
+  const std::string data = std::string(MFV_KERNEL_SOURCE_DIR) + "/../tests/data/shading/";
+  const Scratch s("mfv_dialect_constructs");
+  struct Plant {
+    std::string file, from, to;
+  };
+  const Plant plants[] = {
+      {"constructs.glsl", "mat2(c, s, -s, c)", "mat2(c, -s, s, c)"},
+      {"constructs.glsl", "T[3] = vec4(0.5, 0.0, 0.0, 1.0);",
+       "T = transpose(T); T[3] = vec4(0.5, 0.0, 0.0, 1.0); T = transpose(T);"},
+      {"constructs.hlsl", "float2x2(0.8, -0.6, 0.6, 0.8)", "float2x2(0.8, 0.6, -0.6, 0.8)"},
+      {"constructs.hlsl", "float4x4(1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1)",
+       "transpose(float4x4(1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1))"},
+  };
+  for (const std::string file : {"constructs.glsl", "constructs.hlsl"}) {
+    Run r = run_mfv("check --brdf " + data + file + " --check furnace reciprocity finite --samples 256");
+    INFO(file << "\n" << r.out);
+    CHECK(r.code == 0);
+    for (auto* c : {"furnace", "reciprocity", "finite"}) CHECK(has_line(r.out, "pass", c));
+  }
+  for (const Plant& p : plants) {
+    std::string planted = slurp(data + p.file);
+    REQUIRE(planted.find(p.from) != std::string::npos);
+    planted.replace(planted.find(p.from), p.from.size(), p.to);
+    Run r = run_mfv("check --brdf " + s.file("planted" + p.file.substr(p.file.find('.')), planted) +
+                    " --check finite --samples 256");
+    INFO(p.file << ": " << p.to << "\n" << r.out);
+    CHECK(r.code == 1);
+    CHECK(has_line(r.out, "FAIL", "finite"));
+  }
 }

@@ -90,7 +90,11 @@ size_t cells_beyond_3(const EnergyReport& rep, const std::vector<double>& mu, co
     CHECK(q.at_point.error < 2e-7);  // the truth is not the uncertainty that decides
     CHECK(q.abi_shift < 1e-7);
     CHECK(e.se <= max_se);
-    if (std::fabs(dev) > 3 * total) ++beyond;
+    if (std::fabs(dev) > 3 * total) {
+      ++beyond;  // named, so that a failing table says where
+      WARN("beyond 3 total SE: mu " << rep.mu[c.m] << " alpha " << rep.alpha[c.a] << " E " << e.mean << " se " << e.se
+                                    << " truth " << q.at_point.value << " bias " << bias << " dev/total " << dev / total);
+    }
   }
   return beyond;
 }

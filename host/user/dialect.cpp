@@ -309,7 +309,7 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
       continue;
     }
     if (!shading) continue;
-    if (matrix_type(s, d)) throw fail(t, fmt::format("'{}' (matrices other than 3x3)", s));
+    if (matrix_type(s, d)) throw fail(t, fmt::format("'{}' (matrices other than 2x2, 3x3 and 4x4)", s));
     std::string sv = scalar_or_vector(s, d);
     if (!sv.empty()) {
       bool vector = std::isdigit(static_cast<unsigned char>(sv.back()));

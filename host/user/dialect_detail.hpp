@@ -25,15 +25,16 @@ size_t matching(const std::vector<const Token*>& toks, size_t open);
 // The parameters (or arguments) of the list opened at `open`: [first, last) token ranges.
 std::vector<std::pair<size_t, size_t>> parameters(const std::vector<const Token*>& toks, size_t open, size_t close);
 
-// The 3x3 matrices of glsl (mat3) and hlsl (float3x3): their types,
-// constructors, transpose, column (glsl) or row (hlsl) indexing, glsl's `*`
-// products and hlsl's mul(), as calls of kernels/user_prelude.cl's mfv_mat3
-// functions. Appends the edits and marks the tokens it rewrote in `done`;
+// The square matrices of glsl (mat2..mat4) and hlsl (float2x2..float4x4):
+// their types, constructors, transpose, column (glsl) or row (hlsl)
+// indexing, glsl's `*` products and hlsl's mul(), as calls of
+// kernels/user_prelude.cl's mfv_matN functions. Appends the edits and marks the tokens it rewrote in `done`;
 // `refuse(token, what)` throws the error for a construct it does not cover.
 void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<Edit>& edits, std::set<size_t>& done,
                   const std::function<void(const Token*, const std::string&)>& refuse);
 
-// glsl mat3/mat3x3, hlsl float3x3 (and half/min16float): the matrices mfv covers.
-bool supported_matrix(const std::string& name, Dialect d);
+// glsl matN/matNxN, hlsl floatNxN (and half/min16float), N = 2, 3, 4: the
+// matrices mfv covers; their size N, or 0 for any other name.
+int supported_matrix(const std::string& name, Dialect d);
 
 }  // namespace mfv::dialect_detail

@@ -1,8 +1,8 @@
-// mfv check's 3x3 matrices in glsl and hlsl (TBN frames): the GLSL 4.60
+// mfv check's square matrices in glsl and hlsl (TBN frames, transforms): the GLSL 4.60
 // spec §5.4.2 (constructors, column-major), §5.10 (m * v, v * m, m * m) and
 // §8.6 (transpose); HLSL's float3x3 (row-major constructors), mul() and
-// transpose() intrinsics. kernels/user_prelude.cl's mfv_mat3 holds three
-// vectors c[3]: glsl's columns, hlsl's rows; the constructors fill c in
+// transpose() intrinsics. kernels/user_prelude.cl's mfv_matN holds N
+// vectors c[N]: glsl's columns, hlsl's rows; the constructors fill c in
 // the order the arguments come in both, and the products follow from it.
 #include "user/dialect_detail.hpp"
 
@@ -16,6 +16,11 @@ namespace {
 bool binary_end(const Token* t) {
   return t->kind == Token::Number || (t->kind == Token::Ident && t->text != "return") || t->text == ")" ||
          t->text == "]";
+}
+
+// A token that can begin an operand (after a cast's closing parenthesis).
+bool binary_start(const Token* t) {
+  return t->kind == Token::Number || t->kind == Token::Ident || t->text == "(" || t->text == "-" || t->text == "+";
 }
 
 bool multiplicative(const std::vector<const Token*>& toks, size_t k) {
@@ -94,9 +99,13 @@ size_t operand_end(const std::vector<const Token*>& toks, size_t begin, Dialect 
 
 }  // namespace
 
-bool supported_matrix(const std::string& n, Dialect d) {
-  static const std::regex glsl("mat3(x3)?"), hlsl("(float|half|min16float)3x3");
-  return std::regex_match(n, d == Dialect::Glsl ? glsl : hlsl);
+int supported_matrix(const std::string& n, Dialect d) {
+  static const std::regex glsl("mat([234])(x([234]))?"), hlsl("(float|half|min16float)([234])x([234])");
+  std::smatch m;
+  if (d == Dialect::Glsl && std::regex_match(n, m, glsl) && (!m[3].matched || m.str(1) == m.str(3)))
+    return std::stoi(m.str(1));
+  if (d == Dialect::Hlsl && std::regex_match(n, m, hlsl) && m.str(2) == m.str(3)) return std::stoi(m.str(2));
+  return 0;
 }
 
 void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<Edit>& edits, std::set<size_t>& done,
@@ -122,8 +131,14 @@ void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<
     const Token* t = toks[k];
     const bool call = k + 1 < toks.size() && is(toks[k + 1], "(");
     const bool member = k > 0 && is(toks[k - 1], ".");
-    if (supported_matrix(t->text, d)) {
-      edits.push_back({t->begin, t->end - t->begin, call ? "mfv_mat3_make" : "mfv_mat3"});
+    if (int n = supported_matrix(t->text, d); n && k > 0 && is(toks[k - 1], "(") && k + 2 < toks.size() &&
+                                                is(toks[k + 1], ")") && binary_start(toks[k + 2])) {
+      // hlsl's cast (float3x3)M: the constructor of M, which truncates to the upper-left part
+      edits.push_back({toks[k - 1]->begin, toks[k + 1]->end - toks[k - 1]->begin, fmt::format("mfv_mat{}_make(", n)});
+      edits.push_back({toks[operand_end(toks, k + 2, d)]->end, 0, ")"});
+      done.insert(k - 1), done.insert(k), done.insert(k + 1);
+    } else if (int n = supported_matrix(t->text, d)) {
+      edits.push_back({t->begin, t->end - t->begin, fmt::format(call ? "mfv_mat{}_make" : "mfv_mat{}", n)});
       done.insert(k);
     } else if (call && !member && (is(t, "transpose") || (d == Dialect::Hlsl && is(t, "mul")))) {
       edits.push_back({t->begin, t->end - t->begin, is(t, "mul") ? "mfv_hmul" : "mfv_transpose"});
@@ -158,7 +173,7 @@ void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<
         while (a < b && (is(toks[a], "-") || is(toks[a], "+"))) ++a;
         if (supported_matrix(toks[a]->text, d) || is(toks[a], "transpose") ||
             (names.count(toks[b]->text) && (a == b || is(toks[b - 1], "."))))
-          refuse(toks[a], "'*' with a float3x3 (componentwise in HLSL: write mul(a, b))");
+          refuse(toks[a], "'*' with a matrix (componentwise in HLSL: write mul(a, b))");
       }
       continue;
     }
