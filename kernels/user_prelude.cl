@@ -97,6 +97,22 @@ MFV_SHADING_BUILTINS(float2)
 MFV_SHADING_BUILTINS(float3)
 MFV_SHADING_BUILTINS(float4)
 #undef MFV_SHADING_BUILTINS
+// hlsl's sincos(x, out s, out c) (its out arguments by address, as a user
+// function's), and a scalar's (or a vector's first component's) swizzle
+// x.xxx, which host/user/dialect_matrix.cpp writes mfv_splatN(x)
+#define MFV_SINCOS_SPLAT(T)                                                        \
+  MFV_OVL void mfv_g_sincos(T x, T* s, T* c) { *s = sin(x); *c = cos(x); }        \
+  MFV_OVL float2 mfv_splat2(T x) { return (float2)(((T)(x)).s0); }                \
+  MFV_OVL float3 mfv_splat3(T x) { return (float3)(((T)(x)).s0); }                \
+  MFV_OVL float4 mfv_splat4(T x) { return (float4)(((T)(x)).s0); }
+MFV_SINCOS_SPLAT(float2)
+MFV_SINCOS_SPLAT(float3)
+MFV_SINCOS_SPLAT(float4)
+#undef MFV_SINCOS_SPLAT
+MFV_OVL void mfv_g_sincos(float x, float* s, float* c) { *s = sin(x); *c = cos(x); }
+MFV_OVL float2 mfv_splat2(float x) { return (float2)(x); }
+MFV_OVL float3 mfv_splat3(float x) { return (float3)(x); }
+MFV_OVL float4 mfv_splat4(float x) { return (float4)(x); }
 // integers: abs alone (min/max/clamp of ints go through float, exact below
 // 2^24, so that max(x, 0) on a float x is not ambiguous)
 MFV_OVL int mfv_g_abs(int x) { return abs(x); }

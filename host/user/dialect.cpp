@@ -74,7 +74,7 @@ const std::map<std::string, std::string>& builtins(Dialect d) {
       {"abs", "mfv_g_abs"},           {"pow", "mfv_g_pow"},     {"frac", "mfv_g_fract"},      {"lerp", "mfv_g_mix"},
       {"saturate", "mfv_g_saturate"}, {"rcp", "mfv_g_rcp"},     {"mad", "mfv_g_mad"},         {"min", "mfv_g_min"},
       {"max", "mfv_g_max"},           {"clamp", "mfv_g_clamp"}, {"reflect", "mfv_g_reflect"}, {"step", "mfv_g_step"},
-      {"asfloat", "as_float"},        {"asuint", "as_uint"},    {"asint", "as_int"}};
+      {"asfloat", "as_float"},        {"asuint", "as_uint"},    {"asint", "as_int"},          {"sincos", "mfv_g_sincos"}};
   static const std::map<std::string, std::string> none;
   return d == Dialect::Glsl ? glsl : d == Dialect::Hlsl ? hlsl : none;
 }
@@ -172,6 +172,7 @@ std::string canonical_type(const std::string& t) {
 
 UserNames user_names(const ReadSources& src, Dialect d) {
   UserNames n;
+  if (d == Dialect::Hlsl) n.out_params.push_back({"sincos", {3, {1, 2}}});  // sincos(x, out s, out c)
   for (auto& u : src.units) {
     auto toks = code_tokens(u);
     for (size_t k : functions_at_file_scope(toks)) {
@@ -220,6 +221,7 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
   int depth = 0;
   auto fns = functions_at_file_scope(toks);
   matrix_edits(toks, d, edits, done, [&](const Token* t, const std::string& what) { throw fail(t, what); });
+  splat_edits(toks, d, edits, done);
   for (size_t k = 0; k < toks.size(); ++k) {
     const Token* t = toks[k];
     const std::string& s = t->text;
@@ -311,6 +313,19 @@ std::string translate(const ReadSources& src, size_t at, Dialect d, const UserNa
     if (!shading) continue;
     if (matrix_type(s, d)) throw fail(t, fmt::format("'{}' (matrices other than 2x2, 3x3 and 4x4)", s));
     std::string sv = scalar_or_vector(s, d);
+    const bool scalar = s == "float" || s == "int" || s == "uint" || s == "bool" || s == "double";
+    if ((!sv.empty() || scalar || names.structs.count(s)) && k + 3 < toks.size() && is(toks[k + 1], "[") &&
+        depth > 0) {
+      // glsl's array constructor T[N](a, b, ...): a brace initializer
+      size_t close = matching(toks, k + 1);
+      if (close + 1 < toks.size() && is(toks[close + 1], "(")) {
+        edits.push_back({t->begin, toks[close + 1]->end - t->begin, "{"});
+        set(toks[matching(toks, close + 1)], "}");
+        for (size_t j = k; j <= close + 1; ++j) done.insert(j);
+        done.insert(matching(toks, close + 1));
+        continue;
+      }
+    }
     if (!sv.empty()) {
       bool vector = std::isdigit(static_cast<unsigned char>(sv.back()));
       if (call) {

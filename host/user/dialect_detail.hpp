@@ -33,6 +33,11 @@ std::vector<std::pair<size_t, size_t>> parameters(const std::vector<const Token*
 void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<Edit>& edits, std::set<size_t>& done,
                   const std::function<void(const Token*, const std::string&)>& refuse);
 
+// Swizzles that repeat one component (x.xxx, v.rr): mfv_splatN(x), a
+// scalar's splat or a vector's first component's, as both languages read
+// them (OpenCL C has no swizzles of a scalar). After matrix_edits.
+void splat_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<Edit>& edits, std::set<size_t>& done);
+
 // glsl matN/matNxN, hlsl floatNxN (and half/min16float), N = 2, 3, 4: the
 // matrices mfv covers; their size N, or 0 for any other name.
 int supported_matrix(const std::string& name, Dialect d);

@@ -190,4 +190,17 @@ void matrix_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<
   }
 }
 
+void splat_edits(const std::vector<const Token*>& toks, Dialect d, std::vector<Edit>& edits, std::set<size_t>& done) {
+  if (d == Dialect::OpenCL) return;
+  static const std::regex repeated("x{2,4}|r{2,4}");
+  for (size_t k = 2; k < toks.size(); ++k) {
+    if (!is(toks[k - 1], ".") || toks[k]->kind != Token::Ident || !std::regex_match(toks[k]->text, repeated)) continue;
+    if (toks[k - 2]->kind == Token::Number) continue;  // 1.xx is no swizzle
+    size_t start = operand_start(toks, k - 2, d);
+    edits.push_back({toks[start]->begin, 0, fmt::format("mfv_splat{}(", toks[k]->text.size())});
+    edits.push_back({toks[k - 1]->begin, toks[k]->end - toks[k - 1]->begin, ")"});
+    done.insert(k - 1), done.insert(k);
+  }
+}
+
 }  // namespace mfv::dialect_detail

@@ -4,10 +4,11 @@
 // function returning mat3, a product chain transpose(m) * m * IDENTITY,
 // m[i][j], floatBitsToUint/uintBitsToFloat, a mat2 rotation and a mat4
 // translation (column-major: GLSL 4.60 §5.4.2) with mat4(mat3) and
-// mat3(mat4). The BRDF is a Lambert of albedo dot(LUMA, 1) = 1 (Lambert
-// 1760) times a factor that is 1 under GLSL's conventions and -1 under a
-// transposed one, which the finite check's negative values catch
-// (tests/test_check_dialects.cpp checks it, and plants a row-major mat2).
+// mat3(mat4), array constructors float[3](...) and scalar swizzles. The BRDF
+// is a Lambert of albedo dot(LUMA, 1) = 1 (Lambert 1760) times a factor that
+// is 1 under GLSL's conventions and -1 under a transposed one, which the
+// finite check's negative values catch (tests/test_check_dialects.cpp checks
+// it, and plants a row-major mat2).
 // mfv: param roughness 0.05 1 default 0.5 roughness
 const mat3 IDENTITY = mat3(1.0);
 const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
@@ -32,7 +33,10 @@ float conventions() {
     float w = (vec4(1.0, 0.0, 0.0, 0.0) * T).w / 0.5;       // v * T = (v . T[i]): 1 (as T * v: 0)
     mat4 F = mat4(frameOf(vec3(0.0, 0.0, 1.0)));            // upper-left, identity elsewhere
     mat3 back = mat3(F * T);                                // the frame again
-    float ok = min(min(0.5 * (y + 1.0), min(x, w)), min(min(rr[1][1], F[3][3]), back[2][2]));  // each 1 or 0
+    float weights[3] = float[3](0.25, 0.5, 0.25);           // an array constructor
+    vec2 pair[2] = vec2[](vec2(1.0, 0.0), vec2(0.0));
+    float sum = (weights[0] + weights[1] + weights[2] + pair[1].y).xxx.z * pair[0].xx.y;  // 1
+    float ok = min(min(0.5 * (y + 1.0), min(x, w)), min(min(rr[1][1], F[3][3]), min(back[2][2], sum)));  // each 1 or 0
     return 2.0 * ok - 1.0;
 }
 float lambertish(vec3 wi, vec3 wo) {
