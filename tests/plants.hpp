@@ -37,6 +37,15 @@ inline const Plant kGgxG1HalfLambda = {"smith_ggx's G1 with half its Lambda", "t
                                        "return R(1.0) / (R(1.0) + Lambda_ggx(NoV, alpha));",
                                        "return R(1.0) / (R(1.0) + R(0.5) * Lambda_ggx(NoV, alpha));"};
 
+// GGX's D with pi written as 3.1416 (kernels/terms_d.cl): every GGX value
+// off by 2.3e-6 relative, which no statistic sees; the same-sample reference
+// comparison does, also at the near-mirror grazing point where its bound
+// reads the lobe term 2^-46 / (mu w) (checks/reference_compare.cpp: 1.06e-6
+// at alpha 1e-4, view cosine 1.35e-4).
+inline const Plant kGgxPiRounded = {"D_ggx with pi rounded to 3.1416", "terms_d.cl",
+                                    "real d = R(1.0) / (MFV_PI * a2 * k * k);",
+                                    "real d = R(1.0) / (R(3.1416) * a2 * k * k);"};
+
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
 }  // namespace mfv::test

@@ -16,7 +16,7 @@ namespace mfv {
 // u_d / u_f = 2^-29: the conditioning of a sample (grazing 1/(n.v), a
 // near-mirror lobe a few ulps wide, the cancellation in (1 - v.h)^5) is
 // the same in both precisions, and kf - kd on the same samples measures it.
-// Two terms:
+// Three terms:
 //   K (u_d / u_f) sum |kf - kd|   with K = 2^10: the reference arranges the
 //       formula differently from the kernel (other operation order, other
 //       cancellation-free forms), which three decades of margin cover; the
@@ -34,12 +34,55 @@ namespace mfv {
 //       non-Smith G terms at grazing view). Values below 1e-6 are tested
 //       against 1 and cannot change a verdict, so they are compared in
 //       absolute terms.
-// At mu = 1e-4 the bound is 1.1e-9 relative plus 2e-6 of the float rounding:
-// a formula error of 1e-3 exceeds it by six decades.
-double derived_formula_bound(double float_rounding_l1, double reference_l1, double mu) {
-  constexpr double K = 0x1p10, C = 0x1p10;
-  const double conditioning = 1.0 / std::clamp(mu, 1e-4, 1.0);  // the grid's most grazing cosine is 1e-4
-  return K * (kDoubleRoundoff / kFloatRoundoff) * float_rounding_l1 + C * kDoubleRoundoff * reference_l1 * conditioning;
+//   L u_d max(sum |r|, n 1e-6) / (mu w)   with L = 2^7, where the sample
+//       forms its half vector from a sampled light i and the fixed view o
+//       and reads a lobe of width w (lobe_width): the one place where the
+//       reference is worse conditioned than the kernel, so kf - kd cannot
+//       show it. The kernel forms h = (i + o)/|i + o| once and reads both
+//       the BRDF's D and the proposal's density at it (albedo_mis_microfacet,
+//       albedo_mis_general), so at a near-mirror lobe, where the proposal's
+//       D_w is the BRDF's D, their ratio cancels any rounding of h. The
+//       reference reads the proposal's density at normalize(i + o)
+//       (reference/estimators.cpp albedo_mis) but the BRDF makes i and o
+//       unit first (reference/brdf.cpp shading_from, for float inputs), so
+//       the BRDF's half vector is another rounding of i + o. Derivation
+//       (GGX, Walter et al. 2007 eq. 33 in t = tan θ_h / w:
+//       D ∝ (1 + t²)^-2 / cos⁴θ_h): the tangent part of s = i + o is
+//       |s_t| = s_z tan θ_h with s_z = i_z + o_z > mu wherever i_z > 0;
+//       each of i, o is unit to ~3u and its renormalization rounds ~2.5u
+//       more, so the two s_t differ by δs_t <= 10 u_d (|i|, |o| = 1, and
+//       i_x + o_x is exact where they nearly cancel); t moves by
+//       δt = δs_t / (s_z w) < 10 u_d / (mu w), and ln D by
+//       4t/(1 + t²) δt <= 2 δt, which the proposal's D_w at the other h does
+//       not cancel: a relative error of at most 20 u_d / (mu w) per sample,
+//       so L = 2^7 > 20 with a margin of 6 (it also covers Beckmann's
+//       2t δt, whose weight t e^-t² (1 + t²)² on a GGX-shaped proposal is
+//       at most 1.75x GGX's). Measured (tests/test_trust_reference.cpp,
+//       near-mirror scene, GGX at alpha 1e-4, mu = 1.35e-4, seed 1: the
+//       twin within 3e-12 of a 50-digit evaluation of the same formula, the
+//       reference 2.8e-9 on average and up to 2.45e-8 relative, 1.6
+//       u_d / ((o·h) w)): the mean is 1/340 of this term, and the first two
+//       terms alone read 1.0007 x. At (mu, w) = (1e-4, 1e-4) the term is
+//       1.4e-6 relative: a formula error of 1e-5 still exceeds it (plant
+//       kGgxPiRounded, 2.3e-6, fails that point); at w = 0.01 it is 1.4e-8.
+// At mu = 1e-4 and a wide lobe the bound is 1.1e-9 relative plus 2e-6 of the
+// float rounding: a formula error of 1e-3 exceeds it by six decades.
+double derived_formula_bound(double float_rounding_l1, double reference_l1, double mu, double lobe_width) {
+  constexpr double K = 0x1p10, C = 0x1p10, L = 0x1p7;
+  const double m = std::clamp(mu, 1e-4, 1.0);  // the grid's most grazing cosine is 1e-4
+  const double lobe = lobe_width > 0 ? L / lobe_width : 0.0;
+  return K * (kDoubleRoundoff / kFloatRoundoff) * float_rounding_l1 + (C + lobe) * kDoubleRoundoff * reference_l1 / m;
+}
+
+// The narrowest width of the lobe whose half vector a sample forms from a
+// sampled light and the fixed view (derived_formula_bound's w); 0 for the
+// kinds whose sample is the half vector itself (d_norm and the masking
+// furnaces integrate over h) and for a spec with no declared width.
+double lobe_width_of(const IntegralSpec& s) {
+  const auto k = static_cast<IntegralKind>(s.check);
+  if (k == IntegralKind::DNorm || k == IntegralKind::Masking || k == IntegralKind::MaskingT) return 0.0;
+  const double wx = s.width, wy = s.width_y > 0 ? s.width_y : s.width;
+  return std::min(wx, wy) > 0 ? std::min(wx, wy) : 0.0;
 }
 
 ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms) : rt_(rt) {
@@ -95,7 +138,7 @@ std::vector<TwinAgreement> ReferenceTwin::compare(Integrator& in, const std::vec
     const double e_mean = e_sum / n, e_var = std::max(0.0, e_sq / n - e_mean * e_mean) * n / std::max(1u, n - 1);
     a.rounding_bound =
         float_finite ? std::fabs(e_mean) + 3 * std::sqrt(e_var / n) : std::numeric_limits<double>::infinity();
-    a.formula_bound = derived_formula_bound(e_l1, std::max(scale, n * 1e-6), specs[j].cos_o);
+    a.formula_bound = derived_formula_bound(e_l1, std::max(scale, n * 1e-6), specs[j].cos_o, lobe_width_of(specs[j]));
     a.formula_gap /= n;
     a.formula_bound /= n;
     a.ok = a.formula_gap <= a.formula_bound;

@@ -52,7 +52,10 @@ class ReferenceTwin {
 
 // The bound on sum |kd - r| given the float rounding sum |kf - kd| and the
 // scale sum |r| of the same samples.
-// mu: the integral's fixed direction cosine (view or light; 1 for d_norm).
-double derived_formula_bound(double float_rounding_l1, double reference_l1, double mu);
+// mu: the integral's fixed direction cosine (view or light; 1 for d_norm);
+// lobe_width: the narrowest width of the lobe read at a half vector formed
+// from a sampled light and the view (lobe_width_of; 0: none).
+double derived_formula_bound(double float_rounding_l1, double reference_l1, double mu, double lobe_width);
+double lobe_width_of(const IntegralSpec& s);
 
 }  // namespace mfv

@@ -109,7 +109,8 @@ void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions&
     p.reference_failed = !a.ok;
     p.reference_detail = fmt::format(
         "double twin vs reference on {} samples: mean |twin - reference| {:.3g} > derived bound {:.3g} (float "
-        "rounding x 2^-19 + 2^-43 of the scale / mu); worst sample {}: twin {:.12g}, reference {:.12g}",
+        "rounding x 2^-19 + 2^-43 of the scale / mu + 2^-46 of the scale / (mu w) at a lobe of width w); worst "
+        "sample {}: twin {:.12g}, reference {:.12g}",
         opt.reference_samples, a.formula_gap, a.formula_bound, a.worst_index, a.worst_twin, a.worst_reference);
     const double ratio = a.formula_bound > 0 ? a.formula_gap / a.formula_bound
                          : a.formula_gap > 0 ? std::numeric_limits<double>::infinity()
