@@ -53,9 +53,10 @@ MicrofacetIntegral dgf_integral(IntegralKind kind, const Term* d, const Term* g,
   return mi;
 }
 
-// The material's own D x G x F BRDF (F's parameters, kd) at the view cos_o.
-IntegralSpec material_spec(const SceneMaterial& m, double cos_o) {
-  MicrofacetIntegral mi = dgf_integral(IntegralKind::Albedo, m.d, m.g, m.f, m.pd, m.pg, m.alpha, cos_o);
+// The material's own D x G x F BRDF (F's parameters, kd) at the view cos_o,
+// integrated by `kind` (a kind's own estimator; reciprocity reads the BRDF only).
+IntegralSpec material_spec(IntegralKind kind, const SceneMaterial& m, double cos_o) {
+  MicrofacetIntegral mi = dgf_integral(kind, m.d, m.g, m.f, m.pd, m.pg, m.alpha, cos_o);
   mi.f0 = m.f0, mi.f1 = m.f1, mi.kd = m.kd;
   return spec_of(mi);
 }
@@ -78,8 +79,8 @@ void add(SetPlan& sp, const std::string& key, const IntegralSpec& s, const Term*
 }
 
 // The catalog's glTF model at one channel's parameters.
-IntegralSpec gltf_spec(const GltfChannelParams& c, double cos_l) {
-  return model_spec(IntegralKind::Albedo, gltf_model(), c.params(), cos_l);
+IntegralSpec gltf_spec(IntegralKind kind, const GltfChannelParams& c, double cos_l) {
+  return model_spec(kind, gltf_model(), c.params(), cos_l);
 }
 
 std::map<std::string, double> whole_params(const WholePoint& w) {
@@ -184,9 +185,8 @@ void MaterialSets::add_masking(const CheckKind& k) {
 
 // F = 1: for glTF the model itself as a white metal (base colour 1 makes
 // conductor_fresnel 1), so the energy loss 1 - E is the material's specular
-// lobe at its roughness; with the defensive mixture (Albedo):
-// albedo_mis_microfacet takes isotropic catalog terms only
-// (docs/adding-a-check.md, What remains).
+// lobe at its roughness; integrated by the kind's own estimator (AlbedoMis:
+// kernels/albedo.cl albedo_mis_general for the glTF lobes).
 void MaterialSets::add_furnace(const CheckKind& k) {
   {
     SetPlan& sp = plan_for(s, k, k.base_samples, opt);
@@ -197,15 +197,15 @@ void MaterialSets::add_furnace(const CheckKind& k) {
         std::string key = fmt::format("gltf alpha={:.9g} alpha_b={:.9g} (white metal: F = 1)", at, ab);
         if (!claim(sp, key, "gltf")) continue;
         for (double co : views)
-          add(sp, key, gltf_spec(white, co), nullptr, nullptr, nullptr, {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}},
-              {}, k.upper_only);
+          add(sp, key, gltf_spec(k.kind, white, co), nullptr, nullptr, nullptr,
+              {{"alpha", at}, {"alpha_b", ab}, {"cos_l", co}}, {}, k.upper_only);
         sp.add_model(gltf_model());
       }
     } else {
       std::string key = fmt::format("{} pD={:.9g} pG={:.9g}", dgf(d, g, none), pd, pg);
       if (claim(sp, key, dgf(d, g, none))) {
         for (double co : views) {
-          IntegralSpec is = spec_of(dgf_integral(IntegralKind::Albedo, d, g, none, pd, pg, m.alpha, co));
+          IntegralSpec is = spec_of(dgf_integral(k.kind, d, g, none, pd, pg, m.alpha, co));
           add(sp, key, is, d, g, none, {{"alpha", m.alpha}, {"cos_o", co}}, expect(k.check, d, g, m.alpha, 1, 0),
               k.upper_only);
         }
@@ -219,7 +219,7 @@ void MaterialSets::add_furnace(const CheckKind& k) {
 // (diffuse_of: energy_diffuse), every other material in the other.
 void MaterialSets::add_energy(const CheckKind& k) {
   if (diffuse_of(k) == (!m.gltf && m.kd > 0)) {
-    SetPlan& sp = plan_for(s, k, kSuiteBaseSamples, opt);  // a material has few points: the furnace budget
+    SetPlan& sp = plan_for(s, k, k.base_samples, opt);
     if (m.gltf) {
       for (auto& w : m.whole_points()) {
         std::string key = w.key();
@@ -227,7 +227,7 @@ void MaterialSets::add_energy(const CheckKind& k) {
         for (double co : views) {
           std::map<std::string, double> ps = whole_params(w);
           ps["cos_l"] = co;
-          add(sp, key, model_spec(IntegralKind::Albedo, *w.model, w.p, co), nullptr, nullptr, nullptr, ps,
+          add(sp, key, model_spec(k.kind, *w.model, w.p, co), nullptr, nullptr, nullptr, ps,
               {w.energy, w.energy_why, 0}, true);
         }
         sp.add_model(*w.model);
@@ -242,7 +242,7 @@ void MaterialSets::add_energy(const CheckKind& k) {
               fmt::format("{} pD={:.9g} pG={:.9g} eta={:.9g}", dgf(ggx, smith, exact), a, a, m.factors.ior);
           if (!claim(sp, key, dgf(ggx, smith, exact))) continue;
           for (double co : views) {
-            MicrofacetIntegral mi = dgf_integral(IntegralKind::Albedo, ggx, smith, exact, a, a, a, co);
+            MicrofacetIntegral mi = dgf_integral(k.kind, ggx, smith, exact, a, a, a, co);
             mi.f0 = m.factors.ior;  // eta
             IntegralSpec is = spec_of(mi);
             add(sp, key, is, ggx, smith, exact, {{"alpha", a}, {"cos_o", co}, {"eta", m.factors.ior}},
@@ -258,7 +258,7 @@ void MaterialSets::add_energy(const CheckKind& k) {
           fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0, m.f1, m.kd);
       if (claim(dp, key, m.model())) {
         for (double co : views) {
-          IntegralSpec is = material_spec(m, co);
+          IntegralSpec is = material_spec(k.kind, m, co);
           std::map<std::string, double> ps{{"alpha", m.alpha}, {"cos_o", co}};
           for (size_t i = 0; i < m.f->params.size(); ++i) ps[m.f->params[i].name] = i ? m.f1 : m.f0;
           if (diffuse) ps["kd"] = m.kd;
@@ -286,7 +286,7 @@ void MaterialSets::add_reciprocity(const CheckKind& k) {
       std::string key =
           fmt::format("{} pD={:.9g} pG={:.9g} p0={:.9g} p1={:.9g} kd={:.9g}", m.model(), pd, pg, m.f0, m.f1, m.kd);
       if (claim(sp, key, m.model())) {
-        IntegralSpec is = material_spec(m, 1.0);
+        IntegralSpec is = material_spec(IntegralKind::Albedo, m, 1.0);
         add(sp, key, is, d, g, m.f, {{"alpha", m.alpha}, {"kd", m.kd}}, {}, false);
         sp.add_terms(d, g, m.f);
       }
