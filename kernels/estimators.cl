@@ -319,27 +319,6 @@ static inline real vis_pdf_i(real hc, real hs2, real co, real so2, real w) {
   return w2 / (MFV_PI * k * k) / (R(2.0) * (co + sqrt(co * co + w2 * so2)));
 }
 
-// A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
-// Listing 3, isotropic). Returns 0 where the sample degenerates (h = 0).
-static inline void sample_vis_c(real vx, real vy, real vz, real u_phi, real u_r, real w, real* mx, real* my,
-                                real* mz) {
-  // component arithmetic and sincos_2pi, as albedo_value
-  real ox = w * vx, oy = w * vy, oz = vz;  // o in the stretched (w = 1) configuration
-  real inv = rsqrt(ox * ox + oy * oy + oz * oz);
-  ox *= inv;
-  oy *= inv;
-  oz *= inv;
-  real z = (R(1.0) - u_r) * (R(1.0) + oz) - oz;
-  real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
-  real2 sc = sincos_2pi(u_phi);
-  real hx = w * (st * sc.y + ox), hy = w * (st * sc.x + oy), hz = z + oz;
-  real len2 = hx * hx + hy * hy + hz * hz;
-  real r = len2 > R(0.0) ? rsqrt(len2) : R(0.0);
-  *mx = hx * r;
-  *my = hy * r;
-  *mz = hz * r;
-}
-
 // The anisotropic GGX *shape* of widths (wx, wy) along (t, b), for mfv
 // run's albedo outside the isotropic catalog grid (albedo_mis_general):
 // D_w(h) = 1 / (π wx wy (h_z² + (h_x/wx)² + (h_y/wy)²)²) for unit h (Heitz
@@ -372,6 +351,15 @@ static inline void sample_vis_aniso_c(real vx, real vy, real vz, real u_phi, rea
   *mx = hx * r;
   *my = hy * r;
   *mz = hz * r;
+}
+
+// A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,
+// Listing 3, isotropic): the anisotropic sampler at wx = wy = w, which
+// gives the same roundings (records_unchanged compares its samples).
+// Returns 0 where the sample degenerates (h = 0).
+static inline void sample_vis_c(real vx, real vy, real vz, real u_phi, real u_r, real w, real* mx, real* my,
+                                real* mz) {
+  sample_vis_aniso_c(vx, vy, vz, u_phi, u_r, w, w, mx, my, mz);
 }
 
 // The stretched Cauchy slopes alone (pdf_m_aniso_c without its cosine share).
