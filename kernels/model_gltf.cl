@@ -154,3 +154,44 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
   real scaling = min(R(1.0) - max3 * sheen_E(NoV, sa), R(1.0) - max3 * sheen_E(NoL, sa));
   return f_sheen + material * scaling;
 }
+
+// KHR_materials_transmission, thin-walled (issue 29; catalog
+// "gltf_transmission"). Reference twin: host/reference/model_gltf.cpp.
+// KHR_materials_transmission specification ("Implementation Notes"; glTF 2.0
+// Appendix B for the rest): dielectric_brdf = fresnel_mix(ior,
+// base = mix(diffuse_brdf, baseColor · specular_btdf(α), transmission),
+// layer = specular_brdf(α)); the thin-walled specular_btdf is the specular
+// lobe with the light direction mirrored through the surface (L' = L − 2 (n·L) n),
+// weighted, as the base of fresnel_mix, by 1 − F(V·H'), H' the half vector of V
+// and L'. One colour channel; V = l (the catalog's first direction), L = the
+// second, anywhere on the sphere. Parameters p[0..4]: alpha (roughness²),
+// metallic, base, f0 (((ior − 1)/(ior + 1))², specularFactor 1), transmission.
+static inline real gltf_thin_walled(real3 l, real3 v, const real* p) {
+  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], transmission = p[4];
+  bool below = v.z < R(0.0);
+  real3 lm = below ? (real3)(v.x, v.y, -v.z) : v;  // the light mirrored through the surface (thin-walled)
+  real NoL = l.z, NoV = lm.z;
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
+  real s2, VoH;
+  real3 h = half_vector(l, lm, &s2, &VoH);
+  if (!(VoH > R(0.0))) return R(0.0);  // no half vector: G's χ⁺(v·h) = 0 (as model_gltf)
+  real x = R(1.0) - VoH;
+  real fw = x * x * x * x * x;
+  real fr = f0 + (R(1.0) - f0) * fw;
+  real spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha), NoL, NoV);
+  if (below) return (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;  // a metal transmits nothing
+  real dielectric = (R(1.0) - fr) * (R(1.0) - transmission) * base * MFV_INV_PI + fr * spec;
+  real metal = (base + (R(1.0) - base) * fw) * spec;
+  return (R(1.0) - metallic) * dielectric + metallic * metal;
+}
+
+// The catalog's model folds the sphere onto the hemisphere of the second
+// direction: f(l, v) + f(l, v mirrored below), so that its albedo (an
+// integral over v above) is R + T, the power reflected and transmitted. With
+// a white base, full transmission and no metal, R + T is the F = 1 albedo of
+// the same D and Vis at every ior (the F and 1 − F of one H' add to 1): the
+// derived expectation mfv run --scene tests (closed_form).
+static inline real model_gltf_transmission(real3 l, real3 v, const real* p) {
+  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);
+  return gltf_thin_walled(l, v, p) + gltf_thin_walled(l, (real3)(v.x, v.y, -v.z), p);
+}

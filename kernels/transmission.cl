@@ -118,7 +118,8 @@ static inline real bsdf_avg_value(__global const IntegralSpec* s, ulong seed, ul
                               MFV_LOBE_TRANSMIT);
   real entering = bsdf_flux_at(s, mfv_philox(seed, s->stream, spec_draw(s, 1u), index), mu_above, MFV_SIDE_ABOVE,
                                MFV_LOBE_TRANSMIT);
-  return leaving - entering / (s->eta * s->eta);
+  real eta = s->eta;  // in real: a float eta's square (1.33²) is not a float, and the double twin keeps its digits
+  return leaving - entering / (eta * eta);
 }
 
 // One sample of the weak white furnace on the transmitted side

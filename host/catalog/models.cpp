@@ -394,6 +394,24 @@ std::vector<Model> build_models() {
                 Expect::Hold,
                 ""}};
   }
+  {
+    // issue 29: KHR_materials_transmission, thin-walled (mfv run --scene maps transmitting materials here)
+    Model& m = add("gltf_transmission", "model_gltf_transmission",
+                   "KHR_materials_transmission specification (thin-walled specular_btdf: the specular lobe with the "
+                   "light mirrored through the surface) over glTF 2.0 Appendix B",
+                   "fresnel_mix(f0, mix(base/pi, base specular_btdf, transmission), D Vis) + metal, folded onto the "
+                   "hemisphere: f(l, v) + f(l, v mirrored below), so the albedo is R + T",
+                   gltf_base_then({"alpha", 1e-4, 1.0, 0.09, "roughness squared"}, 0.0, 1.0,
+                                  "dielectric F0: ((ior-1)/(ior+1))^2",
+                                  {p_unit("transmission", 1.0, "transmissionFactor (x transmissionTexture R)")}),
+                   r_::model_gltf_transmission);
+    lobe(m, Roughness::Alpha, 0);
+    m.ulp_budget = 48;
+    m.unstable = "NaN with both directions at n.z = 2^-149 (l ~ -v along the horizon), as the gltf model it layers on";
+    m.cases = {hold("clear glass,r=0.3", {0.09, 0.0, 1.0, 0.04, 1.0}),
+               {"half transmission,r=0.5", {0.25, 0.0, 1.0, 0.04, 0.5}, Expect::May, kGltfFresnelMixGain,
+                Expect::Hold, kReciprocal}};
+  }
   return c;
 }
 

@@ -209,9 +209,11 @@ std::vector<CheckKind> make_kinds() {
     c.kind = IntegralKind::Albedo;
     c.base_samples = kSuiteBaseSamples * kClosedFormFactor;
     c.n_view = kModelLights;
-    c.sources = kSourceModels;
-    c.not_taken = "only a whole model has an exact albedo of its own (Model::ref_albedo)";
-    c.verdict = "holds for every whole model with a closed-form albedo";
+    c.sources = kSourceModels | kSourceScene;
+    c.not_taken = "only a whole model has an exact albedo of its own (Model::ref_albedo; a scene's thin-walled "
+                  "transmitting material: the F = 1 albedo of its lobe)";
+    c.verdict = "holds for every whole model with a closed-form albedo, and for a correct thin-walled "
+                "KHR_materials_transmission (white base, full transmission, no metal: R + T = the F = 1 albedo)";
     c.summary = "a whole model's albedo equals its closed form (two-sided): model and estimator agree";
   }
   {
@@ -256,7 +258,7 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;  // D and G (F is the exact dielectric one, bsdf and eta carry the rest)
     c.base_samples = kSuiteBaseSamples;
     c.n_view = 6;
-    c.sources = kSourceBsdf;
+    c.sources = kSourceBsdf | kSourceScene;  // a scene: its refracting materials (KHR_materials_volume)
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
     c.expect = expect_bsdf_furnace;
     c.verdict = "holds for every rough dielectric BSDF but the known-bad entries (Bsdf::known_bad), which must fail";
@@ -270,7 +272,7 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;
     c.base_samples = kSuiteBaseSamples;
     c.n_view = 8;
-    c.sources = kSourceBsdf;
+    c.sources = kSourceBsdf | kSourceScene;
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) mask a direction below the surface";
     c.expect = expect_transmission_masking;
     c.verdict = "as masking: holds where the BTDF's G1 is its D's Smith G1 (within the fit); the entry with another "
@@ -286,7 +288,7 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;  // D and G (F is the exact dielectric one)
     c.base_samples = 4 * kSuiteBaseSamples;
     c.expected = 0.0;
-    c.sources = kSourceBsdf;
+    c.sources = kSourceBsdf | kSourceScene;  // a scene: its refracting materials (KHR_materials_volume)
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
     c.expect = expect_bsdf_avg;
     c.verdict = "holds for every rough dielectric BSDF but eta_o^2 dropped and F at n.i (at alpha >= 0.3), which "

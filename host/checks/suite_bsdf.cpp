@@ -98,7 +98,10 @@ bool in_range(const Term& t, double alpha) {
   return t.params.empty() || (v >= t.params[0].lo && v <= t.params[0].hi);
 }
 
-Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
+// only: one BSDF at the widths and indices given (a scene's refracting
+// material, bsdf_points); else every wanted BSDF at kBsdfAlphas x kBsdfEtas.
+Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt, const Bsdf* only = nullptr,
+               const std::vector<double>& alphas = kBsdfAlphas, const std::vector<double>& etas = kBsdfEtas) {
   Plan p = new_plan(kind.check, kind.base_samples, opt.scale);
   const bool flux = shape_of(kind) == Shape::BsdfFlux;
   const bool avg = shape_of(kind) == Shape::BsdfAvg;  // one integral a width and index: both sides, mu drawn
@@ -107,15 +110,15 @@ Plan bsdf_plan(const CheckKind& kind, const SuiteOptions& opt) {
   const std::vector<double> views = avg ? std::vector<double>{1.0} : bsdf_views(kind.n_view * opt.density);
   std::vector<TruthKey> keys;
   for (const Bsdf& b : bsdfs()) {
-    if (!suite_model_wanted(opt.models, b.id)) continue;
+    if (only ? &b != only : !suite_model_wanted(opt.models, b.id)) continue;
     bool used = false;
-    for (double alpha : densify(kBsdfAlphas, opt.density)) {
+    for (double alpha : densify(alphas, opt.density)) {
       if (!in_range(*b.d, alpha) || !in_range(*b.g, alpha)) continue;
       used = true;
       const Expectation e = kind.expect ? kind.expect({b.d, b.g, alpha, 0, 0, &b}) : Expectation{};
       // the flux from both sides at each index (the averages take both in one
       // integral); transmission masking reads no eta (o below)
-      for (double eta : flux || avg ? kBsdfEtas : std::vector<double>{1.0})
+      for (double eta : flux || avg ? etas : std::vector<double>{1.0})
         for (int side : flux  ? std::vector<int>{MFV_SIDE_ABOVE, MFV_SIDE_BELOW}
                         : avg ? std::vector<int>{MFV_SIDE_ABOVE}
                               : std::vector<int>{MFV_SIDE_BELOW})
@@ -200,6 +203,11 @@ PointSource bsdf_source(const SuiteOptions& opt) {
             if (!p.specs.empty()) plans.push_back(std::move(p));
             return true;
           }};
+}
+
+Plan bsdf_points(const CheckKind& k, const SuiteOptions& opt, const Bsdf& b, const std::vector<double>& alphas,
+                 const std::vector<double>& etas) {
+  return bsdf_plan(k, opt, &b, alphas, etas);
 }
 
 std::vector<BsdfCheck> bsdf_checks(const Bsdf& b) {

@@ -126,6 +126,34 @@ double model_gltf_sheen(const glm::dvec3& l, const glm::dvec3& v, const double* 
   return (p[5] > 0.0 ? p[5] * D * V : 0.0) + material * scaling;  // no sheen: no lobe (as the kernel)
 }
 
+namespace {
+// KHR_materials_transmission (thin-walled), one side of the sphere: the spec's
+// fresnel_mix(ior, mix(diffuse, baseColor specular_btdf, transmission),
+// specular_brdf), where specular_btdf is specular_brdf at the light reflected
+// through the surface plane, L' = L - 2 (n.L) n, and F its Schlick F at V.H'.
+double thin_walled(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  const double alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], transmission = p[4];
+  const glm::dvec3 n(0.0, 0.0, 1.0);
+  const bool transmitted = glm::dot(v, n) < 0.0;
+  const glm::dvec3 light = transmitted ? v - 2.0 * glm::dot(v, n) * n : v;
+  // specular_brdf = D Vis: the glTF model as a white metal (conductor_fresnel = 1)
+  const double white_metal[7] = {alpha, 1.0, 1.0, 0.04, 0.04, 1.0, 0.0};
+  const double specular = model_gltf(l, light, white_metal);
+  const double len = glm::length(l + light);
+  const double fw = std::pow(1.0 - std::min(0.5 * len, 1.0), 5.0);  // (1 - V.H')^5, V.H' = |V + L'|/2
+  const double fr = f0 + (1.0 - f0) * fw;
+  if (transmitted) return (1.0 - metallic) * (1.0 - fr) * transmission * base * specular;
+  const double dielectric = (1.0 - fr) * ((1.0 - transmission) * base / M_PI) + fr * specular;
+  return (1.0 - metallic) * dielectric + metallic * specular * (base + (1.0 - base) * fw);
+}
+}  // namespace
+
+double model_gltf_transmission(const glm::dvec3& l, const glm::dvec3& v, const double* p) {
+  if (l.z <= 0.0 || v.z <= 0.0) return 0.0;
+  // the sphere folded onto v's hemisphere: reflected toward v plus transmitted toward v mirrored below
+  return thin_walled(l, v, p) + thin_walled(l, glm::dvec3(v.x, v.y, -v.z), p);
+}
+
 double albedo_gltf(double, const double* p) {
   if (p[1] == 0.0 && p[5] == 0.0) return p[2];  // (1 - 0) base/π integrated against n·v
   return std::nan("");

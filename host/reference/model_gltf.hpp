@@ -22,6 +22,10 @@ ModelFn model_gltf_clearcoat_aniso;
 // KHR_materials_sheen over it: p[0..6] = alpha, metallic, base, f0, sheen_alpha,
 // sheen, sheen_others ("gltf_sheen"; see kernels/model_gltf.cl).
 ModelFn model_gltf_sheen;
+// KHR_materials_transmission, thin-walled: p[0..4] = alpha, metallic, base,
+// f0, transmission ("gltf_transmission"): the BSDF folded onto v's hemisphere,
+// f(l, v) + f(l, v mirrored below), so that its albedo is R + T.
+ModelFn model_gltf_transmission;
 // E_sheen(mu, alpha) from the table kernels/model_gltf.cl holds (parsed from
 // its text, bilinear in (mu, log10 alpha), written here independently).
 double sheen_albedo_table(double mu, double alpha);

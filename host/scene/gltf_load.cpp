@@ -107,17 +107,7 @@ void check_unit_range(const SceneMaterial& m, const std::string& field, double v
 // Extensions accounted for without a surface check; sets m.not_checked where the material cannot be checked.
 void account_extension(SceneMaterial& m, const std::string& ext, const json& v) {
   const std::string p = ext + ".";
-  if (ext == "KHR_materials_transmission") {
-    const double t = number_or(v, "transmissionFactor", 0.0, m, p);
-    check_unit_range(m, p + "transmissionFactor", t);
-    if (t > 0.0 || v.contains("transmissionTexture"))
-      m.not_checked = fmt::format(
-          "KHR_materials_transmission (transmissionFactor {:g}): no surface check fits rough "
-          "dielectric transmission until mfv models it; not checked (and never as a metal)",
-          t);
-    else
-      m.account.push_back("KHR_materials_transmission: transmissionFactor 0, no transmission: the surface is checked");
-  } else if (ext == "KHR_materials_unlit") {
+  if (ext == "KHR_materials_unlit") {
     m.not_checked =
         "KHR_materials_unlit: no BSDF (shaded by the base colour alone): nothing to check on a surface BSDF";
   } else if (ext == "KHR_materials_volume") {
@@ -132,6 +122,58 @@ void account_extension(SceneMaterial& m, const std::string& ext, const json& v) 
     m.account.push_back(
         "KHR_materials_emissive_strength: emission, not reflection: nothing to check on a surface BSDF");
   }
+}
+
+// KHR_materials_transmission: transmission = transmissionFactor x
+// transmissionTexture.r (linear). Thin-walled unless KHR_materials_volume
+// gives a thickness (its spec: thicknessFactor 0 is thin-walled): then the
+// transmission lobe is the specular lobe mirrored through the surface, the
+// catalog's "gltf_transmission" model; with thickness > 0 the surface is a
+// refracting boundary, the catalog's rough dielectric BSDF (Walter et al.
+// 2007) at eta = ior and alpha = roughness² (issue 29).
+void read_transmission(SceneMaterial& m, Images& images, const json& v, const json& volume) {
+  const std::string p = "KHR_materials_transmission.";
+  const double t = number_or(v, "transmissionFactor", 0.0, m, p);
+  check_unit_range(m, p + "transmissionFactor", t);
+  const double thickness = number_or(volume, "thicknessFactor", 0.0, m, "KHR_materials_volume.");
+  if (!(t > 0.0)) {  // factor 0: no transmission, whatever the texture
+    if (!v.empty())
+      m.account.push_back("KHR_materials_transmission: transmissionFactor 0, no transmission: the surface is checked");
+    return;
+  }
+  m.transmission = textured(m, images, v, p, {"transmissionTexture", 0, false}, t, m.account);
+  std::string why;  // what the transmitting models do not layer
+  if (m.anisotropy_strength.hi > 0.0) why = "KHR_materials_anisotropy";
+  if (m.clearcoat.hi > 0.0) why = "KHR_materials_clearcoat";
+  if (m.sheen_checked) why = "KHR_materials_sheen";
+  for (size_t k = 0; k < 3; ++k)
+    if (m.specular.lo != 1.0 || m.specular.hi != 1.0 || m.specular_color[k].lo != 1.0 || m.specular_color[k].hi != 1.0)
+      why = "KHR_materials_specular";
+  if (thickness > 0.0 && !(m.factors.ior > 1.0))
+    why = fmt::format("KHR_materials_ior ior {:g} (a refracting boundary needs ior > 1)", m.factors.ior);
+  if (!why.empty()) {
+    m.not_checked = fmt::format(
+        "KHR_materials_transmission (transmissionFactor {:g}) with {}: mfv's transmitting models take an isotropic "
+        "base with specularFactor 1 and no coat or sheen; not checked (and never as a metal)",
+        t, why);
+    return;
+  }
+  if (thickness > 0.0) {
+    m.volume_checked = true;
+    m.account.push_back(fmt::format(
+        "KHR_materials_transmission with KHR_materials_volume thicknessFactor {:g}: a refracting boundary, checked "
+        "as the rough dielectric BSDF of Walter et al. 2007 (walter_ggx_correlated) at eta = ior {:g}, entering and "
+        "leaving, at every roughness point: bsdf_furnace, bsdf_avg_reciprocity, transmission_masking",
+        thickness, m.factors.ior));
+    return;
+  }
+  m.thin_checked = true;
+  m.account.push_back(fmt::format(
+      "KHR_materials_transmission, thin-walled (no KHR_materials_volume thickness): checked as the "
+      "gltf_transmission model (the specular lobe mirrored through the surface) over transmission [{:.4g}, {:.4g}], "
+      "energy R + T <= 1 and reciprocity; and R + T = the F = 1 albedo of the same D and Vis at ior {:g} with a "
+      "white base, full transmission and no metal (closed_form) at every roughness point",
+      m.transmission.lo, m.transmission.hi, m.factors.ior));
 }
 
 // KHR_materials_clearcoat: clearcoat = clearcoatFactor x clearcoatTexture.r,
@@ -286,6 +328,7 @@ SceneMaterial from_gltf(const json& jm, size_t index, Images& images) {
                     m.factors.anisotropy_rotation));
   read_clearcoat(m, images, ext_of("KHR_materials_clearcoat"));
   read_sheen(m, images, ext_of("KHR_materials_sheen"));
+  read_transmission(m, images, ext_of("KHR_materials_transmission"), ext_of("KHR_materials_volume"));
   for (auto& [name, v] : ext.items()) {
     if (kModelled.count(name)) continue;
     if (kAccounted.count(name))

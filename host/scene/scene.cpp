@@ -26,13 +26,18 @@ const Model& gltf_model() { return *try_find_model("gltf"); }
 const Model& gltf_clearcoat_model() { return *try_find_model("gltf_clearcoat"); }
 const Model& gltf_sheen_model() { return *try_find_model("gltf_sheen"); }
 const Model& gltf_clearcoat_aniso_model() { return *try_find_model("gltf_clearcoat_aniso"); }
+const Model& gltf_transmission_model() { return *try_find_model("gltf_transmission"); }
 
 Expect gltf_energy_expect(const GltfChannelParams& c) {
   const bool plain = c.metallic >= 1.0 || (1.0 - c.metallic) * c.base <= 0.0 || c.weight <= 0.0;
   return plain ? Expect::Hold : Expect::May;
 }
 
-std::string SceneMaterial::model() const { return gltf ? "gltf" : d->id + "/" + g->id + "/" + f->id; }
+std::string SceneMaterial::model() const {
+  if (thin_checked) return "gltf_transmission";
+  if (volume_checked) return "walter_ggx_correlated";
+  return gltf ? "gltf" : d->id + "/" + g->id + "/" + f->id;
+}
 
 namespace {
 

@@ -53,6 +53,7 @@ const Model& gltf_model();
 const Model& gltf_clearcoat_model();
 const Model& gltf_sheen_model();
 const Model& gltf_clearcoat_aniso_model();
+const Model& gltf_transmission_model();
 // Its albedo must stay <= 1 where fresnel_mix is not involved: a pure metal
 // (one GGX lobe with F <= 1), no diffuse base, or no specular layer (a
 // Lambert base <= 1); elsewhere it may exceed 1 (kGltfFresnelMixGain).
@@ -97,6 +98,13 @@ struct SceneMaterial {
   // specular lobe is also checked with the exact dielectric Fresnel at eta = ior
   bool ior_exact = false;
   std::array<ParamRange, 3> base, specular_color;
+  // KHR_materials_transmission: transmission = transmissionFactor x texture R.
+  // Thin-walled (no KHR_materials_volume thickness): checked through the
+  // "gltf_transmission" model where thin_checked; with thickness > 0 a
+  // refracting boundary: the catalog's Walter BSDF at eta = ior, roughness²
+  // where volume_checked (host/scene/scene_checks.cpp, issue 29)
+  ParamRange transmission;
+  bool thin_checked = false, volume_checked = false;
   // What is checked and what is not, one line each ("KHR_materials_volume: nothing to check on a surface BSDF").
   std::vector<std::string> account;
   // Non-empty: the material is not checked at all, and why (KHR_materials_transmission, unlit, ...).
@@ -124,6 +132,9 @@ struct SceneMaterial {
   std::vector<ModelParams> sheen_points() const;
   // glTF: the whole-model points energy and reciprocity run at (channels(), or coat_points())
   std::vector<WholePoint> whole_points() const;
+  // thin_checked: the "gltf_transmission" points of the derived expectation
+  // (white base, full transmission, no metal: R + T = the F = 1 albedo), one per roughness point
+  std::vector<ModelParams> thin_identity_points() const;
   std::string model() const;  // "gltf" or "d/g/f"
 };
 

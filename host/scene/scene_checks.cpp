@@ -1,6 +1,8 @@
 #include "scene/scene_checks.hpp"
 
 #include "catalog/models.hpp"
+#include "checks/furnace_truth.hpp"
+#include "checks/suite_bsdf.hpp"
 #include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
@@ -132,6 +134,8 @@ struct MaterialSets {
   void add_furnace(const CheckKind& k);      // the material's D and G (glTF: its lobes) with F = 1
   void add_energy(const CheckKind& k);       // the material's own BRDF (a diffuse kind: with a Lambert kd)
   void add_reciprocity(const CheckKind& k);  // reciprocity of the material's own BRDF
+  void add_thin_identity(const CheckKind& k);  // KHR_materials_transmission thin-walled: R + T = the F = 1 albedo
+  void add_volume(const CheckKind& k);         // KHR_materials_volume: the Walter BSDF at eta = ior
 };
 
 bool MaterialSets::add_kind(const CheckKind& k) {
@@ -141,6 +145,10 @@ bool MaterialSets::add_kind(const CheckKind& k) {
     case Shape::Furnace: add_furnace(k); return true;
     case Shape::Energy: add_energy(k); return true;
     case Shape::Pairs: add_reciprocity(k); return true;
+    case Shape::Exact: add_thin_identity(k); return true;
+    case Shape::BsdfFlux:
+    case Shape::MaskingT:
+    case Shape::BsdfAvg: add_volume(k); return true;
     default: return false;
   }
 }
@@ -292,6 +300,57 @@ void MaterialSets::add_reciprocity(const CheckKind& k) {
       }
     }
   }
+}
+
+// KHR_materials_transmission, thin-walled (issue 29): with a white base, full
+// transmission and no metal the transmission lobe takes 1 - F of the light
+// the reflection lobe takes F of, at the same mirrored half vector, so R + T
+// is the F = 1 albedo of the same D and Vis at every ior. Expected: that
+// albedo (ggx/smith_ggx_correlated/none) by quadrature of the double
+// reference, its rule's error added to the point's tolerance (two-sided).
+void MaterialSets::add_thin_identity(const CheckKind& k) {
+  const Term* white = &term("none", Kind::F);
+  for (const ModelParams& p : m.thin_identity_points()) {
+    SetPlan& sp = plan_for(s, k, k.base_samples, opt);
+    const std::string key = fmt::format("gltf_transmission alpha={:.9g} f0={:.9g} (R + T = the F = 1 albedo)", p[0], p[3]);
+    if (!claim(sp, key, "gltf_transmission")) continue;
+    for (double co : view_cosines(k.n_view)) {
+      const IntegralSpec is = model_spec(k.kind, gltf_transmission_model(), p, co);
+      const KnownValue truth = cached_albedo_by_quadrature(
+          spec_of(dgf_integral(IntegralKind::Albedo, ggx, smith, white, p[0], p[0], p[0], double(is.cos_o))));
+      add(sp, key, is, nullptr, nullptr, nullptr, {{"alpha", p[0]}, {"f0", p[3]}, {"cos_l", co}}, {}, false);
+      sp.plan.points.back().expected = truth.value;
+      sp.plan.points.back().tolerance += truth.error / truth.value;
+    }
+    sp.add_model(gltf_transmission_model());
+  }
+}
+
+// KHR_materials_volume with thickness > 0: a refracting boundary, the
+// catalog's rough dielectric BSDF (height-correlated GGX, exact Fresnel) at
+// eta = ior and alpha = roughness², built and judged as the catalog's points.
+void MaterialSets::add_volume(const CheckKind& k) {
+  if (!m.volume_checked) return;
+  const Bsdf& b = *try_find_bsdf("walter_ggx_correlated");
+  SetPlan& sp = plan_for(s, k, k.base_samples, opt);
+  const std::string key = fmt::format("{} eta={:.9g}", b.id, m.factors.ior);
+  std::vector<double> widths;
+  for (double a : m.alphas())
+    if (claim(sp, fmt::format("{} alpha={:.9g}", key, a), b.id)) widths.push_back(a);
+  if (widths.empty()) return;
+  Plan p = bsdf_points(k, opt, b, widths, {m.factors.ior});
+  const size_t offset = sp.plan.specs.size();
+  for (size_t i = 0; i < p.specs.size(); ++i) {
+    PointResult r = p.points[i];
+    r.model = fmt::format("{} alpha={:.9g}", key, r.params.at("alpha"));  // the material's group
+    sp.plan.specs.push_back(p.specs[i]);
+    sp.plan.points.push_back(r);
+  }
+  if (p.reference_pick) {
+    if (!sp.plan.reference_pick) sp.plan.reference_pick = std::vector<size_t>{};
+    for (size_t i : *p.reference_pick) sp.plan.reference_pick->push_back(offset + i);
+  }
+  sp.add_terms(b.d, b.g, nullptr);
 }
 
 SceneSets make_sets(const Scene& scene, const SuiteOptions& opt) {

@@ -55,6 +55,12 @@ double f0_of(const GltfFactors& f, double specular_color) {
   return std::min(r * r * specular_color, 1.0);
 }
 
+void push_unique_point(std::vector<WholePoint>& v, const WholePoint& w) {
+  for (auto& x : v)
+    if (x.model == w.model && x.p == w.p) return;
+  v.push_back(w);
+}
+
 }  // namespace
 
 std::vector<GltfChannelParams> SceneMaterial::channels() const {
@@ -176,7 +182,21 @@ std::string WholePoint::key() const {
 
 std::vector<WholePoint> SceneMaterial::whole_points() const {
   std::vector<WholePoint> out;
-  if (!gltf || !not_checked.empty()) return out;
+  // a refracting boundary (KHR_materials_volume) is checked as the Walter BSDF (scene_checks.cpp), not as a BRDF
+  if (!gltf || !not_checked.empty() || volume_checked) return out;
+  if (thin_checked) {
+    // KHR_materials_transmission, thin-walled: transmission enters affinely
+    // (mix(diffuse, btdf, transmission)): its ends. R + T <= 1 where no
+    // diffuse is left (fresnel_mix's gain needs one: kGltfFresnelMixGain)
+    for (auto& c : channels())
+      for (double t : ends(transmission)) {
+        const bool plain = c.metallic >= 1.0 || (1.0 - c.metallic) * c.base * (1.0 - t) <= 0.0;
+        const Expect e = plain ? Expect::Hold : Expect::May;
+        push_unique_point(out, {&gltf_transmission_model(), ModelParams{c.alpha, c.metallic, c.base, c.f0, t, 0, 0}, e,
+                                plain ? "" : kGltfFresnelMixGain, Expect::Hold, ""});
+      }
+    return out;
+  }
   if (!coat_checked)
     for (auto& c : channels()) {
       const Expect e = gltf_energy_expect(c);
@@ -221,6 +241,13 @@ std::vector<WholePoint> SceneMaterial::whole_points() const {
   return out;
 }
 
+std::vector<ModelParams> SceneMaterial::thin_identity_points() const {
+  std::vector<ModelParams> out;
+  if (!thin_checked || !not_checked.empty()) return out;
+  for (double a : alphas()) push_unique(out, ModelParams{a, 0.0, 1.0, f0_of(factors, 1.0), 1.0, 0.0, 0.0});
+  return out;
+}
+
 void set_factor_ranges(SceneMaterial& m) {
   auto fixed = [](double v) { return ParamRange{v, v, "factor"}; };
   m.roughness = fixed(m.factors.roughness);
@@ -231,6 +258,7 @@ void set_factor_ranges(SceneMaterial& m) {
   m.clearcoat_roughness = fixed(0.0);
   for (auto& c : m.sheen_color) c = fixed(0.0);
   m.sheen_roughness = fixed(0.0);
+  m.transmission = fixed(0.0);
   for (size_t k = 0; k < 3; ++k) {
     m.base[k] = fixed(m.factors.base[k]);
     m.specular_color[k] = fixed(m.factors.specular_color[k]);

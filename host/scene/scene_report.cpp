@@ -41,6 +41,14 @@ CheckLine check_line(const SuiteReport& rep, const GroupResult& g) {
     c.text = fmt::format("{:.7f} ± {:.1e} (= 1)", w.estimate, w.stderr_);
   } else if (g.check == "masking") {
     c.text = fmt::format("worst {:.4f} ± {:.1e} at cos_o={:.3g} (= 1)", w.estimate, w.stderr_, w.params.at("cos_o"));
+  } else if (const Shape sh = shape_of(check_kind(g.check));
+             sh == Shape::Exact || sh == Shape::BsdfFlux || sh == Shape::MaskingT || sh == Shape::BsdfAvg) {
+    // two-sided against an expected value (closed_form; a refracting material's bsdf_* kinds): the worst point
+    std::string where;
+    for (const char* k : {"cos_i", "cos_o", "cos_l", "side", "lobe", "eta"})
+      if (auto it = w.params.find(k); it != w.params.end()) where += fmt::format(" {}={:.3g}", k, it->second);
+    c.text = fmt::format("worst {:.4g} ± {:.1e} against {:.4g} (two-sided){}", w.estimate, w.stderr_, w.expected,
+                         where.empty() ? "" : " at" + where);
   } else {
     double emax = -1;
     const PointResult* at = nullptr;
@@ -73,9 +81,9 @@ std::string material_params(const SceneMaterial& m) {
   }
   if (m.gltf)
     return fmt::format(
-        "gltf: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g} (alpha {:g}), ior {:g}, "
+        "{}: baseColor ({:g}, {:g}, {:g}), metallic {:g}, roughness {:g} (alpha {:g}), ior {:g}, "
         "specular {:g}, specularColor ({:g}, {:g}, {:g})",
-        m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness, m.alpha,
+        m.model(), m.factors.base[0], m.factors.base[1], m.factors.base[2], m.factors.metallic, m.factors.roughness, m.alpha,
         m.factors.ior, m.factors.specular, m.factors.specular_color[0], m.factors.specular_color[1],
         m.factors.specular_color[2]);
   std::string s = fmt::format("{}: D {}={:g}", m.model(), m.d->params[0].name, m.pd);
@@ -114,6 +122,9 @@ std::string ranges_text(const SceneMaterial& m) {
     s += "; " + range_text("sheenRoughness", m.sheen_roughness) +
          fmt::format(" ({} gltf_sheen points)", m.sheen_points().size());
   }
+  if (m.thin_checked)
+    s += "; " + range_text("transmission", m.transmission) +
+         fmt::format(" ({} gltf_transmission points)", m.whole_points().size());
   return s + fmt::format(" ({} parameter points; the ends of every range, roughness and anisotropy also inside)",
                          m.channels().size());
 }

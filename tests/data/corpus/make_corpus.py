@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Writes mfv's own glTF test corpus (issue 21): eight scenes with the structure
+"""Writes mfv's own glTF test corpus (issues 21, 29): twelve scenes with the structure
 of public sample scenes (a textured helmet, a multi-material textured helmet,
 an anisotropy strength test, an IOR grid, a roughness comparison, a clearcoat
-test, a sheen chair, a specular test) and the tiny PNGs some of them use.
+test, a sheen chair, a specular test; thin-walled transmission and refracting
+volumes) and the tiny PNGs some of them use.
 Nothing is copied: geometry is one triangle in a .bin that is deliberately
 absent (mfv reads materials only), and the images are 4x4 PNGs written here.
 Run from this folder: python3 make_corpus.py"""
@@ -164,6 +165,32 @@ def main():
           "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8},
                          "KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.3}}}],
         extensions_used=["KHR_materials_anisotropy", "KHR_materials_clearcoat"]))
+
+    # 11. thin-walled transmission (issue 29: KHR_materials_transmission without a volume): a clear
+    #     film (white, full transmission: R + T = the F = 1 albedo), a frosted film at ior 1.33, a
+    #     tinted half-transmitting sheet (energy R + T <= 1 may fail: fresnel_mix's diffuse gain)
+    write("transmission.gltf", scene(
+        [{"name": "clear film", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.3},
+          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}},
+         {"name": "frosted film", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.7},
+          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                         "KHR_materials_ior": {"ior": 1.33}}},
+         {"name": "tinted sheet", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.8, 0.9, 1],
+          "metallicFactor": 0, "roughnessFactor": 0.5},
+          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}}}],
+        extensions_used=["KHR_materials_transmission", "KHR_materials_ior"]))
+
+    # 12. refracting boundaries (issue 29: KHR_materials_transmission with KHR_materials_volume
+    #     thickness > 0, checked as the rough dielectric BSDF at eta = ior): glass and water
+    write("volume.gltf", scene(
+        [{"name": "rough glass", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
+          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                         "KHR_materials_volume": {"thicknessFactor": 0.5}}},
+         {"name": "water", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.3},
+          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                         "KHR_materials_volume": {"thicknessFactor": 1.0},
+                         "KHR_materials_ior": {"ior": 1.33}}}],
+        extensions_used=["KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"]))
 
 
 if __name__ == "__main__":
