@@ -115,6 +115,12 @@ Expectation expect_bsdf_avg(const ExpectPoint& p) {
   return e;
 }
 
+// An exact albedo holds exactly in a correct model: a whole model's closed
+// form, and a thin-walled transmitting material's R + T = the F = 1 albedo of
+// its lobe (white base, full transmission, no metal: F and 1 - F of one
+// mirrored half vector add to 1). Every point must hold.
+Expectation expect_exact(const ExpectPoint&) { return {}; }
+
 std::vector<CheckKind> make_kinds() {
   std::vector<CheckKind> k;
   auto add = [&](const char* name) -> CheckKind& {
@@ -210,6 +216,7 @@ std::vector<CheckKind> make_kinds() {
     c.base_samples = kSuiteBaseSamples * kClosedFormFactor;
     c.n_view = kModelLights;
     c.sources = kSourceModels | kSourceScene;
+    c.expect = expect_exact;
     c.not_taken = "only a whole model has an exact albedo of its own (Model::ref_albedo; a scene's thin-walled "
                   "transmitting material: the F = 1 albedo of its lobe)";
     c.verdict = "holds for every whole model with a closed-form albedo, and for a correct thin-walled "
