@@ -166,10 +166,16 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
 // and L'. One colour channel; V = l (the catalog's first direction), L = the
 // second, anywhere on the sphere. Parameters p[0..4]: alpha (roughness²),
 // metallic, base, f0 (((ior − 1)/(ior + 1))², specularFactor 1), transmission.
-static inline real gltf_thin_walled(real3 l, real3 v, const real* p) {
-  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], transmission = p[4];
-  bool below = v.z < R(0.0);
-  real3 lm = below ? (real3)(v.x, v.y, -v.z) : v;  // the light mirrored through the surface (thin-walled)
+// Not inlined, its inputs by components: Intel's CPU runtime miscompiles the
+// whole-model agree kernels where this body is inlined (every model's values
+// wrong, lambert 0: the Intel portability test) or where it takes vectors or
+// p through a call (its own values wrong or NaN); Intel OpenCL 2026.22.
+static real __attribute__((noinline)) gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz,
+                                                       real alpha, real metallic, real base, real f0,
+                                                       real transmission) {
+  bool below = vz < R(0.0);
+  real3 l = (real3)(lx, ly, lz);
+  real3 lm = (real3)(vx, vy, fabs(vz));  // below: the light mirrored through the surface (thin-walled)
   real NoL = l.z, NoV = lm.z;
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
   real s2, VoH;
@@ -193,5 +199,6 @@ static inline real gltf_thin_walled(real3 l, real3 v, const real* p) {
 // derived expectation mfv run --scene tests (closed_form).
 static inline real model_gltf_transmission(real3 l, real3 v, const real* p) {
   if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);
-  return gltf_thin_walled(l, v, p) + gltf_thin_walled(l, (real3)(v.x, v.y, -v.z), p);
+  return gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, v.z, p[0], p[1], p[2], p[3], p[4]) +
+         gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, -v.z, p[0], p[1], p[2], p[3], p[4]);
 }

@@ -137,7 +137,7 @@ TEST_CASE("mfv run --scene passes thin-walled transmission and fails a lobe whos
   CHECK(good.out.find("material 'clear film' [materials[0]] pass: gltf_transmission") != std::string::npos);
   // the transmission lobe's half vector of the light below, not of its mirror
   const PlantedKernelDir planted("model_gltf.cl", "real3 h = half_vector(l, lm, &s2, &VoH);",
-                                 "real3 h = half_vector(l, v, &s2, &VoH);");
+                                 "real3 h = half_vector(l, (real3)(vx, vy, vz), &s2, &VoH);");
   auto bad = run(planted.path());
   INFO(bad.out);
   CHECK(bad.code == 1);
