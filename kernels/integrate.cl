@@ -209,16 +209,21 @@ MFV_SAMPLE_VALUES(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd
 MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
 #endif
 
-// The other AlbedoMis integrals (albedo_mis_general: anisotropic terms,
-// whole models, user code), in every program, laid out as albedo_mis_values.
-__kernel MFV_NO_IMPLICIT_VECTORIZE void albedo_mis_general_values(__global const IntegralSpec* restrict specs, ulong seed,
-                                                                  uint replicates, uint row0,
-                                                                  __global float* restrict values) {
-  size_t k = get_global_id(0), row = row0 + get_global_id(1);
-  __global const IntegralSpec* s = specs + row / replicates;
-  uint4 shift = mis_shift(s, seed, (uint)(row % replicates));
-  values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_general(s, shift, (uint)k, s->points);
-}
+// MFV_MIS_ROWS(name, FN): a replicate kernel laid out as albedo_mis_values,
+// in every program, not vectorized (its integrand branches), point k of the
+// row's replicate from FN(s, shift, k, n).
+#define MFV_MIS_ROWS(NAME, FN)                                                                                    \
+  __kernel MFV_NO_IMPLICIT_VECTORIZE void NAME(__global const IntegralSpec* restrict specs, ulong seed,           \
+                                               uint replicates, uint row0, __global float* restrict values) {     \
+    size_t k = get_global_id(0), row = row0 + get_global_id(1);                                                  \
+    __global const IntegralSpec* s = specs + row / replicates;                                                   \
+    uint4 shift = mis_shift(s, seed, (uint)(row % replicates));                                                  \
+    values[get_global_id(1) * get_global_size(0) + k] = (float)FN(s, shift, (uint)k, s->points);                 \
+  }
+// The other AlbedoMis integrals (albedo_mis_general: anisotropic terms, whole models, user code)
+MFV_MIS_ROWS(albedo_mis_general_values, albedo_mis_general)
+// bsdf_furnace's flux (MFV_CHECK_BSDF_FLUX, kernels/transmission.cl bsdf_flux_mis)
+MFV_MIS_ROWS(bsdf_flux_mis_values, bsdf_flux_mis)
 
 #ifndef MFV_USER_BRDF
 // d_norm (stratified) and masking of isotropic microfacet integrals

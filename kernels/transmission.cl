@@ -59,9 +59,9 @@ static inline real bsdf_proposal_pdf(real ix, real iy, real iz, real ox, real oy
   return p;
 }
 
-// One sample of a BSDF's flux (MFV_CHECK_BSDF_FLUX, the flux form of
-// docs/transmission.md): E(i) = ∫ f(i, o) |o·n| do over the sphere of o, i
-// the fixed direction at cos_o on `side`; f is the reflection lobe
+// One iid sample of a BSDF's flux (bsdf_avg_reciprocity's; bsdf_furnace
+// takes bsdf_flux_mis below), the flux form of docs/transmission.md:
+// E(i) = ∫ f(i, o) |o·n| do over the sphere of o, i the fixed direction at cos_o on `side`; f is the reflection lobe
 // (bsdf_reflect_c) where o lies on i's side and the BTDF (btdf_eval_c) on
 // the other, and `lobe` keeps one of the two. The proposal (above) is drawn
 // in the frame where i is above (eta -> 1/eta from below) and mirrored back,
@@ -102,9 +102,6 @@ static inline real bsdf_flux_at(__global const IntegralSpec* s, uint4 r, real co
                      : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg, s->eta);
   return f * fabs(oz) / p;
 }
-static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, ulong index) {
-  return bsdf_flux_at(s, mfv_philox(seed, s->stream, spec_draw(s, 0u), index), s->cos_o, s->side, s->lobe);
-}
 
 // One sample of the hemispherical averages' reciprocity (MFV_CHECK_BSDF_AVG;
 // Walter et al. 2007 eq. 21's η_o², generalized reciprocity integrated over
@@ -137,4 +134,130 @@ static inline real masking_t_value(__global const IntegralSpec* s, ulong seed, u
   if (om >= R(0.0)) return R(0.0);  // χ+: o below sees the facets with o·m < 0
   real g1 = eval_G1_aniso(s->g, co, R(0.0), R(0.0), s->pg, s->pg);
   return g1 * eval_D(s->d, c, s2, s->pd) * -om / (pdf_m(c, s2, s->width) * co);
+}
+
+// ---- bsdf_furnace's flux (MFV_CHECK_BSDF_FLUX; host: IntegralKind::BsdfFlux) --
+// The estimator's own exact dielectric Fresnel (Walter et al. 2007 eq. 22,
+// written here, never the BSDF's F): reflectance at cos c = i·m with the
+// relative index eta seen from i; 1 under total internal reflection.
+static inline real flux_fresnel(real c, real eta) {
+  real g2 = eta * eta - R(1.0) + c * c;
+  if (g2 <= R(0.0)) return R(1.0);
+  real g = sqrt(g2), a = (g - c) / (g + c), b = (c * (g + c) - R(1.0)) / (c * (g - c) + R(1.0));
+  return min(R(0.5) * a * a * (R(1.0) + b * b), R(1.0));
+}
+
+// The chance that a share picks reflection at a facet with i·m = c: the
+// lobe's own hemisphere where the integral keeps one lobe; for the whole
+// sphere (MFV_LOBE_ALL) the estimator's Fresnel for the visible normals (so
+// that a correct GGX model's weight is G2/G1) and 1/2 for the defensive pair.
+static inline real flux_p_reflect(uint lobe, bool vis, real c, real eta) {
+  if (lobe == MFV_LOBE_REFLECT) return R(1.0);
+  if (lobe == MFV_LOBE_TRANSMIT) return R(0.0);
+  return vis ? flux_fresnel(c, eta) : R(0.5);
+}
+
+// The three proposals' density of o (o_z > 0: reflected about h = i + o
+// normalized, Jacobian 1/(4 o·h), eq. 14; o_z < 0: refracted through
+// h = -(i + eta o) normalized, turned to +z, Jacobian eta² |o·h| / |i + eta o|²,
+// eq. 17), weighted by the mixture c = (15/16, 1/32, 1/32): (a) a visible
+// normal of the GGX shape at i (vis_pdf_i is its reflected density, 1/(4 i·h)
+// of the normal's), (b) Cauchy slopes, (c) the cosine lobe, each times its
+// chance of o's side.
+static inline real flux_mis_pdf(real ix, real iz, real ox, real oy, real oz, real w, real eta, uint lobe) {
+  real so2 = sin2_from_cos(iz), hx, hy, hz;
+  if (oz > R(0.0)) {
+    real oh = R(0.5) * normalize_sum(ix + ox, oy, iz + oz, &hx, &hy, &hz);
+    if (!(oh > R(0.0))) return R(0.0);
+    real hs2 = hx * hx + hy * hy, ih = ix * hx + iz * hz;
+    return MIS_C_VIS * flux_p_reflect(lobe, true, ih, eta) * vis_pdf_i(hz, hs2, iz, so2, w) +
+           MIS_C_SLOPE * flux_p_reflect(lobe, false, ih, eta) * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
+           MIS_C_COS * flux_p_reflect(lobe, false, ih, eta) * oz * MFV_INV_PI;
+  }
+  real cos_share = MIS_C_COS * (R(1.0) - flux_p_reflect(lobe, false, R(1.0), eta)) * -oz * MFV_INV_PI;
+  real len = normalize_sum(ix + eta * ox, eta * oy, iz + eta * oz, &hx, &hy, &hz);
+  if (!(len > R(0.0))) return cos_share;
+  if (hz < R(0.0)) hx = -hx, hy = -hy, hz = -hz;
+  real ih = ix * hx + iz * hz, oh = ox * hx + oy * hy + oz * hz;
+  if (!(ih > R(0.0) && oh < R(0.0))) return cos_share;
+  real hs2 = hx * hx + hy * hy, jac = eta * eta * -oh / (len * len);
+  return cos_share +
+         MIS_C_VIS * (R(1.0) - flux_p_reflect(lobe, true, ih, eta)) * R(4.0) * ih * vis_pdf_i(hz, hs2, iz, so2, w) * jac +
+         MIS_C_SLOPE * (R(1.0) - flux_p_reflect(lobe, false, ih, eta)) * pdf_slope(hz, hs2, w) * jac;
+}
+
+// Sobol's third dimension at index k (Joe & Kuo 2008: x² + x + 1, m = 1, 3):
+// the XOR of the direction numbers v_j of k's set bits, v_j = v_{j-1} ^
+// v_{j-2} ^ (v_{j-2} >> 2). With owen_sobol_2d's two it is a 3D Sobol net,
+// so the side picked for the whole sphere is stratified with the normal
+// (a second scramble of dimension 1 instead tied the side to the azimuth:
+// 30x the replicate spread, measured).
+static inline uint sobol_dim3(uint k) {
+  uint x = 0u, a = 0x80000000u, b = 0xC0000000u;
+  for (int j = 0; j < 32; ++j) {
+    if ((k >> j) & 1u) x ^= a;
+    uint next = b ^ a ^ (a >> 2);
+    a = b;
+    b = next;
+  }
+  return x;
+}
+
+// Point k of n of a replicate with seeds `shift` (the points and shares of
+// albedo_mis_microfacet: 4n/5 visible normals, n/10 Cauchy slopes, n/10 the
+// cosine lobe, each on Owen-scrambled Sobol points, multi-sample MIS with
+// the balance heuristic; Veach 1997 eq. 9.13): the flux f(i, o)|o·n| / q of
+// the light from i at cos_i on `side`, in `lobe`. A normal m gives o
+// reflected (eq. 39) or refracted (eq. 40, none under total internal
+// reflection) by the lobe, or for the whole sphere by Sobol's third
+// dimension (Owen-scrambled) against flux_p_reflect. The BSDF sees i on its
+// own side (the frame mirrored back, as bsdf_flux_at). A wrong model enters
+// only the numerator; the defensive pair bounds f/q by 32 f/p_defensive.
+// Twin: flux_mis in host/reference/transmission.cpp.
+static inline real bsdf_flux_mis(__global const IntegralSpec* s, uint4 shift, uint k, uint n) {
+  uint n_def = n / 10u, n_vis = 8u * n_def;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_def;
+  uint j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
+  real u_phi, u_r, u_c;
+  owen_sobol_2d(j, vis ? shift.x : cosine ? shift.w : shift.z, vis ? shift.y : cosine ? shift.z : shift.w, &u_phi, &u_r);
+  u_c = u01_open(reverse_bits32(owen_hash(reverse_bits32(sobol_dim3(j)), vis ? shift.z : cosine ? shift.y : shift.x)));
+  const real below = s->side == MFV_SIDE_BELOW ? R(-1.0) : R(1.0);
+  const real eta = s->side == MFV_SIDE_BELOW ? R(1.0) / s->eta : s->eta;  // seen from i
+  const uint lobe = s->lobe;
+  real iz = s->cos_o, ix = sqrt(sin2_from_cos(iz)), w = s->width;
+  real ox, oy, oz;
+  if (cosine) {
+    cosine_direction(u_phi, u_r, &ox, &oy, &oz);
+    if (!(u_c < flux_p_reflect(lobe, false, R(1.0), eta))) oz = -oz;
+  } else {
+    real mx, my, mz, s2;
+    if (vis) sample_vis_c(ix, R(0.0), iz, u_phi, u_r, w, &mx, &my, &mz);
+    else sample_m_c(false, u_phi, u_r, w, &mx, &my, &mz, &s2);
+    real im = ix * mx + iz * mz;
+    if (!(im > R(0.0))) return R(0.0);  // a facet facing away (or a degenerate one): no output
+    if (u_c < flux_p_reflect(lobe, vis, im, eta)) {
+      ox = R(2.0) * im * mx - ix, oy = R(2.0) * im * my, oz = R(2.0) * im * mz - iz;
+      if (!(oz > R(0.0))) return R(0.0);
+    } else {
+      real kk = R(1.0) / eta, t2 = R(1.0) - kk * kk * (R(1.0) - im * im);
+      if (t2 <= R(0.0)) return R(0.0);
+      real a = kk * im - sqrt(t2);
+      ox = a * mx - kk * ix, oy = a * my, oz = a * mz - kk * iz;
+      if (!(oz < R(0.0))) return R(0.0);
+    }
+  }
+  real q = flux_mis_pdf(ix, iz, ox, oy, oz, w, eta, lobe);
+  if (!(q > R(0.0))) return R(0.0);
+  real f = oz > R(0.0) ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, R(0.0), below * iz, ox, oy, below * oz, s->pd,
+                                        s->pg, s->eta)
+                       : btdf_eval_c(s->d, s->g, s->bsdf, ix, R(0.0), below * iz, ox, oy, below * oz, s->pd, s->pg,
+                                     s->eta);
+  real share = vis ? R(1.171875) : R(0.3125);  // c_t n / n_t, as albedo_mis_microfacet
+  return share * f * fabs(oz) / q;
+}
+
+// Sample `index` = r n + k (n = s->points): point k of replicate r.
+static inline real bsdf_flux_value(__global const IntegralSpec* s, ulong seed, ulong index) {
+  uint n = s->points;
+  return bsdf_flux_mis(s, mis_shift(s, seed, (uint)(index / n)), (uint)(index % n), n);
 }

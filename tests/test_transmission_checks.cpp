@@ -152,8 +152,9 @@ TEST_CASE("A BTDF with eta_o in place of eta_o^2 fails bsdf_avg_reciprocity, smo
 // The smooth limit (issue 29): bsdf_furnace's alpha = 1e-4 points are tested
 // two-sided against the facet-space truth, which there is the smooth
 // interface's F(mu) (E_R) and 1 - F(mu) (E_T) to a tenth of the point's
-// standard error (measured: at most 8.5e-5 against standard errors of 1e-3
-// to 3e-2), total internal reflection included (E_R = 1, E_T = 0 up to the
+// standard error plus the masking at grazing view (measured: at most 8.5e-5
+// at mu = 0.01, against standard errors of 2e-6 to 3e-4 with the MIS
+// estimator), total internal reflection included (E_R = 1, E_T = 0 up to the
 // D's tail beyond the critical angle, at most 2e-8 at alpha = 1e-4): their
 // verdicts are E_R = F(mu) and E_T = 1 - F(mu) within total SE.
 namespace {
@@ -165,7 +166,11 @@ int smooth_points(const SuiteReport& rep, int& tir, int& failed_entering_t) {
     const double mu = p.params.at("cos_i"), eta = above ? p.params.at("eta") : 1.0 / p.params.at("eta");
     const double F = ref::F_dielectric(mu, eta, 0.0), closed = reflect ? F : 1.0 - F;
     CAPTURE(above, reflect, mu, eta, closed, p.expected, p.stderr_);
-    CHECK(std::fabs(p.expected - closed) <= 0.1 * p.stderr_ + 1e-7);
+    // the truth departs from the smooth interface by the masking at alpha = 1e-4: 2 Lambda(mu) for
+    // both directions (Heitz 2014 eq. 72 for GGX), as much again for the facets' spread about the
+    // mirror (measured: 8.5e-5 at mu = 0.01, where 4 Lambda = 1e-4)
+    const double a = mu / (1e-4 * std::sqrt(1.0 - mu * mu)), lambda = 0.5 * (std::sqrt(1.0 + 1.0 / (a * a)) - 1.0);
+    CHECK(std::fabs(p.expected - closed) <= 0.1 * p.stderr_ + 4.0 * lambda + 1e-7);
     ++n;
     tir += F == 1.0;
     failed_entering_t += above && !reflect && p.failed;

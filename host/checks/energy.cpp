@@ -57,6 +57,8 @@ double record_unit(EnergyReport& rep, const EnergyUnit& u, const std::vector<dou
   for (size_t r = 0; r < R; ++r) {
     b.push_back(b_sum[r] / double(done));
     a.push_back(e[r] - b[r]);  // same shifted points: A and B share their noise
+    // a glass cell: E_R and E_T integrated apart (glass_units), E their sum on each replicate
+    if (u.has_second) a[r] = e[r], e[r] += b[r];
   }
   t.E[u.index] = replicate_stats(e);
   t.A[u.index] = replicate_stats(a);
@@ -160,7 +162,8 @@ class PilotThenFresh {
         }
       }
       std::vector<Estimate> est = in_.run(specs, want, rep_.opt.seed);
-      const uint64_t used = in_.samples_used(want);
+      // the points each replicate took (a BsdfFlux replicate: 5·2^k of them, Integrator::mis_points)
+      const uint64_t used = specs.empty() || est.empty() ? in_.samples_used(want) : est.front().samples;
       rep_.samples += used * specs.size();
       for (size_t k = 0; k < group.size(); ++k) {
         Progress& p = prog_[group[k]];
@@ -251,6 +254,7 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
   const TermSelection sel = add_energy_subjects(rep);
   const double b0 = rt.build_stats().seconds;
   Integrator in = opt.fp64 ? Integrator(rt, build_energy_fp64_program(rt, sel)) : Integrator(rt, sel);
+  in.set_mis_replicates(1);  // a glass cell's BsdfFlux: each of the R streams one RQMC replicate
   rep.build_seconds = rt.build_stats().seconds - b0;
 
   uint32_t stream = 0;

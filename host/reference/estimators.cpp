@@ -142,6 +142,18 @@ void owen_sobol_2d(uint32_t k, uint32_t s0, uint32_t s1, double& u0, double& u1)
   u1 = u01_open(owen_scramble(y, s1));
 }
 
+double owen_sobol_dim3(uint32_t k, uint32_t s) {
+  // Sobol's third dimension (Joe & Kuo 2008: primitive polynomial x² + x + 1,
+  // m_1 = 1, m_2 = 3, m_j = 2 m_{j-1} ^ 4 m_{j-2} ^ m_{j-2}), digit j of k
+  // adding m_{j+1} / 2^{j+1}
+  uint64_t m[34] = {0, 1, 3};
+  for (int j = 3; j <= 32; ++j) m[j] = (2 * m[j - 1]) ^ (4 * m[j - 2]) ^ m[j - 2];
+  uint32_t x = 0;
+  for (int j = 0; j < 32; ++j)
+    if ((k >> j) & 1u) x ^= uint32_t(m[j + 1] << (31 - j));
+  return u01_open(owen_scramble(x, s));
+}
+
 // mfv energy's proposal (twin of energy_weight in kernels/albedo.cl): o
 // reflected about a visible normal of the GGX shape of width w.
 // The GGX shape, written from Walter et al. 2007 eq. 33 as a function of the
@@ -184,6 +196,19 @@ glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, 
 }
 
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) { return sample_vis(o, u_phi, u_r, w, w); }
+
+MisPoint mis_point(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  const uint32_t n = s.points, k = uint32_t(index % n), n_def = n / 10, n_vis = n - 2 * n_def;
+  const auto shift = philox(seed, s.stream, draw_word(s, 3), index / n);
+  MisPoint p;
+  p.vis = k < n_vis, p.cosine = k >= n_vis + n_def;
+  const uint32_t j = p.vis ? k : p.cosine ? k - n_vis - n_def : k - n_vis;
+  // scramble seeds (u_phi, u_r, the third dimension): words (0, 1, 2), (2, 3, 0), (3, 2, 1) by share
+  const uint32_t a = p.vis ? 0 : p.cosine ? 3 : 2, b = p.vis ? 1 : p.cosine ? 2 : 3, c = p.vis ? 2 : p.cosine ? 1 : 0;
+  owen_sobol_2d(j, shift[a], shift[b], p.u_phi, p.u_r);
+  p.u_c = owen_sobol_dim3(j, shift[c]);
+  return p;
+}
 
 namespace {
 
@@ -229,14 +254,10 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 // over the mixture c = (15/16, 1/32, 1/32) (Veach 1997 eq. 9.13), each point
 // weighted c_t n / n_t: f cos / (Σ c_t p_t).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  const uint32_t n = s.points, k = uint32_t(index % n), n_def = n / 10, n_vis = n - 2 * n_def;
-  const auto shift = philox(seed, s.stream, draw_word(s, 3), index / n);
-  const bool vis = k < n_vis, cosine = k >= n_vis + n_def;
-  const uint32_t j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
-  double u_phi, u_r;
-  if (vis) owen_sobol_2d(j, shift[0], shift[1], u_phi, u_r);
-  else if (cosine) owen_sobol_2d(j, shift[3], shift[2], u_phi, u_r);
-  else owen_sobol_2d(j, shift[2], shift[3], u_phi, u_r);
+  const MisPoint p = mis_point(s, seed, index);
+  const bool vis = p.vis, cosine = p.cosine;
+  const uint32_t n = s.points, n_def = n / 10, n_vis = n - 2 * n_def;
+  const double u_phi = p.u_phi, u_r = p.u_r;
   const double wx = s.width, wy = s.width_y > 0 ? s.width_y : s.width;
   const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
   const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);

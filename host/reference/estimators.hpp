@@ -81,6 +81,16 @@ glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w);
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, double wy);
 // Point k of the Owen-scrambled 2D Sobol sequence with scramble seeds s0, s1 (AlbedoMis's points).
 void owen_sobol_2d(uint32_t k, uint32_t s0, uint32_t s1, double& u0, double& u1);
+// Point k of Sobol's third dimension, Owen-scrambled with seed s (bsdf_furnace's side of the whole sphere).
+double owen_sobol_dim3(uint32_t k, uint32_t s);
+// Point index = r n + k of an AlbedoMis or BsdfFlux integral (n = s.points): replicate r's
+// scramble seeds (Philox draw 3 at counter r), the share of point k (the first 4n/5 visible
+// normals, the next n/10 Cauchy slopes, the last n/10 the cosine lobe) and its coordinates.
+struct MisPoint {
+  bool vis = false, cosine = false;
+  double u_phi = 0, u_r = 0, u_c = 0;
+};
+MisPoint mis_point(const IntegralRef& s, uint64_t seed, uint64_t index);
 
 // Reciprocity pair `index` of integral `stream` (twin of the `reciprocity` kernel).
 void reciprocity_pair(uint64_t seed, uint32_t stream, uint32_t stream_hi, uint32_t index, glm::dvec3& a,

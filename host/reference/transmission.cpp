@@ -39,6 +39,21 @@ double reflection(const IntegralRef& s, const glm::dvec3& i, const glm::dvec3& o
   return F * btdf_g2(s.bsdf & 1, g1i, g1o) * d_at(s, h) / (4.0 * std::fabs(i.z) * std::fabs(o.z));
 }
 
+// The BSDF under test at (i, o) in the surface's frame: the reflection lobe
+// where o lies on i's side, the BTDF (MFV_BTDF_CODE s.bsdf) on the other.
+double bsdf_value(const IntegralRef& s, const glm::dvec3& i, const glm::dvec3& o) {
+  if (i.z * o.z > 0.0) return reflection(s, i, o);
+  BtdfSpec b;
+  b.d = s.brdf.d;
+  b.g = s.brdf.g;
+  b.form = s.bsdf & 1;
+  b.variant = s.bsdf >> 1;
+  b.pd = s.brdf.pd;
+  b.pg = s.brdf.pg;
+  b.eta = s.eta;
+  return btdf(b, i, o);
+}
+
 // The density of o under the proposal (twin of bsdf_proposal_pdf), in the
 // surface's frame: η_i, η_o the absolute indices of i's and o's sides.
 double proposal_pdf(const IntegralRef& s, const glm::dvec3& i, const glm::dvec3& o) {
@@ -99,23 +114,108 @@ double flux_sample(const IntegralRef& s, const std::array<uint32_t, 4>& r, doubl
   if (lobe != MFV_LOBE_ALL && reflected != (lobe == MFV_LOBE_REFLECT)) return 0.0;
   const double p = proposal_pdf(s, i, o);
   if (!(p > 0.0)) return 0.0;
-  BtdfSpec b;
-  b.d = s.brdf.d;
-  b.g = s.brdf.g;
-  b.form = s.bsdf & 1;
-  b.variant = s.bsdf >> 1;
-  b.pd = s.brdf.pd;
-  b.pg = s.brdf.pg;
-  b.eta = s.eta;
-  const double f = reflected ? reflection(s, i, o) : btdf(b, i, o);
-  return f * std::fabs(o.z) / p;
+  return bsdf_value(s, i, o) * std::fabs(o.z) / p;
+}
+
+// The exact dielectric Fresnel in Snell's form (Born & Wolf; twin of the
+// estimator's flux_fresnel, not of the BSDF's): c = cos of incidence on the
+// facet, eta = η_t / η_i; 1 under total internal reflection.
+double fresnel_snell(double c, double eta) {
+  const double sin_t2 = (1.0 - c * c) / (eta * eta);
+  if (sin_t2 >= 1.0) return 1.0;
+  const double ct = std::sqrt(1.0 - sin_t2);
+  const double rs = (c - eta * ct) / (c + eta * ct), rp = (eta * c - ct) / (eta * c + ct);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// GGX of width w as a shape (Walter et al. 2007 eq. 33) and its Smith G1
+// (eq. 34): the visible normals' density G1(i) max(0, i·h) D(h) / (i·n)
+// (Heitz 2018 eq. 3), in the frame where i is above.
+double visible_normal_pdf(const glm::dvec3& h, const glm::dvec3& i, double w) {
+  const double ih = glm::dot(i, h);
+  if (h.z <= 0.0 || ih <= 0.0) return 0.0;
+  const double c2 = h.z * h.z, t2 = (h.x * h.x + h.y * h.y) / c2, w2 = w * w;
+  const double d = 1.0 / (M_PI * w2 * c2 * c2 * (1.0 + t2 / w2) * (1.0 + t2 / w2));
+  const double ti2 = (i.x * i.x + i.y * i.y) / (i.z * i.z);
+  const double g1 = 2.0 / (1.0 + std::sqrt(1.0 + w2 * ti2));
+  return g1 * ih * d / i.z;
+}
+
+// bsdf_furnace's flux (twin of bsdf_flux_mis in kernels/transmission.cl):
+// point k of replicate r (index = r n + k, n = s.points), the shares and
+// scramble seeds of albedo_mis above (4n/5 visible normals at i, n/10 Cauchy
+// slopes, n/10 cosine lobe; Philox draw 3 at counter r) and Sobol's third
+// dimension (scrambled by words 2, 0, 1 of the shares) that picks the side where the
+// integral takes both lobes: the visible normals reflect with the chance
+// fresnel_snell, the defensive pair with 1/2. Written in the frame where i
+// is above (relative index seen from i), o mirrored back for the BSDF.
+double flux_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
+  const MisPoint p = mis_point(s, seed, index);
+  const bool vis = p.vis, cosine = p.cosine;
+  const uint32_t n = s.points, n_def = n / 10, n_vis = n - 2 * n_def;
+  const double u_phi = p.u_phi, u_r = p.u_r, u_c = p.u_c;
+  const bool below = s.side == MFV_SIDE_BELOW;
+  const double eta = below ? 1.0 / s.eta : s.eta, w = s.width;
+  const glm::dvec3 i(std::sqrt((1.0 - s.cos_o) * (1.0 + s.cos_o)), 0.0, s.cos_o);
+  // the chance of the reflected side at a facet with i·m = c, by share
+  auto reflect_chance = [&](bool visible, double cm) {
+    if (s.lobe == MFV_LOBE_REFLECT) return 1.0;
+    if (s.lobe == MFV_LOBE_TRANSMIT) return 0.0;
+    return visible ? fresnel_snell(cm, eta) : 0.5;
+  };
+  glm::dvec3 o;
+  if (cosine) {
+    const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
+    o = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
+    if (!(u_c < reflect_chance(false, 1.0))) o.z = -o.z;
+  } else {
+    double cm, s2;
+    const glm::dvec3 m = vis ? sample_vis(i, u_phi, u_r, w) : sample_m(1.0, u_phi, u_r, w, cm, s2);
+    const double im = glm::dot(i, m);
+    if (!(im > 0.0)) return 0.0;
+    if (u_c < reflect_chance(vis, im)) {
+      o = 2.0 * im * m - i;  // eq. 39
+      if (!(o.z > 0.0)) return 0.0;
+    } else if (!refract(i, m, 1.0 / eta, o) || !(o.z < 0.0)) {
+      return 0.0;  // eq. 40; none under total internal reflection
+    }
+  }
+  // the mixture's density of o: c = (15/16, 1/32, 1/32), each share times its chance of o's side
+  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
+  double q;
+  if (o.z > 0.0) {
+    const glm::dvec3 h = glm::normalize(i + o);
+    const double ih = glm::dot(i, h), chance = reflect_chance(false, ih);
+    q = c_vis * reflect_chance(true, ih) * visible_normal_pdf(h, i, w) / (4.0 * ih) +
+        c_def * chance * pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h)) + c_def * chance * o.z / M_PI;
+  } else {
+    q = c_def * (1.0 - reflect_chance(false, 1.0)) * -o.z / M_PI;
+    glm::dvec3 h = -(i + eta * o);  // eq. 16 with η_i = 1, η_o = eta
+    const double len = glm::length(h);
+    if (len > 0.0) {
+      h /= len;
+      if (h.z < 0.0) h = -h;
+      const double ih = glm::dot(i, h), oh = glm::dot(o, h);
+      if (ih > 0.0 && oh < 0.0) {
+        const double jac = eta * eta * -oh / ((ih + eta * oh) * (ih + eta * oh));  // eq. 17
+        q += (c_vis * (1.0 - reflect_chance(true, ih)) * visible_normal_pdf(h, i, w) +
+              c_def * (1.0 - reflect_chance(false, ih)) * pdf_slope(h.z, h.x * h.x + h.y * h.y, w)) *
+             jac;
+      }
+    }
+  }
+  if (!(q > 0.0)) return 0.0;
+  // the BSDF in the surface's frame: i and o mirrored when the light comes from below
+  const double up = below ? -1.0 : 1.0;
+  const glm::dvec3 is(i.x, i.y, up * i.z), os(o.x, o.y, up * o.z);
+  const double f = bsdf_value(s, is, os);
+  const double share = vis ? c_vis * n / n_vis : c_def * n / n_def;
+  return share * f * std::fabs(o.z) / q;
 }
 
 }  // namespace
 
-double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) {
-  return flux_sample(s, philox(seed, s.stream, draw_word(s, 0), index), s.cos_o, s.side, s.lobe);
-}
+double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index) { return flux_mis(s, seed, index); }
 
 double bsdf_avg(const IntegralRef& s, uint64_t seed, uint64_t index) {
   // Hemispherical averages T_avg = 2 ∫ E_T(μ) μ dμ of the light from below

@@ -95,7 +95,7 @@ uint32_t Integrator::mis_points(uint64_t requested) const {
   // 5·2^(m-2) points: 2^m visible normals and two defensive shares of 2^(m-3)
   // (kernels/albedo.cl albedo_mis_microfacet), each a whole Sobol net; the
   // largest such count within the budget, at least 20 (m = 4)
-  const uint64_t n = (samples_used(requested) + kMisReplicates - 1) / kMisReplicates;
+  const uint64_t n = (samples_used(requested) + mis_replicates_ - 1) / mis_replicates_;
   if (n > (uint64_t(1) << 26)) throw Error(fmt::format("{} samples per integral is too many", requested));
   uint64_t points = 20;
   while (2 * points <= n) points *= 2;
@@ -112,12 +112,12 @@ Sampling sampling_of(int32_t check) {
     case IntegralKind::DNorm:     // stratified radius (where the proposal has one width)
     case IntegralKind::EavgRqmc:  // stratified view cosine²
       return Sampling::Stratified;
-    case IntegralKind::AlbedoMis: return Sampling::Replicates;  // points per RQMC replicate
+    case IntegralKind::AlbedoMis:  // points per RQMC replicate
+    case IntegralKind::BsdfFlux: return Sampling::Replicates;
     case IntegralKind::Masking:
     case IntegralKind::Albedo:
     case IntegralKind::AlbedoRqmc:
     case IntegralKind::AlbedoRqmcB:
-    case IntegralKind::BsdfFlux:
     case IntegralKind::MaskingT:
     case IntegralKind::BsdfAvg: return Sampling::Iid;
   }
@@ -275,28 +275,32 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
 // one row per replicate) and sum_values (one sum per row).
 std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
-  std::vector<Sums> out(specs.size() * kMisReplicates);
+  std::vector<Sums> out(specs.size() * mis_replicates_);
   std::map<std::string, std::vector<size_t>> by_kernel;  // specialized per term pair where the program has it
   for (size_t i = 0; i < specs.size(); ++i) {
     // isotropic catalog terms take the vectorized albedo_mis_microfacet (specialized where the
     // program has it); anisotropic terms, whole models and user code albedo_mis_general
     const IntegralSpec& s = specs[i];
     const bool iso = s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && fast_albedo_available_;
-    by_kernel[iso ? kernel_for("albedo_mis_values", s) : std::string("albedo_mis_general_values")].push_back(i);
+    const bool flux = s.check == static_cast<int32_t>(IntegralKind::BsdfFlux);  // kernels/transmission.cl
+    by_kernel[flux  ? std::string("bsdf_flux_mis_values")
+              : iso ? kernel_for("albedo_mis_values", s)
+                    : std::string("albedo_mis_general_values")]
+        .push_back(i);
   }
   for (const auto& [kernel, at] : by_kernel) {
     std::vector<IntegralSpec> group;
     for (size_t i : at) group.push_back(specs[i]);
     const std::vector<Sums> sums = sums_mis(group, kernel, seed);
     for (size_t j = 0; j < at.size(); ++j)
-      std::copy_n(sums.begin() + j * kMisReplicates, kMisReplicates, out.begin() + at[j] * kMisReplicates);
+      std::copy_n(sums.begin() + j * mis_replicates_, mis_replicates_, out.begin() + at[j] * mis_replicates_);
   }
   return out;
 }
 
 std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, const std::string& kernel,
                                                    uint64_t seed) {
-  const size_t rows = specs.size() * kMisReplicates;
+  const size_t rows = specs.size() * mis_replicates_;
   std::vector<Sums> out(rows);
   if (specs.empty()) return out;
   const uint32_t n = specs.front().points;  // points per replicate, the same for every spec of a run
@@ -319,7 +323,7 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
     const size_t count = std::min(per_launch, rows - row0);
     k.setArg(0, spec_buf);
     k.setArg(1, static_cast<cl_ulong>(seed));
-    k.setArg(2, static_cast<cl_uint>(kMisReplicates));
+    k.setArg(2, static_cast<cl_uint>(mis_replicates_));
     k.setArg(3, static_cast<cl_uint>(row0));
     k.setArg(4, values);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, 1));
@@ -386,7 +390,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   std::vector<size_t> general_at, mis_at;
   std::map<std::pair<std::string, std::string>, std::vector<size_t>> fast_at;  // by values kernel, specialized
   for (size_t j = 0; j < specs.size(); ++j) {
-    if (specs[j].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) {
+    if (sampling_of(specs[j].check) == Sampling::Replicates) {
       if (!(specs[j].width > 0) || specs[j].estimator != 0)
         throw Error("internal: AlbedoMis takes integrals with a proposal width > 0 (kernels/albedo.cl albedo_mis_general)");
       mis.push_back(specs[j]);
@@ -422,12 +426,12 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   std::vector<Estimate> out(specs.size());
   const auto ms = sums_mis(mis, seed);
   for (size_t j = 0; j < mis.size(); ++j) {
-    std::vector<double> rep(kMisReplicates);
-    for (uint32_t r = 0; r < kMisReplicates; ++r) rep[r] = ms[j * kMisReplicates + r].sum;
-    out[mis_at[j]] = replicate_estimate(rep.data(), kMisReplicates, mis[j].points);
+    std::vector<double> rep(mis_replicates_);
+    for (uint32_t r = 0; r < mis_replicates_; ++r) rep[r] = ms[j * mis_replicates_ + r].sum;
+    out[mis_at[j]] = replicate_estimate(rep.data(), mis_replicates_, mis[j].points);
   }
   for (size_t i = 0; i < specs.size(); ++i) {
-    if (specs[i].check == static_cast<int32_t>(IntegralKind::AlbedoMis)) continue;
+    if (sampling_of(specs[i].check) == Sampling::Replicates) continue;
     const double s = sums[i].sum, ss = sums[i].sumsq;
     Estimate& e = out[i];
     e.samples = n;

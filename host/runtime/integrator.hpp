@@ -11,6 +11,7 @@
 #include "runtime/opencl.hpp"
 #include "util/progress.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <set>
 #include <string>
@@ -113,6 +114,10 @@ class Integrator {
   // samples: the largest 5·2^(m-2) <= samples_used / kMisReplicates, at
   // least 20 (the kernel's shares 2^m, 2^(m-3), 2^(m-3), each a whole net).
   uint32_t mis_points(uint64_t requested) const;
+  // Replicates per AlbedoMis or BsdfFlux integral (default kMisReplicates).
+  // mfv energy takes 1: its own R streams are the replicates, and each then
+  // holds one Sobol net of up to the whole point budget.
+  void set_mis_replicates(uint32_t r) { mis_replicates_ = std::max<uint32_t>(1, r); }
   // Sets `strata` as run() does, for callers that need the same samples
   // elsewhere (sample_values, the reference).
   void stratify(std::vector<IntegralSpec>& specs, uint64_t samples) const;
@@ -171,6 +176,7 @@ class Integrator {
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
   std::set<std::string> kernel_names_, launched_;
+  uint32_t mis_replicates_ = kMisReplicates;
   size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less
   progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read
   uint64_t group_samples_ = 0;      // samples per work-group slice in the current run()
