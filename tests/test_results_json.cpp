@@ -28,7 +28,7 @@ std::vector<PointResult> varied_points(size_t n) {
     p.params = {{"alpha", 0.01 * double(i + 1)}, {"cos_o", 1.0 / double(i + 1)}};
     p.estimate = i % 7 == 3 ? std::numeric_limits<double>::quiet_NaN() : 1.0 + 1e-3 * double(i);
     p.z = i % 11 == 5 ? std::numeric_limits<double>::infinity() : -0.5 * double(i);
-    p.stderr_ = 1e-4 / double(i + 1);
+    p.stderr_ = i % 29 == 6 ? 1e-320 : 1e-4 / double(i + 1);  // a subnormal (a glass cell's SE) reads back
     p.samples = 4096 * i;
     p.known = i % 5 == 1;
     p.known_value = 0.9 - 1e-5 * double(i);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 
 namespace mfv {
 namespace {
@@ -19,7 +20,8 @@ namespace {
 // and stays a few tens of bytes per record.
 double sig(double x, int n) {
   if (!std::isfinite(x) || x == 0) return x;
-  return std::stod(fmt::format("{:.{}g}", x, n));
+  // strtod, not stod: a subnormal (a bound of 1e-320) reads back, stod throws out_of_range
+  return std::strtod(fmt::format("{:.{}g}", x, n).c_str(), nullptr);
 }
 
 std::string params_text(const PointResult& p) {
