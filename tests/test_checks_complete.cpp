@@ -36,7 +36,7 @@ bool integrates(const CheckKind& k) { return k.runner == Runner::Integral || k.r
 IntegralSpec probe_spec(const CheckKind& k) {
   IntegralSpec s = test::albedo_spec("ggx", "smith_ggx_correlated", "none", 0.3, 0.7, 0.0, 0.0, 1, k.kind);
   if (k.kind == IntegralKind::DNorm || k.kind == IntegralKind::EavgRqmc) s.strata = kProbeSamples;
-  if (k.kind == IntegralKind::AlbedoMis) s.points = kProbeSamples / 4;
+  if (k.kind == IntegralKind::AlbedoMis || k.kind == IntegralKind::BsdfFlux) s.points = kProbeSamples / 4;
   if (k.domain == Domain::Sphere) {  // a rough dielectric BSDF's: glass, entered, the transmitted flux
     s.bsdf = MFV_BTDF_CODE(MFV_BTDF_CORRELATED, MFV_BTDF_OK);
     s.eta = 1.5f;
