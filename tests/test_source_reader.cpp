@@ -3,9 +3,11 @@
 // compiler sees them, whatever comments, strings, macros and conditional
 // compilation surround them (issue 28: a `/* */` comment used to end the
 // reading, so a D that integrates to 2 was silently skipped).
+#include "checks/suite.hpp"
 #include "test_files.hpp"
 #include "user/source_reader.hpp"
 #include "user/user_brdf.hpp"
+#include "user/user_detail.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
@@ -90,4 +92,25 @@ TEST_CASE("The tokenizer keeps offsets and lines, and knows comments from code",
   CHECK(t[5].text == "#define X  2");
   CHECK(t[6].kind == Token::Char);
   CHECK(t[6].line == 5);
+}
+
+TEST_CASE("The user grids reach the declared roughness range's ends, down to a declared alpha of 1e-4",
+          "[check][reader]") {
+  // issue 28: the furnace, energy, agree and d_norm grids started at alpha = 0.01
+  // whatever the file declared, so its narrowest lobes were never tested
+  const Scratch s("mfv_reader_grid");
+  const UserBrdf u = load(s, "// mfv: param alpha 1e-4 0.7 default 0.3 roughness\n" + kBrdf);
+  for (const std::vector<double>& alphas : {suite_alphas(), suite_norm_alphas(), std::vector<double>{0.01, 0.5}}) {
+    for (size_t most : {size_t(6), size_t(64)}) {
+      const auto grid = user_detail::roughness_grid(u, alphas, most);
+      REQUIRE(grid.size() >= 2);
+      CHECK(grid.front()[0] == Approx(1e-4));
+      CHECK(grid.back()[0] == Approx(0.7));
+      for (auto& v : grid) CHECK((v[0] >= 1e-4 && v[0] <= 0.7));
+    }
+  }
+  // planted: a range the suite's widths cover already adds no end point of its own
+  const UserBrdf inside = load(s, "// mfv: param alpha 0.01 1 default 0.3 roughness\n" + kBrdf);
+  const auto grid = user_detail::roughness_grid(inside, {0.01, 0.1, 1.0}, 64);
+  CHECK(grid.size() == 3);
 }
