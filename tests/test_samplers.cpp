@@ -104,7 +104,8 @@ TEST_CASE("mfv samplers passes on the device and planted sampler defects fail it
   CHECK(line_starting(bad.out, "cauchy_slopes").find("FAIL") != std::string::npos);
 
   // visible normals drawn for the unstretched view (a classic slip): vis_pdf_i no longer matches
-  auto bad2 = planted_samplers("real ox = w * vx, oy = w * vy, oz = vz;", "real ox = vx, oy = vy, oz = vz;");
+  // (sample_vis_c is sample_vis_aniso_c at wx = wy = w)
+  auto bad2 = planted_samplers("real ox = wx * vx, oy = wy * vy, oz = vz;", "real ox = vx, oy = vy, oz = vz;");
   INFO(bad2.out);
   CHECK(bad2.code == 1);
   // at w = 1 stretching is the identity, so only the two w = 0.3 cases can see it
