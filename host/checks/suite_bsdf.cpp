@@ -18,7 +18,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <set>
 #include <tuple>
 
 namespace mfv {
@@ -68,24 +70,38 @@ std::mutex truth_lock;
 std::map<TruthKey, Truth> truth_cache;
 
 void compute_truths(const std::vector<TruthKey>& keys) {
-  std::vector<TruthKey> todo;
+  // Each key once: the known-bad entries share their correct entry's truths.
+  std::set<TruthKey> todo;
   {
     std::lock_guard<std::mutex> g(truth_lock);
     for (const TruthKey& k : keys)
-      if (!truth_cache.count(k)) todo.push_back(k);
+      if (!truth_cache.count(k)) todo.insert(k);
   }
-  std::vector<Truth> out(todo.size());
-  parallel_for(todo.size(), host_threads(), [&](size_t j) {
-    const auto& [b, alpha, eta, side, cos_i] = todo[j];
+  const std::vector<TruthKey> items(todo.begin(), todo.end());  // sorted: one BSDF and width after another
+  // One quadrature (nodes and D) per BSDF and width, shared by its indices,
+  // sides and views: a truth then costs its view's sweep alone.
+  std::vector<std::pair<const Bsdf*, double>> widths;
+  for (const TruthKey& k : items)
+    if (widths.empty() || widths.back() != std::make_pair(std::get<0>(k), std::get<1>(k)))
+      widths.emplace_back(std::get<0>(k), std::get<1>(k));
+  std::vector<std::unique_ptr<const BsdfFluxQuadrature>> fine(widths.size()), coarse(widths.size());
+  parallel_for(widths.size(), host_threads(), [&](size_t j) {
+    const auto& [b, alpha] = widths[j];
     const ref::BtdfSpec s{b->d, b->g, b->form, MFV_BTDF_OK, native_from_alpha(b->d->roughness, alpha),
-                          native_from_alpha(b->g->roughness, alpha), eta};
-    const BsdfFlux fine = bsdf_flux_truth(s, cos_i, side == MFV_SIDE_BELOW, kTruthFine);
-    const BsdfFlux coarse = bsdf_flux_truth(s, cos_i, side == MFV_SIDE_BELOW, kTruthCoarse);
-    out[j] = {fine.reflected, fine.transmitted,
-              std::max(std::fabs(fine.reflected - coarse.reflected), std::fabs(fine.transmitted - coarse.transmitted))};
+                          native_from_alpha(b->g->roughness, alpha)};
+    fine[j] = std::make_unique<const BsdfFluxQuadrature>(s, kTruthFine);
+    coarse[j] = std::make_unique<const BsdfFluxQuadrature>(s, kTruthCoarse);
+  });
+  std::vector<Truth> out(items.size());
+  parallel_for(items.size(), host_threads(), [&](size_t j) {
+    const auto& [b, alpha, eta, side, cos_i] = items[j];
+    const size_t w = std::lower_bound(widths.begin(), widths.end(), std::make_pair(b, alpha)) - widths.begin();
+    const BsdfFlux f = fine[w]->flux(cos_i, side == MFV_SIDE_BELOW, eta);
+    const BsdfFlux c = coarse[w]->flux(cos_i, side == MFV_SIDE_BELOW, eta);
+    out[j] = {f.reflected, f.transmitted, std::max(std::fabs(f.reflected - c.reflected), std::fabs(f.transmitted - c.transmitted))};
   });
   std::lock_guard<std::mutex> g(truth_lock);
-  for (size_t j = 0; j < todo.size(); ++j) truth_cache.emplace(todo[j], out[j]);
+  for (size_t j = 0; j < items.size(); ++j) truth_cache.emplace(items[j], out[j]);
 }
 
 Truth truth_of(const TruthKey& k) {

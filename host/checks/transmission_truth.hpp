@@ -23,4 +23,20 @@ struct BsdfFlux {
 // wrong side of the surface is lost (the single-scattering model's loss).
 BsdfFlux bsdf_flux_truth(const ref::BtdfSpec& s, double cos_i, bool from_below, const ProductRule& rule);
 
+// bsdf_flux_truth's view-independent part at one BSDF (D, G, form, widths;
+// s.eta is not read) and one rule: the rule's nodes and D at each, computed
+// once for every view, index and side (the suite sweeps 96 of them per BSDF
+// and width). flux() walks the nodes once for E_R and E_T together and gives
+// bsdf_flux_truth's bits (the same terms summed in the same order).
+class BsdfFluxQuadrature {
+ public:
+  BsdfFluxQuadrature(const ref::BtdfSpec& s, const ProductRule& rule);
+  BsdfFlux flux(double cos_i, bool from_below, double eta) const;  // eta: as BtdfSpec::eta
+
+ private:
+  ref::BtdfSpec s_;
+  NormalNodes nodes_;
+  std::vector<double> d_;  // D(m) at each node
+};
+
 }  // namespace mfv

@@ -31,13 +31,13 @@ void visit_nodes(const Tc& t_c, const ProductRule& rule, Node node, PhiEnd phi_e
   for (int b = 0; b < rule.phi_panels; ++b)
     for (int j = 0; j < rule.order; ++j) {
       const double phi = hp * (2 * b + 1 + gl.x[j]);
-      const double tc = t_c(phi);
+      const double tc = t_c(phi), cos_phi = std::cos(phi), sin_phi = std::sin(phi);  // once per φ node
       for (size_t a = 0; a + 1 < edges.size(); ++a) {
         const double t0 = tc * edges[a], ht = 0.5 * tc * (edges[a + 1] - edges[a]);
         for (int i = 0; i < rule.order; ++i) {
           const double t = t0 + ht * (gl.x[i] + 1.0);
           const double st = std::sqrt(t * (2.0 - t));  // sin θ from t without cancellation
-          node(glm::dvec3(st * std::cos(phi), st * std::sin(phi), 1.0 - t), gl.w[i] * ht);
+          node(glm::dvec3(st * cos_phi, st * sin_phi, 1.0 - t), gl.w[i] * ht);
         }
       }
       phi_end(2.0 * gl.w[j] * hp);
@@ -73,6 +73,20 @@ double horizon_cut(const glm::dvec3& o, double phi) {
 QuadratureResult integrate_normals(const std::function<double(const glm::dvec3&)>& g, const ProductRule& rule) {
   return product(
       g, [](double) { return 1.0; }, rule);
+}
+
+NormalNodes normal_nodes(const ProductRule& rule) {
+  NormalNodes n;
+  visit_nodes([](double) { return 1.0; }, rule,
+              [&](const glm::dvec3& m, double w) {
+                n.weight.push_back(w);
+                n.m.push_back(m);
+              },
+              [&](double phi_weight) {
+                if (n.phi_weight.empty()) n.per_phi = n.weight.size();
+                n.phi_weight.push_back(phi_weight);
+              });
+  return n;
 }
 
 ReflectedNodes reflected_nodes(const glm::dvec3& o, const ProductRule& rule) {

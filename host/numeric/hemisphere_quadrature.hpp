@@ -31,6 +31,19 @@ struct QuadratureResult {
 // ∫ g(m) dω over the hemisphere of m (D normalization: g = D(m)(m·n)).
 QuadratureResult integrate_normals(const std::function<double(const glm::dvec3& m)>& g, const ProductRule& rule);
 
+// The nodes of integrate_normals's rule in its summation order: per φ node,
+// `per_phi` t nodes. They do not depend on the integrand, so integrals over
+// one rule can share them (checks/transmission_truth.cpp sweeps many views);
+// summed as integrate_normals sums, Σ_j phi_weight[j] Σ_k weight[k] g(m[k]),
+// they give its bits.
+struct NormalNodes {
+  size_t per_phi = 0;
+  std::vector<double> phi_weight;  // the φ node's weight (times 2 for φ ∈ [π, 2π])
+  std::vector<double> weight;      // the t node's weight
+  std::vector<glm::dvec3> m;       // the normal
+};
+NormalNodes normal_nodes(const ProductRule& rule);
+
 // ∫ f(i) dω_i over the upper hemisphere of light directions i, taken over
 // half vectors h = (i + o)/|i + o| with dω_i = 4 (o·h) dω_h (Walter et al.
 // 2007 eq. 14), so a BRDF lobe is resolved where D peaks. For each φ_h the
