@@ -76,7 +76,7 @@ TEST_CASE("the glass layout holds (eta, roughness) widths, eta and 1/eta ascendi
   const std::vector<double> eta = layout_eta_axis(*g.layout, 4);
   REQUIRE(eta.size() == 8);
   CHECK(eta[4] == 1.01);
-  CHECK(eta[7] == 10);
+  CHECK(eta[7] == 100);
   for (size_t k = 0; k < 4; ++k) CHECK(eta[3 - k] == 1.0 / eta[4 + k]);  // leaving: the inverses
   EnergyOptions o;
   apply_energy_layout(o, g);
@@ -217,8 +217,8 @@ TEST_CASE("mfv energy --compare refuses bad glass tables with one line and exit 
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"no_eta.csv", "mu,roughness,E\n0.5,0.5,0.9\n"},                          // a glass layout needs eta
       {"missing.csv", head + ok.substr(0, ok.rfind('\n', ok.size() - 2) + 1)},  // one cell short
-      {"off_axis.csv", head + std::regex_replace(ok, std::regex("^0.166666667,0.166666667,0.1,"),
-                                                 "0.166666667,0.166666667,0.15,")},  // eta off its axis
+      {"off_axis.csv", head + std::regex_replace(ok, std::regex(fmt::format("^0.166666667,0.166666667,{:.9g},", eta[0])),
+                                                 fmt::format("0.166666667,0.166666667,{:.9g},", 1.5 * eta[0]))},  // eta off its axis
       {"nan.csv", head + std::regex_replace(ok, std::regex(",0.9\n$"), ",nan\n")},
       {"short.h", "static const float e[53] = {" + short_list + "};"},  // 54 per quantity
   };

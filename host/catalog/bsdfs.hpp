@@ -33,7 +33,11 @@ struct Bsdf {
   double abs_floor = 1e-30;
   // The relative index eta = η_below/η_above, both sides: > 1 entering from
   // above, < 1 leaving (total internal reflection beyond the critical angle).
-  Param eta{"eta", 0.1, 10.0, 1.5, "index below / index above (1/eta: the other side)"};
+  // [0.01, 100]: issue 29's glass tables (a renderer's 16x16x16 table spans
+  // eta ~1.01..100 on each side); bsdf_furnace's float kernel gives E_R = F(mu)
+  // and E_T = 1 - F(mu) within total SE at eta = 100 and 1/100
+  // (tests/test_bsdf_flux_mis.cpp). The dielectric F term alone keeps [0.1, 10].
+  Param eta{"eta", 0.01, 100.0, 1.5, "index below / index above (1/eta: the other side)"};
   int code() const;  // MFV_BTDF_CODE(form, variant)
 };
 

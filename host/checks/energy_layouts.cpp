@@ -32,18 +32,18 @@ const std::vector<EnergyLayout>& energy_layouts() {
       // log-spaced over the BSDFs' declared range, entering (eta) and leaving (1/eta).
       {"glass", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
        "Walter et al. 2007 rough dielectric flux: E = E_R + E_T of the light from mu; mu = (x+1/2)/N, "
-       "r = (y+1/2)/N, alpha = r^2, eta: N indices log-spaced 1.01..10 and their inverses (leaving)",
-       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the 2N eta slices, N rows each, eta slowest", "log:1.01:10", 0},
+       "r = (y+1/2)/N, alpha = r^2, eta: N indices log-spaced 1.01..100 and their inverses (leaving)",
+       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the 2N eta slices, N rows each, eta slowest", "log:1.01:100", 0},
       // The same, one side only: a renderer's entering table and its leaving (inverse-eta) table apart.
       {"glass-enter", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
-       "Walter et al. 2007 rough dielectric flux, entering: as glass, eta: N indices log-spaced 1.01..10",
-       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the N eta slices, N rows each, eta slowest", "log:1.01:10",
+       "Walter et al. 2007 rough dielectric flux, entering: as glass, eta: N indices log-spaced 1.01..100",
+       "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the N eta slices, N rows each, eta slowest", "log:1.01:100",
        +1},
       {"glass-leave", "centers", "centers", RoughnessAxis::R2, {"E", "E_R", "E_T", "E_avg"}, "walter_ggx_correlated",
        "Walter et al. 2007 rough dielectric flux, leaving: as glass, relative index 1/eta, eta: N indices log-spaced "
-       "1.01..10 (1/eta ascending)",
+       "1.01..100 (1/eta ascending)",
        "E, E_R, E_T: R = E, G = E_R, B = E_T; an atlas of the N 1/eta slices, N rows each, 1/eta slowest",
-       "log:1.01:10", -1},
+       "log:1.01:100", -1},
   };
   return layouts;
 }

@@ -20,7 +20,7 @@ struct EnergyLayout {
   std::string models;                   // the D/G it is made of unless --models says
   std::string source;                   // who ships it, and where it is defined
   std::string image_channels;           // what a PNG/EXR of it holds, channel by channel
-  // A glass layout's index axis: a range form with N left out ("log:1.01:10"),
+  // A glass layout's index axis: a range form with N left out ("log:1.01:100"),
   // the relative indices entered; the layout holds them and their inverses
   // (leaving), ascending. Empty: no eta axis.
   std::string eta_form;

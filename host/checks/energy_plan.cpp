@@ -4,6 +4,7 @@
 #include "checks/integrate.hpp"
 #include "checks/suite.hpp"
 #include "abi/bsdf.h"
+#include "catalog/bsdfs.hpp"
 #include "catalog/roughness.hpp"
 #include "util/error.hpp"
 
@@ -80,9 +81,11 @@ void validate_energy_options(const EnergyOptions& o) {
                               o.eta.empty() ? "D/G combination or model[case]" : "rough dielectric BSDF"));
   }
   if (!o.eta.empty() && o.eta.size() != o.alpha_axis.size()) throw Error("internal: one eta per width");
+  const Param& eta_range = bsdfs().front().eta;  // every BSDF declares the same range
   for (double e : o.eta)
-    if (!(e >= 0.1 && e <= 10) || e == 1)
-      throw Error(fmt::format("eta = {}: a relative index in [0.1, 10] (the BSDFs' declared range), not 1", e));
+    if (!(e >= eta_range.lo && e <= eta_range.hi) || e == 1)
+      throw Error(fmt::format("eta = {}: a relative index in [{:g}, {:g}] (the BSDFs' declared range), not 1", e,
+                              eta_range.lo, eta_range.hi));
   for (auto& mp : o.model_points)
     for (size_t i = 0; i < mp.model->params.size(); ++i) validate_model_param(*mp.model, i, mp.p[i]);
 }
