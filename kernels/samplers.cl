@@ -8,16 +8,26 @@
 #define SAMPLER_SLOPES 1   // m from the Cauchy-slope branch alone; pdf_slope
 #define SAMPLER_COSINE 2   // m from the cosine-lobe branch alone; cos θ / π
 #define SAMPLER_VIS 3      // light direction reflect(o, sample_vis(o)) at cos_o; vis_pdf_i (i may lie below the horizon)
+#define SAMPLER_FLUX 4     // bsdf_furnace's proposal over the sphere (transmission.cl): o from i at cos_o, relative index eta
 
 // One direction per work-item, written as three floats; Philox draw 3 of
 // stream `which` (a stream no integral uses with draw 3).
-__kernel void draw_samples(int which, float w_in, float cos_o, ulong seed, __global float* out) {
+__kernel void draw_samples(int which, float w_in, float cos_o, float eta, ulong seed, __global float* out) {
   size_t k = get_global_id(0);
   uint4 r = mfv_philox(seed, (uint)which, 3, (ulong)k);
   real u_pick = u01_open(r.x), u_phi = u01_open(r.y), u_r = u01_open(r.z);
   real w = (real)w_in;
   real3 d;
-  if (which == SAMPLER_VIS) {
+  if (which == SAMPLER_FLUX) {
+    // one draw of the mixture of shares c = (15/16, 1/32, 1/32) picked by u_pick, the
+    // whole sphere (MFV_LOBE_ALL); its density is flux_mis_pdf; (0,0,0) where it gives none
+    real co = (real)cos_o, ox, oy, oz;
+    bool vis = u_pick < MIS_C_VIS, cosine = !(u_pick < MIS_C_VIS + MIS_C_SLOPE);
+    if (!flux_mis_direction(vis, cosine, u_phi, u_r, u01_open(r.w), sqrt(sin2_from_cos(co)), co, w, (real)eta,
+                            MFV_LOBE_ALL, &ox, &oy, &oz))
+      ox = oy = oz = R(0.0);
+    d = (real3)(ox, oy, oz);
+  } else if (which == SAMPLER_VIS) {
     real co = (real)cos_o;
     real3 o = (real3)(sqrt(sin2_from_cos(co)), R(0.0), co);
     real3 m = sample_vis(o, u_phi, u_r, w);

@@ -203,6 +203,41 @@ static inline uint sobol_dim3(uint k) {
   return x;
 }
 
+// The direction o one share of bsdf_furnace's proposal draws for the light
+// from i = (ix, 0, iz) above (relative index eta seen from i) from the
+// uniforms (u_phi, u_r) of its normal and u_c of its side: the cosine lobe
+// (vis and cosine false: Cauchy slopes), o reflected about (eq. 39) or
+// refracted through (eq. 40) the normal m by flux_p_reflect. 0 where the
+// draw gives no direction (a facet facing away, total internal reflection
+// on the refracted side, o on the wrong side): the proposal is a
+// sub-probability, flux_mis_pdf its density (mfv samplers tests both).
+static inline bool flux_mis_direction(bool vis, bool cosine, real u_phi, real u_r, real u_c, real ix, real iz, real w,
+                                      real eta, uint lobe, real* pox, real* poy, real* poz) {
+  real ox, oy, oz;
+  if (cosine) {
+    cosine_direction(u_phi, u_r, &ox, &oy, &oz);
+    if (!(u_c < flux_p_reflect(lobe, false, R(1.0), eta))) oz = -oz;
+  } else {
+    real mx, my, mz, s2;
+    if (vis) sample_vis_c(ix, R(0.0), iz, u_phi, u_r, w, &mx, &my, &mz);
+    else sample_m_c(false, u_phi, u_r, w, &mx, &my, &mz, &s2);
+    real im = ix * mx + iz * mz;
+    if (!(im > R(0.0))) return false;  // a facet facing away (or a degenerate one): no output
+    if (u_c < flux_p_reflect(lobe, vis, im, eta)) {
+      ox = R(2.0) * im * mx - ix, oy = R(2.0) * im * my, oz = R(2.0) * im * mz - iz;
+      if (!(oz > R(0.0))) return false;
+    } else {
+      real kk = R(1.0) / eta, t2 = R(1.0) - kk * kk * (R(1.0) - im * im);
+      if (t2 <= R(0.0)) return false;
+      real a = kk * im - sqrt(t2);
+      ox = a * mx - kk * ix, oy = a * my, oz = a * mz - kk * iz;
+      if (!(oz < R(0.0))) return false;
+    }
+  }
+  *pox = ox, *poy = oy, *poz = oz;
+  return true;
+}
+
 // Point k of n of a replicate with seeds `shift` (the points and shares of
 // albedo_mis_microfacet: 4n/5 visible normals, n/10 Cauchy slopes, n/10 the
 // cosine lobe, each on Owen-scrambled Sobol points, multi-sample MIS with
@@ -226,26 +261,7 @@ static inline real bsdf_flux_mis(__global const IntegralSpec* s, uint4 shift, ui
   const uint lobe = s->lobe;
   real iz = s->cos_o, ix = sqrt(sin2_from_cos(iz)), w = s->width;
   real ox, oy, oz;
-  if (cosine) {
-    cosine_direction(u_phi, u_r, &ox, &oy, &oz);
-    if (!(u_c < flux_p_reflect(lobe, false, R(1.0), eta))) oz = -oz;
-  } else {
-    real mx, my, mz, s2;
-    if (vis) sample_vis_c(ix, R(0.0), iz, u_phi, u_r, w, &mx, &my, &mz);
-    else sample_m_c(false, u_phi, u_r, w, &mx, &my, &mz, &s2);
-    real im = ix * mx + iz * mz;
-    if (!(im > R(0.0))) return R(0.0);  // a facet facing away (or a degenerate one): no output
-    if (u_c < flux_p_reflect(lobe, vis, im, eta)) {
-      ox = R(2.0) * im * mx - ix, oy = R(2.0) * im * my, oz = R(2.0) * im * mz - iz;
-      if (!(oz > R(0.0))) return R(0.0);
-    } else {
-      real kk = R(1.0) / eta, t2 = R(1.0) - kk * kk * (R(1.0) - im * im);
-      if (t2 <= R(0.0)) return R(0.0);
-      real a = kk * im - sqrt(t2);
-      ox = a * mx - kk * ix, oy = a * my, oz = a * mz - kk * iz;
-      if (!(oz < R(0.0))) return R(0.0);
-    }
-  }
+  if (!flux_mis_direction(vis, cosine, u_phi, u_r, u_c, ix, iz, w, eta, lobe, &ox, &oy, &oz)) return R(0.0);
   real q = flux_mis_pdf(ix, iz, ox, oy, oz, w, eta, lobe);
   if (!(q > R(0.0))) return R(0.0);
   real f = oz > R(0.0) ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, R(0.0), below * iz, ox, oy, below * oz, s->pd,

@@ -46,6 +46,14 @@ inline const Plant kGgxPiRounded = {"D_ggx with pi rounded to 3.1416", "terms_d.
                                     "real d = R(1.0) / (MFV_PI * a2 * k * k);",
                                     "real d = R(1.0) / (R(3.1416) * a2 * k * k);"};
 
+// bsdf_furnace's proposal refracting with the relative index inverted
+// (kernels/transmission.cl, flux_mis_direction: eta where Walter et al. 2007
+// eq. 40 takes η_i/η_o = 1/eta): its draws no longer follow flux_mis_pdf
+// (issue 29: mfv samplers' sphere chi-square sees it).
+inline const Plant kFluxRefractEtaInverted = {"bsdf_furnace's proposal refracting with eta inverted",
+                                              "transmission.cl", "real kk = R(1.0) / eta, t2",
+                                              "real kk = eta, t2"};
+
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
 }  // namespace mfv::test

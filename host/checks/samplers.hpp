@@ -12,18 +12,22 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace mfv {
 
 // Ids shared with kernels/samplers.cl (SAMPLER_*).
-enum class Sampler : int { Mixture = 0, Slopes = 1, Cosine = 2, Vis = 3 };
+// Flux: bsdf_furnace's proposal of o over the whole sphere (kernels/transmission.cl,
+// flux_mis_direction / flux_mis_pdf), light from i at cos_o, relative index eta.
+enum class Sampler : int { Mixture = 0, Slopes = 1, Cosine = 2, Vis = 3, Flux = 4 };
 
 struct SamplerCase {
   Sampler sampler;
-  double width;  // proposal width w
-  double cos_o;  // view (Vis only)
+  double width;      // proposal width w
+  double cos_o;      // view (Vis), light (Flux)
+  double eta = 1.0;  // relative index seen from the light (Flux only)
 };
 
 std::string sampler_name(Sampler s);
@@ -33,8 +37,15 @@ std::vector<SamplerCase> default_sampler_cases();
 // (for Vis: over light directions on the whole sphere).
 double sampler_pdf(const SamplerCase& c, const glm::dvec3& d);
 // ∫ pdf dω by tensor Gauss-Legendre refined geometrically towards the lobe's
-// peak (for Vis, over half vectors with the reflection Jacobian 4 o·h).
+// peak (for Vis, over half vectors with the reflection Jacobian 4 o·h; for
+// Flux over the sphere of o, split where the density is not smooth).
 double sampler_pdf_total(const SamplerCase& c);
+// The chance that a draw gives no direction (0 but for Flux, a sub-probability:
+// a facet facing away, total internal reflection, o on the wrong side), by
+// quadrature over the normals the shares draw: ∫pdf + lost = 1.
+double sampler_lost_mass(const SamplerCase& c);
+// Flux's ∫pdf dω with the density `pdf` (sampler_pdf_total: its own; tests plant a wrong one).
+double flux_pdf_total(const SamplerCase& c, const std::function<double(const glm::dvec3&)>& pdf);
 // n draws of the reference twin, on the Philox uniforms the kernel uses.
 std::vector<glm::dvec3> reference_draws(const SamplerCase& c, uint64_t n, uint64_t seed);
 
@@ -49,7 +60,7 @@ struct SamplersOptions {
 struct SamplerResult {
   SamplerCase c;
   std::string impl;  // "device" or "reference"
-  double pdf_total = 0;
+  double pdf_total = 0, lost_mass = 0;  // ∫pdf dω and the chance of no direction: they sum to 1
   double chi2 = 0, p_value = 0, level = 0;
   int dof = 0;
   uint64_t lost = 0;       // draws outside the binned domain or not finite

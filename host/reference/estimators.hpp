@@ -65,6 +65,16 @@ double sample_value(const IntegralRef& s, uint64_t seed, uint64_t index);
 double bsdf_flux(const IntegralRef& s, uint64_t seed, uint64_t index);
 double masking_t(const IntegralRef& s, uint64_t seed, uint64_t index);
 double bsdf_avg(const IntegralRef& s, uint64_t seed, uint64_t index);
+// bsdf_furnace's proposal alone (twins of flux_mis_direction and flux_mis_pdf
+// in kernels/transmission.cl), for mfv samplers: light from i above, eta the
+// relative index seen from i, lobe MFV_LOBE_*. The direction one share (vis,
+// cosine, else Cauchy slopes) draws from its uniforms, false where it gives
+// none (the proposal is a sub-probability); the shares' mixture density of o
+// over the sphere, c = (15/16, 1/32, 1/32); a share's chance of reflecting.
+bool flux_mis_direction(bool vis, bool cosine, double u_phi, double u_r, double u_c, const glm::dvec3& i, double w,
+                        double eta, uint32_t lobe, glm::dvec3& o);
+double flux_mis_pdf(const glm::dvec3& i, const glm::dvec3& o, double w, double eta, uint32_t lobe);
+double flux_reflect_chance(uint32_t lobe, bool visible, double cm, double eta);
 
 // The proposals on their own (twins of kernels/integrate.cl), for mfv
 // samplers' quadrature and chi-square tests. Densities are over solid angle.

@@ -141,6 +141,66 @@ double visible_normal_pdf(const glm::dvec3& h, const glm::dvec3& i, double w) {
   return g1 * ih * d / i.z;
 }
 
+}  // namespace
+
+// The chance of the reflected side at a facet with i·m = cm, by share (as
+// flux_p_reflect): the visible normals reflect with fresnel_snell, the
+// defensive pair with 1/2, where the integral takes both lobes.
+double flux_reflect_chance(uint32_t lobe, bool visible, double cm, double eta) {
+  if (lobe == MFV_LOBE_REFLECT) return 1.0;
+  if (lobe == MFV_LOBE_TRANSMIT) return 0.0;
+  return visible ? fresnel_snell(cm, eta) : 0.5;
+}
+
+bool flux_mis_direction(bool vis, bool cosine, double u_phi, double u_r, double u_c, const glm::dvec3& i, double w,
+                        double eta, uint32_t lobe, glm::dvec3& o) {
+  if (cosine) {
+    const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
+    o = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
+    if (!(u_c < flux_reflect_chance(lobe, false, 1.0, eta))) o.z = -o.z;
+    return true;
+  }
+  double cm, s2;
+  const glm::dvec3 m = vis ? sample_vis(i, u_phi, u_r, w) : sample_m(1.0, u_phi, u_r, w, cm, s2);
+  const double im = glm::dot(i, m);
+  if (!(im > 0.0)) return false;
+  if (u_c < flux_reflect_chance(lobe, vis, im, eta)) {
+    o = 2.0 * im * m - i;  // eq. 39
+    return o.z > 0.0;
+  }
+  return refract(i, m, 1.0 / eta, o) && o.z < 0.0;  // eq. 40; none under total internal reflection
+}
+
+double flux_mis_pdf(const glm::dvec3& i, const glm::dvec3& o, double w, double eta, uint32_t lobe) {
+  // the mixture's density of o: c = (15/16, 1/32, 1/32), each share times its chance of o's side
+  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
+  double q;
+  if (o.z > 0.0) {
+    const glm::dvec3 h = glm::normalize(i + o);
+    const double ih = glm::dot(i, h), chance = flux_reflect_chance(lobe, false, ih, eta);
+    q = c_vis * flux_reflect_chance(lobe, true, ih, eta) * visible_normal_pdf(h, i, w) / (4.0 * ih) +
+        c_def * chance * pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h)) + c_def * chance * o.z / M_PI;
+  } else {
+    q = c_def * (1.0 - flux_reflect_chance(lobe, false, 1.0, eta)) * -o.z / M_PI;
+    glm::dvec3 h = -(i + eta * o);  // eq. 16 with η_i = 1, η_o = eta
+    const double len = glm::length(h);
+    if (len > 0.0) {
+      h /= len;
+      if (h.z < 0.0) h = -h;
+      const double ih = glm::dot(i, h), oh = glm::dot(o, h);
+      if (ih > 0.0 && oh < 0.0) {
+        const double jac = eta * eta * -oh / ((ih + eta * oh) * (ih + eta * oh));  // eq. 17
+        q += (c_vis * (1.0 - flux_reflect_chance(lobe, true, ih, eta)) * visible_normal_pdf(h, i, w) +
+              c_def * (1.0 - flux_reflect_chance(lobe, false, ih, eta)) * pdf_slope(h.z, h.x * h.x + h.y * h.y, w)) *
+             jac;
+      }
+    }
+  }
+  return q;
+}
+
+namespace {
+
 // bsdf_furnace's flux (twin of bsdf_flux_mis in kernels/transmission.cl):
 // point k of replicate r (index = r n + k, n = s.points), the shares and
 // scramble seeds of albedo_mis above (4n/5 visible normals at i, n/10 Cauchy
@@ -153,62 +213,18 @@ double flux_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const MisPoint p = mis_point(s, seed, index);
   const bool vis = p.vis, cosine = p.cosine;
   const uint32_t n = s.points, n_def = n / 10, n_vis = n - 2 * n_def;
-  const double u_phi = p.u_phi, u_r = p.u_r, u_c = p.u_c;
   const bool below = s.side == MFV_SIDE_BELOW;
   const double eta = below ? 1.0 / s.eta : s.eta, w = s.width;
   const glm::dvec3 i(std::sqrt((1.0 - s.cos_o) * (1.0 + s.cos_o)), 0.0, s.cos_o);
-  // the chance of the reflected side at a facet with i·m = c, by share
-  auto reflect_chance = [&](bool visible, double cm) {
-    if (s.lobe == MFV_LOBE_REFLECT) return 1.0;
-    if (s.lobe == MFV_LOBE_TRANSMIT) return 0.0;
-    return visible ? fresnel_snell(cm, eta) : 0.5;
-  };
   glm::dvec3 o;
-  if (cosine) {
-    const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
-    o = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
-    if (!(u_c < reflect_chance(false, 1.0))) o.z = -o.z;
-  } else {
-    double cm, s2;
-    const glm::dvec3 m = vis ? sample_vis(i, u_phi, u_r, w) : sample_m(1.0, u_phi, u_r, w, cm, s2);
-    const double im = glm::dot(i, m);
-    if (!(im > 0.0)) return 0.0;
-    if (u_c < reflect_chance(vis, im)) {
-      o = 2.0 * im * m - i;  // eq. 39
-      if (!(o.z > 0.0)) return 0.0;
-    } else if (!refract(i, m, 1.0 / eta, o) || !(o.z < 0.0)) {
-      return 0.0;  // eq. 40; none under total internal reflection
-    }
-  }
-  // the mixture's density of o: c = (15/16, 1/32, 1/32), each share times its chance of o's side
-  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
-  double q;
-  if (o.z > 0.0) {
-    const glm::dvec3 h = glm::normalize(i + o);
-    const double ih = glm::dot(i, h), chance = reflect_chance(false, ih);
-    q = c_vis * reflect_chance(true, ih) * visible_normal_pdf(h, i, w) / (4.0 * ih) +
-        c_def * chance * pdf_slope(h.z, h.x * h.x + h.y * h.y, w) / (4.0 * glm::dot(o, h)) + c_def * chance * o.z / M_PI;
-  } else {
-    q = c_def * (1.0 - reflect_chance(false, 1.0)) * -o.z / M_PI;
-    glm::dvec3 h = -(i + eta * o);  // eq. 16 with η_i = 1, η_o = eta
-    const double len = glm::length(h);
-    if (len > 0.0) {
-      h /= len;
-      if (h.z < 0.0) h = -h;
-      const double ih = glm::dot(i, h), oh = glm::dot(o, h);
-      if (ih > 0.0 && oh < 0.0) {
-        const double jac = eta * eta * -oh / ((ih + eta * oh) * (ih + eta * oh));  // eq. 17
-        q += (c_vis * (1.0 - reflect_chance(true, ih)) * visible_normal_pdf(h, i, w) +
-              c_def * (1.0 - reflect_chance(false, ih)) * pdf_slope(h.z, h.x * h.x + h.y * h.y, w)) *
-             jac;
-      }
-    }
-  }
+  if (!flux_mis_direction(vis, cosine, p.u_phi, p.u_r, p.u_c, i, w, eta, s.lobe, o)) return 0.0;
+  const double q = flux_mis_pdf(i, o, w, eta, s.lobe);
   if (!(q > 0.0)) return 0.0;
   // the BSDF in the surface's frame: i and o mirrored when the light comes from below
   const double up = below ? -1.0 : 1.0;
   const glm::dvec3 is(i.x, i.y, up * i.z), os(o.x, o.y, up * o.z);
   const double f = bsdf_value(s, is, os);
+  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
   const double share = vis ? c_vis * n / n_vis : c_def * n / n_def;
   return share * f * std::fabs(o.z) / q;
 }

@@ -9,8 +9,14 @@
 namespace mfv {
 namespace {
 
+// The relative index of a transmission sampler (Flux), "" for the others.
+std::string eta_of(const SamplerResult& r, const char* sep) {
+  return r.c.sampler == Sampler::Flux ? fmt::format("{}{:.4g}", sep, r.c.eta) : "";
+}
+
 std::string stem_of(const SamplerResult& r) {
-  return fmt::format("chi2_{}_w{:g}_cos{:g}_{}", sampler_name(r.c.sampler), r.c.width, r.c.cos_o, r.impl);
+  return fmt::format("chi2_{}_w{:g}_cos{:g}{}_{}", sampler_name(r.c.sampler), r.c.width, r.c.cos_o, eta_of(r, "_eta"),
+                     r.impl);
 }
 
 // (observed - expected) / sqrt(expected) of cell k; a cell with nothing
@@ -52,8 +58,8 @@ std::string script_of(const SamplerResult& r, const std::string& stem) {
   const auto [counts, diff] = ranges_of(r);
   std::string gp = fmt::format("set terminal pngcairo size 1500,460 font ',9'\nset output '{}.png'\n", stem);
   gp += fmt::format("set multiplot layout 1,3 title '{}: χ^2 = {:.1f}, {} dof, p = {:.3g} (level {:.3g}): {}'\n",
-                    gnuplot_literal(fmt::format("{} w = {:g}, cos_o = {:g}, {} draws", sampler_name(r.c.sampler),
-                                                r.c.width, r.c.cos_o, r.impl)),
+                    gnuplot_literal(fmt::format("{} w = {:g}, cos_o = {:g}{}, {} draws", sampler_name(r.c.sampler),
+                                                r.c.width, r.c.cos_o, eta_of(r, ", eta = "), r.impl)),
                     r.chi2, r.dof, r.p_value, r.level, r.pass() ? "pass" : "FAIL");
   gp += "set xlabel 'φ (deg)'\nset ylabel 'cos θ'\nset xrange [0:360]\n";
   gp += fmt::format("set yrange [{:g}:1]\nset palette rgb 33,13,10\nset cbrange [0:{:g}]\n", r.cos_low, counts);
