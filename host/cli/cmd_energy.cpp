@@ -72,7 +72,7 @@ struct EnergyCommand : SharedValues {
                     "(default --target 1e-5)");
     target_opt = cmd->add_option("--target", opt.target,
                     "standard error per cell to reach (default 1e-4); cells above it get more points, up to the cap");
-    cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 8)");
+    cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 32)");
     cmd->add_option("--max-points", opt.max_points, "cap on points per replicate per value (default 16384)");
     SharedOptions(cmd, *this)
         .seed(opt.seed)
