@@ -118,7 +118,10 @@ static inline real G_smith_ggx(real NoL, real NoV, real NoH, real VoH, real alph
 static inline real G_smith_ggx_correlated(real NoL, real NoV, real NoH, real VoH, real alpha) {
   // Heitz 2014 eq. 99 (height-correlated): 1 / (1 + Λ(L) + Λ(V))
   real g = R(1.0) / (R(1.0) + Lambda_ggx(NoL, alpha) + Lambda_ggx(NoV, alpha));
-  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
+  // select form, as G_implicit, with the compare written `> 0 ? g : 0`: as
+  // `<= 0 ? 0 : g` SLP paired it with D's horizon select and the albedo
+  // kernels stayed scalar (docs/performance.md, "AVX2")
+  return fmin(fmin(NoL, NoV), VoH) > R(0.0) ? g : R(0.0);
 }
 
 static inline real G_hammon_002(real NoL, real NoV, real NoH, real VoH, real alpha) {

@@ -24,6 +24,15 @@ inline const Plant kGgxNoHorizon = {
     "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return NoH <= R(0.0) ? R(0.0) : d;",
     "  real d = R(1.0) / (MFV_PI * a2 * k * k);\n  return d;"};
 
+// G_smith_ggx_correlated's horizon select written `<= 0 ? 0 : g` (the form
+// before issue 31's fix): the same floats, but LLVM's SLP pass pairs it with
+// D's horizon select and the albedo_mis/albedo_rqmc kernels of every D with
+// this G stay scalar, on AVX2 and AVX-512 (tests/test_vectorize_targets.cpp).
+inline const Plant kGgxCorrelatedHorizonPaired = {
+    "G_smith_ggx_correlated's horizon select as <= 0 ? 0 : g", "terms_g.cl",
+    "  return fmin(fmin(NoL, NoV), VoH) > R(0.0) ? g : R(0.0);",
+    "  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).
