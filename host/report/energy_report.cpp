@@ -100,8 +100,9 @@ void print_energy_console(const EnergyReport& rep) {
   }
   fmt::print(
       "accuracy: target standard error {:.1e} per value (R = {} replicates, {}..{} points each); achieved max "
-      "{:.2e} at {}; {} values above target\n",
-      o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target);
+      "{:.2e} at {}; {} values above target; {} run again, fresh, after ending above it\n",
+      o.target, o.replicates, o.min_points, o.max_points, rep.max_se, rep.max_se_at, rep.above_target,
+      rep.topped_up);
   fmt::print(
       "reference (double, identical samples): {} integrals x {} samples, worst relative difference {:.2e} "
       "(bound {:.0e}){}\n",
@@ -252,6 +253,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   j["summary"] = {{"max_se", rep.max_se},
                   {"max_se_at", rep.max_se_at},
                   {"values_above_target", rep.above_target},
+                  {"values_run_again", rep.topped_up},
                   {"seconds", rep.seconds},
                   {"build_seconds", rep.build_seconds},
                   {"samples", rep.samples},
