@@ -29,6 +29,23 @@ static inline real bsdf_reflect_c(int d, int g, int form, real lx, real ly, real
   return F * btdf_g2(form, a, b) * (D / (R(4.0) * lz)) / vz;
 }
 
+// The BSDF's value at i (the fixed direction) and o in the surface's frame:
+// the reflection lobe where o is on i's side, the BTDF on the other. Under
+// mfv check (MFV_USER_BRDF) the user's bsdf, or brdf and btdf
+// (kernels/user_brdf.cl, built after the user's file).
+#ifdef MFV_USER_BRDF
+static inline real user_bsdf_adapter(__global const IntegralSpec* s, real3 i, real3 o);
+#endif
+static inline real spec_bsdf_value(__global const IntegralSpec* s, bool reflected, real ix, real iy, real iz, real ox,
+                                   real oy, real oz) {
+#ifdef MFV_USER_BRDF
+  return user_bsdf_adapter(s, (real3)(ix, iy, iz), (real3)(ox, oy, oz));
+#else
+  return reflected ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, iy, iz, ox, oy, oz, s->pd, s->pg, s->eta)
+                   : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, iz, ox, oy, oz, s->pd, s->pg, s->eta);
+#endif
+}
+
 // Shares of mfv run's sphere proposal for a BSDF's flux (twin: kBsdfCos,
 // kBsdfReflect in host/reference/transmission.cpp): a cosine lobe on each
 // side (defensive), o reflected about and refracted through a normal m of the
@@ -97,9 +114,7 @@ static inline real bsdf_flux_at(__global const IntegralSpec* s, uint4 r, real co
   real p = bsdf_proposal_pdf(ix, iy, iz, ox, oy, oz, s->width, eta);
   if (!(p > R(0.0))) return R(0.0);
   // back to the surface's frame: i (and o) mirrored when i is below
-  real f = reflected ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg,
-                                      s->eta)
-                     : btdf_eval_c(s->d, s->g, s->bsdf, ix, iy, below * iz, ox, oy, below * oz, s->pd, s->pg, s->eta);
+  real f = spec_bsdf_value(s, reflected, ix, iy, below * iz, ox, oy, below * oz);
   return f * fabs(oz) / p;
 }
 
@@ -132,8 +147,13 @@ static inline real masking_t_value(__global const IntegralSpec* s, ulong seed, u
   real3 m = sample_m(u_pick, u_phi, u_r, s->width, &c, &s2);
   real om = ox * m.x + oz * m.z;
   if (om >= R(0.0)) return R(0.0);  // χ+: o below sees the facets with o·m < 0
-  real g1 = eval_G1_aniso(s->g, co, R(0.0), R(0.0), s->pg, s->pg);
-  return g1 * eval_D(s->d, c, s2, s->pd) * -om / (pdf_m(c, s2, s->width) * co);
+#ifdef MFV_USER_BRDF
+  // mfv check: the user's G1 and D (their G1 asked for v below the surface)
+  real g1 = spec_G1(s, (real3)(ox, R(0.0), oz), m, co, c, om), dm = spec_D(s, m, c, s2);
+#else
+  real g1 = eval_G1_aniso(s->g, co, R(0.0), R(0.0), s->pg, s->pg), dm = eval_D(s->d, c, s2, s->pd);
+#endif
+  return g1 * dm * -om / (pdf_m(c, s2, s->width) * co);
 }
 
 // ---- bsdf_furnace's flux (MFV_CHECK_BSDF_FLUX; host: IntegralKind::BsdfFlux) --
@@ -264,10 +284,7 @@ static inline real bsdf_flux_mis(__global const IntegralSpec* s, uint4 shift, ui
   if (!flux_mis_direction(vis, cosine, u_phi, u_r, u_c, ix, iz, w, eta, lobe, &ox, &oy, &oz)) return R(0.0);
   real q = flux_mis_pdf(ix, iz, ox, oy, oz, w, eta, lobe);
   if (!(q > R(0.0))) return R(0.0);
-  real f = oz > R(0.0) ? bsdf_reflect_c(s->d, s->g, s->bsdf & 1, ix, R(0.0), below * iz, ox, oy, below * oz, s->pd,
-                                        s->pg, s->eta)
-                       : btdf_eval_c(s->d, s->g, s->bsdf, ix, R(0.0), below * iz, ox, oy, below * oz, s->pd, s->pg,
-                                     s->eta);
+  real f = spec_bsdf_value(s, oz > R(0.0), ix, R(0.0), below * iz, ox, oy, below * oz);
   real share = vis ? R(1.171875) : R(0.3125);  // c_t n / n_t, as albedo_mis_microfacet
   return share * f * fabs(oz) / q;
 }

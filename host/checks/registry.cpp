@@ -265,7 +265,8 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;  // D and G (F is the exact dielectric one, bsdf and eta carry the rest)
     c.base_samples = kSuiteBaseSamples;
     c.n_view = 6;
-    c.sources = kSourceBsdf | kSourceScene;  // a scene: its refracting materials (KHR_materials_volume)
+    // a scene: its refracting materials (KHR_materials_volume); a user's btdf or bsdf (mfv check)
+    c.sources = kSourceBsdf | kSourceScene | kSourceUser;
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
     c.expect = expect_bsdf_furnace;
     c.verdict = "holds for every rough dielectric BSDF but the known-bad entries (Bsdf::known_bad), which must fail";
@@ -279,7 +280,7 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;
     c.base_samples = kSuiteBaseSamples;
     c.n_view = 8;
-    c.sources = kSourceBsdf | kSourceScene;
+    c.sources = kSourceBsdf | kSourceScene | kSourceUser;  // a user's btdf or bsdf with D and G1 (mfv check)
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) mask a direction below the surface";
     c.expect = expect_transmission_masking;
     c.verdict = "as masking: holds where the BTDF's G1 is its D's Smith G1 (within the fit); the entry with another "
@@ -295,7 +296,8 @@ std::vector<CheckKind> make_kinds() {
     c.terms_read = 2;  // D and G (F is the exact dielectric one)
     c.base_samples = 4 * kSuiteBaseSamples;
     c.expected = 0.0;
-    c.sources = kSourceBsdf | kSourceScene;  // a scene: its refracting materials (KHR_materials_volume)
+    // a scene: its refracting materials (KHR_materials_volume); a user's btdf or bsdf (mfv check)
+    c.sources = kSourceBsdf | kSourceScene | kSourceUser;
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
     c.expect = expect_bsdf_avg;
     c.verdict = "holds for every rough dielectric BSDF but eta_o^2 dropped and F at n.i (at alpha >= 0.3), which "
@@ -310,7 +312,7 @@ std::vector<CheckKind> make_kinds() {
     c.domain = Domain::Sphere;
     c.base_samples = 1024;  // pairs per BSDF, width and index at scale 1 (checks/bsdf_reciprocity.cpp)
     c.expected = 0.0;
-    c.sources = kSourceBsdf;
+    c.sources = kSourceBsdf | kSourceUser;  // a user's btdf or bsdf: host/user/user_transmission.cpp
     c.not_taken = "only the rough dielectric BSDFs (catalog/bsdfs.hpp) transmit";
     c.expect = expect_bsdf_reciprocity;
     c.verdict = "holds for every rough dielectric BSDF but the known-bad entries not symmetric in i and o (eta_o^2 "

@@ -40,8 +40,9 @@ struct CheckCommand : SharedValues {
         "check your own BRDF code (an OpenCL C file) with the suite's checks; exit 0 when every check passes, 1 when "
         "one fails, 2 on bad input");
     cmd->add_option("--brdf", path,
-                    "file defining float3 brdf(float3 wi, float3 wo, const float* params) (optional D and G1), in "
-                    "OpenCL C, GLSL or HLSL (--dialect)");
+                    "file defining float3 brdf(float3 wi, float3 wo, const float* params) (optional D and G1; for "
+                    "transmission btdf, or one bsdf for both hemispheres, with an eta parameter), in OpenCL C, GLSL or "
+                    "HLSL (--dialect)");
     cmd->add_option("--dialect", params.dialect,
                     "glsl, hlsl or opencl (default: from the extension: .glsl .frag .fs glsl; .hlsl .fx hlsl; else "
                     "opencl)");
@@ -53,13 +54,16 @@ struct CheckCommand : SharedValues {
                     "NAME=VALUE fixes a parameter, NAME=LO:HI narrows (or declares) its range");
     cmd->add_option("--roughness", params.roughness,
                     "the parameter that sets the estimators' width: NAME (alpha) or NAME^2 (perceptual roughness)");
+    cmd->add_option("--eta", params.eta,
+                    "the parameter that is a btdf's or bsdf's relative index eta = eta_below / eta_above: NAME");
     cmd->add_option("--as", as,
                     "claim the code implements a catalog model D/G/F (e.g. ggx/smith_ggx_correlated/schlick): adds "
                     "pointwise agreement with the double reference");
     cmd->add_option("--map", map,
                     "model parameter from yours: NAME=PARAM, NAME=PARAM^2 or NAME=NUMBER (e.g. alpha=r^2,f0=f0)");
     cmd->add_option("--check", opt.checks,
-                    "only these checks (d_norm, masking, furnace, energy, reciprocity, finite, agree)");
+                    "only these checks (d_norm, masking, furnace, energy, reciprocity, finite, agree; with a btdf or "
+                    "bsdf: bsdf_furnace, transmission_masking, bsdf_avg_reciprocity, bsdf_reciprocity)");
     cmd->add_option("--channel", channels, "only these RGB channels (r, g, b; default all three)");
     SharedOptions(cmd, *this)
         .seed(opt.seed)

@@ -38,7 +38,9 @@ using namespace dialect_detail;
 namespace {
 
 const std::string kPrefix = "mfv_u_";
-bool contract_name(const std::string& n) { return n == "brdf" || n == "D" || n == "G1"; }
+bool contract_name(const std::string& n) {
+  return n == "brdf" || n == "btdf" || n == "bsdf" || n == "D" || n == "G1";
+}
 
 // The vector/scalar type names of glsl and hlsl, as OpenCL C spells them.
 std::string scalar_or_vector(const std::string& n, Dialect d) {

@@ -33,6 +33,15 @@ double UserBrdf::width(const std::vector<double>& values) const {
   return alpha_from_native(params[size_t(roughness)].role, v);
 }
 
+std::vector<double> UserBrdf::eta_values() const {
+  if (eta < 0) return {};
+  const UserParam& p = params[size_t(eta)];
+  if (p.fixed || p.lo == p.hi) return {p.value};
+  std::vector<double> v = {p.lo, p.value, p.hi};
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
 std::vector<double> UserBrdf::defaults() const {
   std::vector<double> v;
   for (auto& p : params) v.push_back(p.value);
@@ -53,6 +62,8 @@ const std::vector<Contract>& contracts() {
       {"brdf", "float3", {"float3", "float3", "float*"}, "float3 brdf(float3 wi, float3 wo, const float* params)"},
       {"D", "float", {"float3", "float*"}, "float D(float3 m, const float* params)"},
       {"G1", "float", {"float3", "float3", "float*"}, "float G1(float3 v, float3 m, const float* params)"},
+      {"btdf", "float3", {"float3", "float3", "float*"}, "float3 btdf(float3 wi, float3 wo, const float* params)"},
+      {"bsdf", "float3", {"float3", "float3", "float*"}, "float3 bsdf(float3 wi, float3 wo, const float* params)"},
   };
   return c;
 }
@@ -133,13 +144,13 @@ Found find_function(const std::string& path, const std::string& code, const Cont
   return f;
 }
 
-// `// mfv: param NAME LO HI [default V] [roughness|perceptual]`
+// `// mfv: param NAME LO HI [default V] [roughness|perceptual|eta]`
 UserParam parse_declaration(const UserBrdf& u, int line, const std::string& body) {
   auto where = fmt::format("{}:{}", u.path, line);
   std::istringstream in(body);
   std::vector<std::string> t;
   for (std::string w; in >> w;) t.push_back(w);
-  const std::string form = "// mfv: param NAME LO HI [default V] [roughness|perceptual]";
+  const std::string form = "// mfv: param NAME LO HI [default V] [roughness|perceptual|eta]";
   if (t.empty() || t[0] != "param")
     throw Error(fmt::format("{}: unknown mfv directive '{}' (the form is '{}')", where, body, form));
   if (t.size() < 4)
@@ -159,6 +170,8 @@ UserParam parse_declaration(const UserBrdf& u, int line, const std::string& body
       p.role = Roughness::Alpha;
     else if (t[i] == "perceptual")
       p.role = Roughness::Perceptual;
+    else if (t[i] == "eta")
+      p.is_eta = true;
     else
       throw Error(fmt::format("{}: unexpected '{}' in '{}' (the form is '{}')", where, t[i], body, form));
   }
@@ -198,7 +211,7 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
       p->fixed = true;
       return;
     }
-    u.params.push_back({name, v, v, v, true, Roughness::None, 0});
+    u.params.push_back({name, v, v, v, true, Roughness::None, false, 0});
     return;
   }
   if (range.size() != 2) throw Error(fmt::format("{}: '{}' is neither a value nor LO:HI", what, val));
@@ -214,7 +227,7 @@ void apply_cli_param(UserBrdf& u, const std::string& arg) {
     p->value = std::clamp(p->value, lo, hi);
     return;
   }
-  u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, Roughness::None, 0});
+  u.params.push_back({name, lo, hi, 0.5 * (lo + hi), false, Roughness::None, false, 0});
 }
 
 }  // namespace
@@ -266,6 +279,29 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
                               u.params[i].hi));
     u.roughness = int(i);
   }
+  if (!args.eta.empty()) {
+    UserParam* p = find_param(u, args.eta);
+    if (!p)
+      throw Error(fmt::format("--eta {}: no parameter of that name (declare it in the file or with --param)", args.eta));
+    for (auto& q : u.params) q.is_eta = false;
+    p->is_eta = true;
+  }
+  for (size_t i = 0; i < u.params.size(); ++i) {
+    const UserParam& p = u.params[i];
+    if (!p.is_eta) continue;
+    if (u.eta >= 0)
+      throw Error(fmt::format("{}: both {} and {} are marked as eta; mark one", path, u.params[size_t(u.eta)].name,
+                              p.name));
+    if (p.role != Roughness::None)
+      throw Error(fmt::format("{}: {} is marked both as the roughness and as eta; mark one", path, p.name));
+    // eta = eta_below / eta_above: positive; at 1 (index matched) the rough
+    // BTDF is a Dirac in o = -i that no function value represents
+    if (!(p.lo > 0) || !(p.lo > 1 || p.hi < 1))
+      throw Error(fmt::format("eta {} = [{}, {}] must be positive and lie on one side of 1 (at eta = 1 the index "
+                              "is matched: the rough BTDF is a Dirac at wo = -wi, no function value)",
+                              p.name, p.lo, p.hi));
+    u.eta = int(i);
+  }
   if (u.params.size() > kUserMaxParams)
     throw Error(
         fmt::format("{} declares {} parameters; mfv check passes at most {}", path, u.params.size(), kUserMaxParams));
@@ -282,18 +318,34 @@ UserBrdf load_user_brdf(const std::string& path, const UserParamArgs& args) {
     return Found{};
   };
   Found fb = find(contracts()[0]);
-  if (!fb.defined)
-    throw Error(fmt::format("{} defines no '{}' (the function mfv check verifies; see docs/cli/check.md)", path,
-                            contracts()[0].text));
   Found fd = find(contracts()[1]);
   Found fg = find(contracts()[2]);
+  Found ft = find(contracts()[3]);
+  Found fs = find(contracts()[4]);
+  if (!fb.defined && !ft.defined && !fs.defined)
+    throw Error(fmt::format("{} defines no '{}' (the function mfv check verifies), nor a '{}' or '{}' (see "
+                            "docs/cli/check.md)",
+                            path, contracts()[0].text, contracts()[3].text, contracts()[4].text));
+  if (fs.defined && (fb.defined || ft.defined))
+    throw Error(fmt::format("{}:{}: bsdf covers both hemispheres; define bsdf alone, or brdf and btdf", path, fs.line));
+  u.has_brdf = fb.defined;
+  u.has_btdf = ft.defined;
+  u.has_bsdf = fs.defined;
   u.has_d = fd.defined;
   u.has_g1 = fg.defined;
+  if (u.transmits() && u.eta < 0)
+    throw Error(fmt::format("{} defines {} but no parameter is its relative index eta = eta_below / eta_above: "
+                            "declare '// mfv: param eta LO HI default V eta' or mark one with --eta NAME",
+                            path, u.has_bsdf ? "bsdf" : "btdf"));
+  if (!u.transmits() && u.eta >= 0)
+    throw Error(fmt::format("{}: {} is marked as eta, the relative index of a btdf or bsdf, but the file defines "
+                            "neither",
+                            path, u.params[size_t(u.eta)].name));
   UserNames names = user_names(src, u.dialect);
-  for (const Found* f : {&fb, &fd, &fg})
+  for (const Found* f : {&fb, &fd, &fg, &ft, &fs})
     if (f->defined && !f->params_name.empty()) names.guarded.insert(f->params_name);
   // Every params[k] the code reads must be declared.
-  for (const Found* f : {&fb, &fd, &fg}) {
+  for (const Found* f : {&fb, &fd, &fg, &ft, &fs}) {
     if (!f->defined || f->params_name.empty()) continue;
     const std::string& code = src.units[f->unit].code;
     const std::regex use("\\b" + f->params_name + "\\s*\\[\\s*([0-9]+)\\s*\\]");

@@ -21,6 +21,10 @@ struct UserParam {
   // use the width, never the formula: docs/design.md §3): None, Alpha
   // (width = value) or Perceptual (width = value²).
   Roughness role = Roughness::None;
+  // The relative index eta = eta_below / eta_above of a btdf or bsdf
+  // (`eta` in its declaration, or --eta NAME): the transmission checks read
+  // it (docs/cli/check.md, "Transmission: btdf and bsdf").
+  bool is_eta = false;
   int line = 0;  // line of its `// mfv: param` declaration; 0 = from the command line
   // The values the checks use: the default, or the grid of a swept parameter.
   std::vector<double> ends() const;  // lo and hi (one value if fixed or lo == hi)
@@ -37,7 +41,18 @@ struct UserBrdf {
   std::string path, name;  // name: the file's stem, used as the model name
   Dialect dialect = Dialect::OpenCL;
   std::vector<UserSource> sources;  // in the order the compiler reads them, the main file last
+  // Which of the contract's functions the file defines: brdf (wi, wo above),
+  // btdf (wi and wo on opposite sides, radiance form), or one bsdf for both.
+  bool has_brdf = false, has_btdf = false, has_bsdf = false;
   bool has_d = false, has_g1 = false;
+  bool transmits() const { return has_btdf || has_bsdf; }
+  // The reflection on both sides of the interface, as bsdf_furnace needs it:
+  // bsdf, or brdf beside a btdf (then brdf is asked below the surface too).
+  bool reflects_both_sides() const { return has_bsdf || (has_brdf && has_btdf); }
+  int eta = -1;  // index of the relative index parameter (UserParam::is_eta), -1: none
+  // The indices the transmission checks take: the eta parameter's range ends
+  // and its default (its value alone where fixed).
+  std::vector<double> eta_values() const;
   std::vector<UserParam> params;                          // params[k] of the contract
   int roughness = -1;                                     // index of the width parameter, -1: none declared
   double width(const std::vector<double>& values) const;  // proposal width at these parameter values (<= 0: mixture)
@@ -54,6 +69,7 @@ constexpr size_t kUserMaxParams = 6;
 struct UserParamArgs {
   std::vector<std::string> params;    // --param NAME=V or NAME=LO:HI
   std::string roughness;              // --roughness NAME (width = value) or NAME^2 (width = value²)
+  std::string eta;                    // --eta NAME: the relative index of a btdf or bsdf
   std::string dialect;                // --dialect glsl|hlsl|opencl ("": from the extension)
   std::vector<std::string> defines;   // --define NAME=VALUE (or NAME: 1)
   std::vector<std::string> includes;  // --include FILE, read before the file

@@ -64,6 +64,9 @@ cl::Program build_user_program(Runtime& rt, const UserBrdf& u, bool twin = false
     defines.push_back("MFV_DOUBLE");
   }
   if (twin) defines.push_back("MFV_USER_TWIN");
+  if (u.has_brdf) defines.push_back("MFV_USER_HAS_BRDF");
+  if (u.has_btdf) defines.push_back("MFV_USER_HAS_BTDF");
+  if (u.has_bsdf) defines.push_back("MFV_USER_HAS_BSDF");
   if (u.has_d) defines.push_back("MFV_USER_HAS_D");
   if (u.has_g1) defines.push_back("MFV_USER_HAS_G1");
   try {
@@ -241,6 +244,9 @@ std::vector<Plan> make_plans(const UserBrdf& u, const UserCheckOptions& opt, con
                                for (double co : view_cosines(16))
                                  for (int ch : opt.channels) add(p, k.kind, v, co, ch, k.upper_only);
                            break;
+                         case Shape::BsdfFlux:
+                         case Shape::BsdfAvg:
+                         case Shape::MaskingT: add_transmission(p, k, u, opt); break;
                          default: return false;
                        }
                        plans.push_back(p);
@@ -342,7 +348,24 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& user, const std::optiona
     u.claimed_width = [c = *claim](const std::vector<double>& v) { return c.proposal(v); };
   // Which checks: those asked for, each needing what it needs.
   std::vector<std::string> checks = opt.checks;
+  const bool reflect = u.has_brdf || u.has_bsdf;
   auto available = [&](const std::string& c) -> std::string {
+    const CheckKind& k = check_kind(c);
+    // the transmission kinds: those of the catalog's BSDFs the D x G x F grid does not take (agree takes both)
+    const bool transmission = (k.sources & kSourceBsdf) && !(k.sources & kSourceGrid);
+    if (transmission) {
+      if (!u.transmits()) return "needs 'float3 btdf(float3 wi, float3 wo, const float* params)' or a bsdf";
+      if (c == "bsdf_furnace" && !u.reflects_both_sides())
+        return "needs brdf too (E_R + E_T <= 1 reads the reflection on both sides): define brdf beside btdf, or "
+               "one bsdf";
+      if (c == "transmission_masking" && !(u.has_d && u.has_g1))
+        return "needs D and 'float G1(float3 v, float3 m, const float* params)' (G1 asked for v below the surface)";
+      if (k.runner == Runner::Integral && u.roughness < 0)
+        return "needs a roughness parameter (the transmission estimators' proposal width)";
+      return "";
+    }
+    if (!reflect && c != "d_norm" && c != "masking")
+      return "needs 'float3 brdf(float3 wi, float3 wo, const float* params)' (the file defines btdf only)";
     if (c == "d_norm" && !u.has_d) return "needs 'float D(float3 m, const float* params)'";
     if (c == "masking" && !(u.has_d && u.has_g1))
       return "needs D and 'float G1(float3 v, float3 m, const float* params)'";
@@ -412,12 +435,15 @@ SuiteReport run_user_check(Runtime& rt, const UserBrdf& user, const std::optiona
     // sized at the default sample count or above; fewer (--samples, --scale
     // below 1) asks for a quick look, each integral at that count
     if (check_kind(plan.check).upper_only && opt.scale >= 1.0) size_for_power(in, plan, rep, first, z, opt.seed, arm);
+    if (shape_of(check_kind(plan.check)) == Shape::BsdfFlux) merge_flux_points(rep, first);
   }
   auto has = [&](const char* c) { return std::find(checks.begin(), checks.end(), c) != checks.end(); };
   // pointwise steps: a few thousand evaluations per setting (a bound of their count)
   const double settings = double(corners(u, u.defaults()).size()) * 16.0 * double(opt.channels.size());
   arm(settings * 4096 * 2, "the reciprocity pairs");
   if (has("reciprocity")) run_user_reciprocity(rt, prog, in, u, opt, rep);
+  arm(settings * 4096 * 2, "the bsdf_reciprocity pairs");
+  if (has("bsdf_reciprocity")) run_bsdf_reciprocity(rt, prog, u, opt, rep);
   arm(settings * 4096, "the finite census");
   if (has("finite")) run_census(rt, prog, u, opt, rep);
   arm(settings * 4096, "the agreement");

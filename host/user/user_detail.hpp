@@ -27,7 +27,7 @@ std::vector<Values> roughness_grid(const UserBrdf& u, const std::vector<double>&
 std::vector<Values> corners(const UserBrdf& u, const Values& base);
 std::map<std::string, double> named(const UserBrdf& u, const Values& v);
 std::string named_text(const UserBrdf& u, const Values& v);
-IntegralSpec spec_of(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel);
+IntegralSpec user_spec(const UserBrdf& u, IntegralKind kind, const Values& v, double cos_o, int channel);
 PointResult point_of(const UserBrdf& u, const std::string& check, const Values& v);
 
 // The NaN/Inf census over the stability sweep's extremes (check 'finite').
@@ -54,5 +54,18 @@ double agree_error(double v, double rv, double dev, double rounding);
 double rounding_at(double v, double kf);
 void run_agreement(Runtime& rt, const cl::Program& prog, const cl::Program* twin, const UserBrdf& u, const Claim& claim,
                    const UserCheckOptions& opt, SuiteReport& rep);
+
+// The transmission kinds of a btdf or bsdf (user/user_transmission.cpp):
+// add_transmission builds the points of one of the registry's kinds
+// (bsdf_furnace: E_R and E_T of each view as two integrals side by side;
+// bsdf_avg_reciprocity; transmission_masking) at the user's widths and
+// indices; merge_flux_points makes each such pair of rep.points[first..]
+// one point E_R + E_T <= 1, with E_R and E_T in its params and detail;
+// run_bsdf_reciprocity evaluates the generalized reciprocity of the radiance
+// form, f(i,o)/eta_o^2 = f(o,i)/eta_i^2, on pairs (a bounded maximum).
+void add_transmission(Plan& p, const CheckKind& k, const UserBrdf& u, const UserCheckOptions& opt);
+void merge_flux_points(SuiteReport& rep, size_t first);
+void run_bsdf_reciprocity(Runtime& rt, const cl::Program& prog, const UserBrdf& u, const UserCheckOptions& opt,
+                          SuiteReport& rep);
 
 }  // namespace mfv::user_detail
