@@ -84,14 +84,32 @@ TEST_CASE("A correct user BTDF (Walter GGX, brdf and btdf) passes every transmis
   }
 }
 
-TEST_CASE("A correct GLSL bsdf (one function for both hemispheres, the flip form) passes every check",
+TEST_CASE("A correct GLSL bsdf (one function for both hemispheres, the flip form) passes every check on seeds 1 to 3",
           "[check][cli][btdf]") {
-  Run r = check(kBtdfData + "walter_ggx.glsl", "");
+  for (int seed : {1, 2, 3}) {
+    CAPTURE(seed);
+    Run r = check(kBtdfData + "walter_ggx.glsl", "--seed " + std::to_string(seed));
+    INFO(r.out);
+    CHECK(r.code == 0);
+    for (auto* c : {"furnace", "energy", "reciprocity", "finite", "bsdf_furnace", "bsdf_avg_reciprocity",
+                    "bsdf_reciprocity"})
+      CHECK(has_line(r.out, "pass", c));
+  }
+}
+
+TEST_CASE("A btdf that returns a negative value fails bsdf_reciprocity, naming the pair", "[check][cli][btdf]") {
+  const Scratch s("mfv_check_btdf");
+  // planted: the transmitted value's sign flipped where wi is below (light leaving)
+  std::string t = slurp(kBtdfData + "walter_ggx.cl");
+  const std::string from = "  return (float3)(v);\n}\n\n// optional";
+  const size_t at = t.find(from);
+  REQUIRE(at != std::string::npos);
+  t.replace(at, from.size(), "  return (float3)(wi.z < 0.0f ? -v : v);\n}\n\n// optional");
+  Run r = check(s.file("negative.cl", t), "--check bsdf_reciprocity");
   INFO(r.out);
-  CHECK(r.code == 0);
-  for (auto* c : {"furnace", "energy", "reciprocity", "finite", "bsdf_furnace", "bsdf_avg_reciprocity",
-                  "bsdf_reciprocity"})
-    CHECK(has_line(r.out, "pass", c));
+  CHECK(r.code == 1);
+  CHECK(has_line(r.out, "FAIL", "bsdf_reciprocity"));
+  CHECK(r.out.find("beyond rounding inf") != std::string::npos);
 }
 
 TEST_CASE("Each planted BTDF bug fails the transmission check that sees it, on seeds 1 to 3",

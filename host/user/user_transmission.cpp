@@ -272,8 +272,10 @@ void run_bsdf_reciprocity(Runtime& rt, const cl::Program& prog, const UserBrdf& 
         const double eta_i = pairs[j].wi.z > 0 ? 1.0 : eta, eta_o = pairs[j].wo.z > 0 ? 1.0 : eta;
         const double a = double(r[kPairFwd + ch]) / (eta_o * eta_o), b = double(r[kPairRev + ch]) / (eta_i * eta_i);
         double err = std::fabs(a - b) / std::max({std::fabs(a), std::fabs(b), 1e-4});
-        if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
         err = std::max(0.0, err - near_critical_rounding(pairs[j], eta));
+        // a value that is NaN, infinite or negative is no BSDF's: the pair fails whatever the other value
+        if (!std::isfinite(err) || !(a >= 0) || !(b >= 0) || !std::isfinite(a) || !std::isfinite(b))
+          err = std::numeric_limits<double>::infinity();
         if (err > kUserReciprocityBound) ++failing;
         if (err > worst) worst = err, at = j;
       }
