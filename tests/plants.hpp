@@ -63,6 +63,27 @@ inline const Plant kFluxRefractEtaInverted = {"bsdf_furnace's proposal refractin
                                               "transmission.cl", "real kk = R(1.0) / eta, t2",
                                               "real kk = eta, t2"};
 
+// The rough dielectric BTDF's flip for light from below (kernels/btdf.cl)
+// keeping eta where it must take 1/eta: leaving a medium treated as entering
+// it (issue 29: mfv agree over eta in [0.01, 100] sees it).
+inline const Plant kBtdfLeavingEtaNotInverted = {"the BTDF's flip keeping eta for light from below", "btdf.cl",
+                                                 "    eta = R(1.0) / eta;\n  }", "  }"};
+
+// 1 - F of the BTDF at the inverted relative index (kernels/btdf.cl):
+// the Fresnel from the wrong side, its critical angle where the other side's
+// would be (issue 29: mfv agree over eta in [0.01, 100] sees it).
+inline const Plant kBtdfFresnelEtaInverted = {"the BTDF's 1 - F at 1/eta", "btdf.cl",
+                                              "T_dielectric(variant == MFV_BTDF_BAD_F_AT_N ? lz : IoH, eta)",
+                                              "T_dielectric(variant == MFV_BTDF_BAD_F_AT_N ? lz : IoH, R(1.0) / eta)"};
+
+// The BTDF's total-internal-reflection test g² = η² - 1 + c² off by 1e-5
+// (kernels/btdf.cl T_dielectric): a critical cosine moved by 5e-6 at
+// eta = 0.01, about 170 float roundings of g² where its derived rounding
+// bound is about 40 (issue 29: mfv agree's TIR allowance does not hide it).
+inline const Plant kBtdfCriticalAngleShifted = {"the BTDF's TIR test off by 1e-5 in g^2", "btdf.cl",
+                                                "real g2 = (eta - R(1.0)) * (eta + R(1.0)) + c * c;",
+                                                "real g2 = (eta - R(1.0)) * (eta + R(1.0)) + c * c - R(1e-5);"};
+
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
 }  // namespace mfv::test

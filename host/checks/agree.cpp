@@ -207,6 +207,10 @@ struct Evaluator {
           s.h_tilt = bump * (ei + eo) / glm::length(ei * wi + eo * wo);
         }
         if (bump_index == 14) s.f_cos_bump = bump;  // F's facet cosine, as the BRDF's bumped v·h
+        // input 15: the TIR test itself, g² within its derived float rounding
+        // (1 - F at its extremes there: near a small η's critical angle 1 - F
+        // peaks inside that interval, which no bump of one input reaches)
+        if (bump_index == 15) s.g2_slack = std::copysign(btdf_tir_rounding(s.eta, wi, wo, fp64), bump);
         return ref::btdf(s, wi, wo);
       }
       case EvalMode::Brdf: {
@@ -230,7 +234,7 @@ struct Evaluator {
   int inputs() const {
     return aniso()                        ? 13
            : c.mode == EvalMode::Brdf     ? 15
-           : c.mode == EvalMode::Btdf     ? 15
+           : c.mode == EvalMode::Btdf     ? 16
            : directions()                 ? 13
                                           : 11;
   }
@@ -371,7 +375,8 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
     const DrawRanges ranges =
-        draw_ranges(c.d, c.g, c.f, c.model, c.mode == EvalMode::Brdf || c.mode == EvalMode::BrdfAniso);
+        draw_ranges(c.d, c.g, c.f, c.model, c.mode == EvalMode::Brdf || c.mode == EvalMode::BrdfAniso,
+                    c.bsdf ? &c.bsdf->eta : nullptr);
     rt.queue().enqueueWriteBuffer(range_buf, CL_TRUE, 0, sizeof(ranges), ranges.data());
 
     Stats total;

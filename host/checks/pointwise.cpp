@@ -1,5 +1,9 @@
 #include "checks/pointwise.hpp"
 
+#include "reference/btdf.hpp"
+
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -42,6 +46,21 @@ double input_sensitivity(int inputs, double units, bool fp64, const std::functio
   for (int j = 0; j < inputs; ++j)
     for (double s : {b, -b}) dev = std::max(dev, std::fabs(moved(j, s) - reference));  // a NaN leaves dev
   return dev;
+}
+
+// The bound and its derivation: checks/pointwise.hpp.
+double btdf_tir_rounding(double eta_rec, const glm::dvec3& wi, const glm::dvec3& wo, bool fp64) {
+  const double u = 0.5 * rounding_unit(fp64);
+  const double ei = wi.z > 0 ? 1.0 : eta_rec, eo = wo.z > 0 ? 1.0 : eta_rec, eta = eo / ei;
+  const glm::dvec3 h = ref::half_vector_t(wi, wo, eta_rec);
+  const double s = glm::length(wi + eta * wo);  // |η_i i + η_o o| / η_i: the kernel's s after its flip
+  if (!(s > 0.0)) return 0.0;                    // h_t degenerate: the BTDF is 0 there, on both sides
+  const double c = std::min(1.0, std::fabs(glm::dot(wi, h)));
+  const double g2 = (eta - 1.0) * (eta + 1.0) + c * c;
+  const double dc = u * (5.0 + 12.5 * c + 6.0 * eta / s);
+  const double dg2 = u * (3.0 * std::fabs((eta - 1.0) * (eta + 1.0)) + 10.0 * eta * eta + c * c + std::fabs(g2)) +
+                     2.0 * c * dc;
+  return (fp64 ? 2.0 : 1.0) * dg2;
 }
 
 }  // namespace mfv

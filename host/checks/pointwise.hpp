@@ -12,6 +12,8 @@
 #include <cmath>
 #include <functional>
 
+#include <glm/vec3.hpp>
+
 namespace mfv {
 
 // One record as the float harnesses (agree, eval, check) hold it.
@@ -51,5 +53,29 @@ double sweep_ulps(double kernel, double reference, bool fp64);
 // this is the input's, not the formula's.
 double input_sensitivity(int inputs, double units, bool fp64, const std::function<double(int, double)>& moved,
                          double reference);
+
+// The float rounding of the BTDF kernel's total-internal-reflection test
+// g² = (η - 1)(η + 1) + c² (kernels/btdf.cl T_dielectric, c = |i·h|, η the
+// relative index after its flip) against the exact g² at the record's
+// numbers, to first order in the unit roundoff u (2^-24; 2^-53 in float64),
+// with the accuracy OpenCL grants its builtins (sqrt 3 ulp, division 2.5 ulp,
+// an ulp being at most 2u relative):
+//   η = fl(1/η_rec) when light comes from below:      relative 5u
+//   s = fl(i + fl(η o)) componentwise:                 |Δs| ≤ u |s| + 6u η |o|
+//   h = s · fl(1/sqrt(Σ s²)), each product rounded:    a common scale 1.5u + 6u + 5u
+//                                                      and u per component
+//   c = fl(i·h) (three products, two sums):            3u
+//   so |Δc| ≤ u (5 + 12.5 c + 6 η / |s|)   (|Δs|/|s| tilts h; |i|, |o| = 1 + O(u))
+//   g² = fl(fl(fl(η-1) fl(η+1)) + fl(c c)):
+//        |Δg²| ≤ 3u |η² - 1| + 10u η² + u c² + u |g²| + 2c |Δc|.
+// Near the critical angle of a small η (c² ≈ 1 - η²) the exact g² is
+// (η o·h)², 1e-9 at η ≈ 0.01 (η² c ≈ 1e-4): the rounding (≈ 39u = 2.3e-6)
+// decides on which side of the cut the kernel lands, and how far (issue 29:
+// at η 94 and 0.0102 the reference was 0, total internal reflection, and the
+// kernel 1.2e-7 and 1.1e-9). The double reference at a float64 kernel's
+// inputs rounds as much again: twice the bound there.
+// eta_rec: the record's η (η_below/η_above); wi, wo: its directions, as the
+// reference evaluates them.
+double btdf_tir_rounding(double eta_rec, const glm::dvec3& wi, const glm::dvec3& wo, bool fp64);
 
 }  // namespace mfv

@@ -27,7 +27,8 @@ const Param* param(const Term* t, size_t i) { return t && i < t->params.size() ?
 
 }  // namespace
 
-DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model* model, bool diffuse) {
+DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model* model, bool diffuse,
+                       const Param* eta) {
   DrawRanges ranges{};
   if (model) {  // a whole model: its own parameters in every slot, 0 past its count
     for (int k = 0; k < pw::PW_PARAMS; ++k) {
@@ -38,7 +39,7 @@ DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model*
   }
   put_range(ranges, 0, param(d, 0));
   put_range(ranges, 1, param(g, 0));
-  put_range(ranges, 2, param(f, 0));
+  put_range(ranges, 2, eta ? eta : param(f, 0));
   put_range(ranges, 3, param(f, 1));
   for (int k = 4; k < pw::PW_PARAMS; ++k) put_range(ranges, k, nullptr);  // [0, 1]
   ranges[3 * 6 + 1] = 0.0f;                                               // p[6]: whole models only

@@ -29,8 +29,11 @@ struct Model;
 using DrawRanges = std::array<float, pw::PW_RANGE>;
 // The ranges of one case: the terms' parameters (D, G, F p0, F p1), kd in
 // [0, 1] for an assembled BRDF (diffuse = true), 0 elsewhere; a whole model:
-// its own parameters in every slot, 0 past its count.
-DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model* model, bool diffuse);
+// its own parameters in every slot, 0 past its count. A rough dielectric
+// BTDF (eta given): slot 2 takes the BSDF's declared eta range in place of
+// the dielectric F term's.
+DrawRanges draw_ranges(const Term* d, const Term* g, const Term* f, const Model* model, bool diffuse,
+                       const Param* eta = nullptr);
 
 // ---- Extreme: the classes of the sweep ---------------------------------------
 

@@ -29,9 +29,29 @@ double g1_oriented(const BtdfSpec& s, const glm::dvec3& v, const glm::dvec3& m) 
 // and 1 - r² = (1 - r)(1 + r) with each factor in closed form
 // (1 ± r_perp = 2 {η cosθt, cosθi} / (cosθi + η cosθt), 1 ± r_par likewise),
 // so that 1 - F keeps its digits where F -> 1 (grazing, the critical angle).
-double transmittance(double cos_i, double eta) {
+//
+// g2_slack != 0: g² = η² cos²θt known only to ±|g2_slack| (see BtdfSpec).
+// With g = η cosθt, 1 - r_perp² = 4 c g / (c + g)² rises with g up to g = c
+// and 1 - r_par² = 4 η² c g / (η² c + g)² up to g = η² c, then both fall:
+// each half is unimodal in g, so over [g_lo, g_hi] its largest value is at
+// its peak clamped into the interval and its smallest at an end. The sum of
+// the halves' largest (smallest) values bounds 1 - F from above (below). The
+// p half's peak lies inside the rounding interval near the critical angle of
+// a small η (η² c ~ 1e-4 at η = 0.01), where the interval's ends miss it.
+double transmittance(double cos_i, double eta, double g2_slack = 0.0) {
   if (cos_i <= 0.0) return 0.0;
   const double eta2_cos2_t = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
+  if (g2_slack != 0.0) {
+    const double hi2 = eta2_cos2_t + std::fabs(g2_slack);
+    if (hi2 <= 0.0) return 0.0;  // total internal reflection all over the interval
+    const double lo = std::sqrt(std::max(0.0, eta2_cos2_t - std::fabs(g2_slack))), hi = std::sqrt(hi2);
+    const double c = cos_i, e2c = eta * eta * c;
+    const auto t_perp = [&](double g) { return 4.0 * c * g / ((c + g) * (c + g)); };
+    const auto t_par = [&](double g) { return 4.0 * e2c * g / ((e2c + g) * (e2c + g)); };
+    if (g2_slack > 0.0)
+      return 0.5 * (t_perp(std::clamp(c, lo, hi)) + t_par(std::clamp(e2c, lo, hi)));
+    return 0.5 * (std::min(t_perp(lo), t_perp(hi)) + std::min(t_par(lo), t_par(hi)));
+  }
   if (eta2_cos2_t <= 0.0) return 0.0;  // total internal reflection
   const double eta_cos_t = std::sqrt(eta2_cos2_t), cos_t = eta_cos_t / eta;
   const double perp = (2.0 * eta_cos_t / (cos_i + eta_cos_t)) * (2.0 * cos_i / (cos_i + eta_cos_t));
@@ -91,8 +111,8 @@ double btdf(const BtdfSpec& s, const glm::dvec3& i, const glm::dvec3& o) {
   const double G = btdf_g2(s.form, g1_oriented(s, i, h), g1_oriented(s, o, h));
   // Fresnel at the facet, from i's side into o's: relative index η = η_o/η_i
   const double eta = eta_o / eta_i;
-  const double T =
-      transmittance(std::min(1.0, std::fabs(s.variant == MFV_BTDF_BAD_F_AT_N ? i.z : ih) * (1.0 + s.f_cos_bump)), eta);
+  const double T = transmittance(
+      std::min(1.0, std::fabs(s.variant == MFV_BTDF_BAD_F_AT_N ? i.z : ih) * (1.0 + s.f_cos_bump)), eta, s.g2_slack);
   // eq. 21 is homogeneous of degree 0 in (η_i, η_o): divided through by η_i²,
   // η_o² / (η_i i·h + η_o o·h)² = η² / (i·h + η o·h)². The planted variants
   // are the bugs in this relative form.

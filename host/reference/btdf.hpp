@@ -22,6 +22,11 @@ struct BtdfSpec {
   // F's facet cosine |i·h| scaled by (1 + f_cos_bump) (the same allowance:
   // what the kernel's rounding of i·h does to 1 - F near the critical angle)
   double f_cos_bump = 0;
+  // The TIR test g² = η² - 1 + c² moved by up to |g2_slack| (mfv agree's
+  // conditioning allowance near the critical angle: the float rounding of the
+  // kernel's g², checks/agree.cpp): 1 - F taken at its largest over
+  // g² ± |g2_slack| where g2_slack > 0, at its smallest where < 0.
+  double g2_slack = 0;
 };
 
 // f_t(i, o), i = incident, o = outgoing, both pointing away, n = +z: 0 unless
