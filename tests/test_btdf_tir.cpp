@@ -11,6 +11,7 @@
 #include "catalog/bsdfs.hpp"
 #include "checks/agree.hpp"
 #include "checks/pointwise.hpp"
+#include "checks/stability.hpp"
 #include "device_fixture.hpp"
 #include "plants.hpp"
 #include "reference/btdf.hpp"
@@ -20,9 +21,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
+#include <regex>
 
 using namespace mfv;
+
+// The numbers of a worst-point line of mfv stability's BTDF cases
+// ("wi=(x, y, z) wo=(x, y, z) pD=a pG=b eta=e ..."), in order.
+static std::vector<double> hex_numbers(const std::string& line) {
+  std::vector<double> v;
+  static const std::regex num("-?0x[0-9a-fA-F.]+p[-+][0-9]+");
+  for (auto it = std::sregex_iterator(line.begin(), line.end(), num); it != std::sregex_iterator(); ++it)
+    v.push_back(std::strtod(it->str().c_str(), nullptr));
+  return v;
+}
 
 namespace {
 
@@ -187,5 +200,48 @@ TEST_CASE("Over eta in [0.01, 100] mfv agree still fails a BTDF kernel with the 
     REQUIRE(rep.results.size() == 2);
     CAPTURE(plant->name);
     test::check_every_case_fails(rep);
+  }
+}
+
+TEST_CASE("mfv stability sweeps the BTDFs at eta 0.01 and 100 and their worst error is the TIR test's rounding",
+          "[device][stability][btdf]") {
+  // The declared range's ends (catalog/bsdfs.hpp): refracted pairs at 0.01 and
+  // 100, near-critical ones at 0.01. Leaving eta = 100 (relative 0.01) every
+  // refracted pair has g² = (eta o.h)² <= 1e-4, which the kernel forms as
+  // c² - (1 - eta²): its rounding moves 1 - F by up to 3e-3 relative there.
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  StabilityOptions opt;  // the BTDF cases come with the combinations
+  opt.models = false;
+  opt.only = {"BTDF walter_ggx_correlated", "BTDF walter_beckmann_separable", "BTDF walter_phong_correlated"};
+  const StabilityReport rep = run_stability(*rt, opt);
+  REQUIRE(rep.cases.size() == 3);
+  CHECK(rep.gate_pass());
+  for (const StabilityCase& c : rep.cases) {
+    CAPTURE(c.name);
+    CHECK(c.stable);
+    for (const RegionResult& r : c.regions) {
+      CAPTURE(r.region, r.worst, r.max_rel);
+      CHECK(r.nan + r.inf + r.negative + r.breaks == 0);
+      if (r.region == "refracted") CHECK(r.what.find("0.01, 100}") != std::string::npos);
+      if (r.region == "near_critical") CHECK(r.what.find("0.1, 0.01}") != std::string::npos);
+      if (r.region != "refracted") continue;
+      // the worst point: its error within what 1 - F moves over g² +- the derived rounding
+      const std::vector<double> v = hex_numbers(r.worst);
+      REQUIRE(v.size() >= 11);  // wi, wo, pD, pG, eta, kernel, reference
+      const glm::dvec3 wi(v[0], v[1], v[2]), wo(v[3], v[4], v[5]);
+      const Bsdf& b = *try_find_bsdf(c.name.substr(5));
+      ref::BtdfSpec s{b.d, b.g, b.form, b.variant, v[6], v[7], v[8]};
+      const double f = ref::btdf(s, wi, wo);
+      CHECK(f == v[10]);
+      CHECK(v[8] == 100.0);  // the worst is at the range's end
+      s.g2_slack = btdf_tir_rounding(v[8], wi, wo, false);
+      const double hi = ref::btdf(s, wi, wo);
+      s.g2_slack = -s.g2_slack;
+      const double lo = ref::btdf(s, wi, wo);
+      CAPTURE(f, lo, hi);
+      CHECK(r.max_rel > 1e-3);  // measured 3.07e-3 on PoCL 3.1
+      CHECK(r.max_rel <= std::max(hi / f - 1, 1 - lo / f));
+    }
   }
 }

@@ -60,11 +60,15 @@ CaseDef btdf_case(const Bsdf& b, bool fp64) {
     glm::dvec3 t;
     return ref::refract(i, m, 1.0 / eta, t) ? t : -i;
   };
-  const double etas[] = {1.5, 1 / 1.5, 3.0, 0.1, 10.0};
+  // the declared range's ends (catalog/bsdfs.hpp) with the common indices
+  const double etas[] = {1.5, 1 / 1.5, 3.0, 0.1, 10.0, b.eta.lo, b.eta.hi};
   const double az = 0.4;
   {
-    int r = c.add_region({"refracted", "o = i refracted through facets near n (the lobe's peak and flank); eta in "
-                                       "{1.5, 1/1.5, 3, 0.1, 10}; alpha in {1e-7, 1e-4, 1e-2, 0.3, 1} within range",
+    int r = c.add_region({"refracted",
+                          fmt::format("o = i refracted through facets near n (the lobe's peak and flank); eta in "
+                                      "{{1.5, 1/1.5, 3, 0.1, 10, {:g}, {:g}}}; alpha in {{1e-7, 1e-4, 1e-2, 0.3, 1}} "
+                                      "within range",
+                                      b.eta.lo, b.eta.hi),
                           true, ""});
     for (double eta : etas)
       for (double ci : {0.99, 0.7, 0.3})
@@ -72,10 +76,12 @@ CaseDef btdf_case(const Bsdf& b, bool fp64) {
   }
   {
     // leaving a dense medium (eta < 1) at cosines around the critical one, cos θc = sqrt(1 - eta²)
-    int r = c.add_region({"near_critical", "eta in {1/1.5, 0.1}, n.i at cos(theta_c) (1 +- {1e-7, 1e-4, 1e-2}), o "
-                                           "refracted through n or straight through",
+    int r = c.add_region({"near_critical",
+                          fmt::format("eta in {{1/1.5, 0.1, {:g}}}, n.i at cos(theta_c) (1 +- {{1e-7, 1e-4, 1e-2}}), o "
+                                      "refracted through n or straight through",
+                                      b.eta.lo),
                           true, ""});
-    for (double eta : {1 / 1.5, 0.1}) {
+    for (double eta : {1 / 1.5, 0.1, b.eta.lo}) {
       const double cc = std::sqrt((1 - eta) * (1 + eta));
       for (double k : {-1e-2, -1e-4, -1e-7, 0.0, 1e-7, 1e-4, 1e-2}) {
         const glm::dvec3 i = dir(std::min(1.0, cc * (1 + k)), az);
