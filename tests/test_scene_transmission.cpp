@@ -165,3 +165,50 @@ TEST_CASE("mfv run --scene checks a volume material as the Walter BSDF at its io
   CHECK(bad.code == 1);
   CHECK(bad.out.find("FAIL   bsdf_furnace") != std::string::npos);
 }
+
+TEST_CASE("mfv stability --scene sweeps a volume material's Walter BSDF at its alpha and ior and a thin-walled one's model",
+          "[device][scene][corpus][transmission][stability][planted]") {
+  Scratch t;
+  auto sweep = [&](const std::string& scene, const std::string& kernel_dir) {
+    const Run r = run_mfv((kernel_dir.empty() ? "" : "--kernel-dir " + kernel_dir + " ") + "stability --scene " +
+                          t.copy(kCorpus + "/" + scene) + " --out " + (t / "out"));
+    return std::make_pair(r, nlohmann::json::parse(slurp(t.dir / "out" / "stability.json")));
+  };
+  auto scene_region = [](const nlohmann::json& j) {
+    for (auto& c : j["cases"])
+      if (c["name"] == "BTDF walter_ggx_correlated")
+        for (auto& r : c["regions"])
+          if (r["region"] == "scene") return r;
+    return nlohmann::json();
+  };
+  {
+    const auto [r, j] = sweep("volume.gltf", "");
+    INFO(r.out);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("material 'water': refracting (KHR_materials_volume): BTDF walter_ggx_correlated in its region "
+                     "'scene' at (alpha 0.09, eta 1.33)") != std::string::npos);
+    const nlohmann::json s = scene_region(j);
+    REQUIRE(s.is_object());
+    CHECK(s["inputs"].get<std::string>().find("(alpha 0.25, eta 1.5) (alpha 0.09, eta 1.33)") != std::string::npos);
+    CHECK(s["points"] == 92);  // 2 materials x (16 refracted + 7 near-critical) x both sides
+    CHECK(s["nan"] == 0);
+    CHECK(s["inf"] == 0);
+    CHECK(s["breaks"] == 0);
+  }
+  {
+    const auto [r, j] = sweep("transmission.gltf", "");
+    INFO(r.out);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("MODEL gltf_transmission") != std::string::npos);
+    CHECK(!scene_region(j).is_object());  // thin-walled: no refracting boundary
+  }
+  {
+    // the region sees a BTDF whose critical angle is off (1e-5 in g²)
+    auto planted = test::planted(kBtdfCriticalAngleShifted);
+    const auto [r, j] = sweep("volume.gltf", planted.path());
+    const nlohmann::json s = scene_region(j);
+    REQUIRE(s.is_object());
+    CAPTURE(s.dump());
+    CHECK(s["breaks"].get<int>() > 0);
+  }
+}

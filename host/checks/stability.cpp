@@ -176,7 +176,12 @@ std::vector<CaseDef> make_cases(const StabilityOptions& opt) {
     for (auto& m : models())
       if (scene_has(m)) cases.push_back(model_case(m, opt));
   if (opt.combinations)
-    for (auto& b : bsdfs()) cases.push_back(btdf_case(b, opt.fp64));
+    for (auto& b : bsdfs()) {
+      std::vector<std::array<double, 2>> pts;  // mfv stability --scene: the refracting materials' points
+      for (auto& [id, p] : opt.bsdf_points)
+        if (id == b.id) pts = p;
+      cases.push_back(btdf_case(b, opt.fp64, pts));
+    }
   if (!opt.only.empty()) {
     std::vector<CaseDef> kept;
     for (auto& c : cases)

@@ -27,6 +27,11 @@ struct StabilityOptions {
   // points. Non-empty: no other model is swept (issue 27: a scene of plain
   // metallic-roughness materials sweeps no clearcoat or sheen model).
   std::vector<std::pair<std::string, std::vector<std::array<double, 7>>>> model_points;
+  // mfv stability --scene (issue 29): a rough dielectric BSDF's (alpha, eta)
+  // points (a refracting material's roughness² and ior, KHR_materials_volume),
+  // swept in its case's `scene` region besides its catalog regions; BSDF id ->
+  // points.
+  std::vector<std::pair<std::string, std::vector<std::array<double, 2>>>> bsdf_points;
 };
 
 // One case in one region of the sweep.

@@ -15,7 +15,7 @@
 
 namespace mfv::stability_detail {
 
-CaseDef btdf_case(const Bsdf& b, bool fp64) {
+CaseDef btdf_case(const Bsdf& b, bool fp64, const std::vector<std::array<double, 2>>& scene_points) {
   CaseDef c;
   c.info.group = "bsdf";
   c.info.family = "BTDF";
@@ -73,6 +73,36 @@ CaseDef btdf_case(const Bsdf& b, bool fp64) {
     for (double eta : etas)
       for (double ci : {0.99, 0.7, 0.3})
         for (double tm : {0.0, 1e-4, 0.05, 0.5}) add(r, dir(ci, az), refracted(dir(ci, az), dir(std::cos(tm), 1.0), eta), eta);
+  }
+  if (!scene_points.empty()) {
+    // mfv stability --scene: each refracting material at its own alpha and eta
+    // (= ior): refracted pairs as above, and leaving it around its critical angle
+    std::string pts;
+    for (auto& [a, eta] : scene_points) pts += fmt::format(" (alpha {:.4g}, eta {:.4g})", a, eta);
+    int r = c.add_region({"scene",
+                          "the scene's refracting materials:" + pts +
+                              "; o refracted through facets near n, and n.i at cos(theta_c) of 1/eta (1 +- {1e-7, "
+                              "1e-4, 1e-2})",
+                          true, ""});
+    for (auto& [a, eta] : scene_points) {
+      const double nd = native_from_alpha(b.d->roughness, a), ng = native_from_alpha(b.g->roughness, a);
+      auto put = [&](const glm::dvec3& i, const glm::dvec3& o, double e) {
+        Point pt;
+        pt.region = r;
+        pt.in = record(i, o, {nd, ng, e});
+        c.points.push_back(pt);
+        pt.in = record(-i, -o, {nd, ng, e});  // the other side: light from below
+        c.points.push_back(pt);
+      };
+      for (double ci : {0.99, 0.7, 0.3, 0.05})
+        for (double tm : {0.0, 1e-4, 0.05, 0.5}) put(dir(ci, az), refracted(dir(ci, az), dir(std::cos(tm), 1.0), eta), eta);
+      const double inv = 1.0 / eta, cc = std::sqrt((1 - inv) * (1 + inv));  // leaving: relative index 1/eta
+      if (inv < 1.0)
+        for (double k : {-1e-2, -1e-4, -1e-7, 0.0, 1e-7, 1e-4, 1e-2}) {
+          const glm::dvec3 i = dir(std::min(1.0, cc * (1 + k)), az);
+          put(i, refracted(i, glm::dvec3(0, 0, 1), inv), inv);
+        }
+    }
   }
   {
     // leaving a dense medium (eta < 1) at cosines around the critical one, cos θc = sqrt(1 - eta²)

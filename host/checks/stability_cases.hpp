@@ -86,6 +86,7 @@ CaseDef term_case(const Term& t, bool g1, bool fp64);
 CaseDef brdf_case(const Term& d, const Term& g, const Term& f, bool fp64);
 CaseDef model_case(const Model& m, const StabilityOptions& opt);
 std::vector<CaseDef> variant_cases(bool fp64);
-CaseDef btdf_case(const Bsdf& b, bool fp64);  // stability_btdf.cpp
+// stability_btdf.cpp; scene_points: (alpha, eta) of a scene's refracting materials
+CaseDef btdf_case(const Bsdf& b, bool fp64, const std::vector<std::array<double, 2>>& scene_points = {});
 
 }  // namespace mfv::stability_detail

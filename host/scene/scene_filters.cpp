@@ -1,8 +1,11 @@
 #include "scene/scene_filters.hpp"
 
+#include "catalog/bsdfs.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -128,6 +131,17 @@ void scene_stability_options(const Scene& scene, StabilityOptions& opt) {
       if (std::find(v.begin(), v.end(), w.p) == v.end()) v.push_back(w.p);
     }
   opt.model_points.assign(points.begin(), points.end());
+  // a refracting boundary (KHR_materials_volume): the Walter BSDF at its
+  // roughness² and ior, in the BTDF case's `scene` region (issue 29)
+  std::map<std::string, std::vector<std::array<double, 2>>> bsdf_pts;
+  for (auto& m : scene.materials)
+    if (m.volume_checked && m.not_checked.empty())
+      for (double a : m.alphas()) {
+        auto& v = bsdf_pts[m.model()];
+        const std::array<double, 2> p{a, m.factors.ior};
+        if (std::find(v.begin(), v.end(), p) == v.end()) v.push_back(p);
+      }
+  opt.bsdf_points.assign(bsdf_pts.begin(), bsdf_pts.end());
 }
 
 std::vector<std::string> scene_stability_cases(const Scene& scene) {
@@ -144,6 +158,8 @@ std::vector<std::string> scene_stability_cases(const Scene& scene) {
     // glTF: the models the material evaluates (gltf, and gltf_clearcoat or
     // gltf_sheen where it has those lobes) besides their terms' product; the
     // sweep takes only models with the scene's points (scene_stability_options)
+    if (m.volume_checked)  // a refracting boundary: the Walter BSDF (scene_stability_options gives its points)
+      add_unique(out, "BTDF " + m.model());
     if (m.gltf)
       for (auto& w : m.whole_points()) add_unique(out, "MODEL " + w.model->id);
     else
@@ -156,7 +172,8 @@ void print_scene_stability(const Scene& scene, const StabilityReport& rep) {
   size_t g1 = 0;
   for (auto& t : catalog()) g1 += !t.g1_kernel_fn.empty() && t.id != "smith_ggx_correlated";
   const size_t full = catalog().size() + g1 +
-                      terms_of(Kind::D).size() * terms_of(Kind::G).size() * terms_of(Kind::F).size() + models().size();
+                      terms_of(Kind::D).size() * terms_of(Kind::G).size() * terms_of(Kind::F).size() + models().size() +
+                      bsdfs().size();
   size_t points = 0;
   for (auto& c : rep.cases)
     for (auto& r : c.regions) points += r.points;
@@ -173,6 +190,14 @@ void print_scene_stability(const Scene& scene, const StabilityReport& rep) {
       if (!m.gltf) continue;
       if (!m.not_checked.empty()) {
         fmt::print("    material '{}': not swept: {}\n", m.name, m.not_checked);
+        continue;
+      }
+      if (m.volume_checked) {  // KHR_materials_volume: a refracting boundary
+        std::string pts;
+        for (double a : m.alphas()) pts += fmt::format(" (alpha {:.4g}, eta {:.4g})", a, m.factors.ior);
+        fmt::print("    material '{}': refracting (KHR_materials_volume): BTDF {} in its region 'scene' at{}, both "
+                   "sides, and through its terms\n",
+                   m.name, m.model(), pts);
         continue;
       }
       std::string pts;
