@@ -84,6 +84,14 @@ inline const Plant kBtdfCriticalAngleShifted = {"the BTDF's TIR test off by 1e-5
                                                 "real g2 = (eta - R(1.0)) * (eta + R(1.0)) + c * c;",
                                                 "real g2 = (eta - R(1.0)) * (eta + R(1.0)) + c * c - R(1e-5);"};
 
+// The rough dielectric BSDF's reflection lobe (kernels/transmission.cl
+// bsdf_reflect_c) with Schlick's F, F0 = ((eta - 1)/(eta + 1))², in place
+// of the exact dielectric Fresnel: F != 0 at eta = 1 (issue 29:
+// bsdf_furnace's index-matched points see it).
+inline const Plant kBsdfReflectSchlick = {
+    "the BSDF's reflection lobe with Schlick's F", "transmission.cl", "real F = R(1.0) - T_dielectric(IoH, eta);",
+    "real f0 = sqr((eta - R(1.0)) / (eta + R(1.0)));\n  real F = f0 + (R(1.0) - f0) * pown(R(1.0) - IoH, 5);"};
+
 inline PlantedKernelDir planted(const Plant& p) { return PlantedKernelDir(p.file, p.from, p.to); }
 
 }  // namespace mfv::test
