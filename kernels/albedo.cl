@@ -155,13 +155,13 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 // D_*/G1_*), the low-variance one; (b) o reflected about Cauchy slopes of
 // width w and (c) the cosine lobe, the defensive pair whose tails cover every
 // catalog D (see the top of estimators.cl). Combined by multi-sample MIS
-// with the balance heuristic over a fixed mixture c = (15/16, 1/32, 1/32)
+// with the balance heuristic over a fixed mixture c = (61/64, 1/64, 1/32)
 // (Veach 1997 §9.2.2, eq. 9.13 with weights c_t p_t / Σ c_s p_s): every point
 // of proposal t contributes c_t (n / n_t) f(i,o) (n·i) / (Σ_s c_s p_s(i)),
 // so the mean over the n points is Σ_t c_t (mean over t's points), which is
 // unbiased for any point counts n_t. A wrong D or G under test only enters
 // the numerator, so it cannot cancel (tests/test_albedo_mis.cpp plants
-// three), and f/q <= 32 f / p_defensive stays bounded.
+// three), and f/q <= 64 f / p_slope and 32 f / p_cosine stay bounded.
 // Points: index = r n + k with n = `points` = 5·2^(m-2) per replicate
 // (Integrator::mis_points): k < 2^m = 4n/5 takes (a), the next n/10 (b),
 // the last n/10 (c), each share a power of two on Owen-scrambled Sobol
@@ -177,6 +177,20 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 #define MIS_C_VIS R(0.9375)
 #define MIS_C_SLOPE R(0.03125)
 #define MIS_C_COS R(0.03125)
+// The albedo's own mixture, c = (61/64, 1/64, 1/32) on the same points: the
+// Cauchy share's weight halved from the glass flux's 1/32 (above, kept by
+// bsdf_flux_mis) lowers the variance per point 1.3-1.5x at (alpha, mu) =
+// (0.5, 0.5), leaves (0.1, 0.1) and mfv run's diffuse-lobe albedos
+// (energy_diffuse: the cosine share's 1/32 kept) as they were, and raises
+// it 1.1-1.3x at (0.01, 0.9) (docs/performance.md, issue 32); the weight stays
+// bounded, f/q <= 64 f / p_slope and 32 f / p_cosine.
+#define ALB_C_VIS R(0.953125)
+#define ALB_C_SLOPE R(0.015625)
+#define ALB_C_COS R(0.03125)
+// c_t n / n_t: (61/64)(5/4) = 305/256 for (a), (1/64) 10 = 5/32 for (b), (1/32) 10 = 5/16 for (c)
+#define ALB_SHARE_VIS R(1.19140625)
+#define ALB_SHARE_SLOPE R(0.15625)
+#define ALB_SHARE_COS R(0.3125)
 #define MIS_DRAW 3u  // the Philox draw of the replicates' scramble seeds
 
 static inline uint4 mis_shift(__global const IntegralSpec* s, ulong seed, uint replicate) {
@@ -208,10 +222,9 @@ static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, 
   real hs2 = hx * hx + hy * hy;
   // the pdfs of i under each proposal: (a) vis_pdf_i; (b) the slope density
   // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
-  real q = MIS_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + MIS_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
-           MIS_C_COS * iz * MFV_INV_PI;
-  // c_t n / n_t: (15/16)(5/4) = 75/64 for (a), (1/32) 10 = 5/16 for (b) and (c)
-  real share = vis ? R(1.171875) : R(0.3125);
+  real q = ALB_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + ALB_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
+           ALB_C_COS * iz * MFV_INV_PI;
+  real share = vis ? ALB_SHARE_VIS : cosine ? ALB_SHARE_COS : ALB_SHARE_SLOPE;
   return share * brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
 }
 
@@ -248,9 +261,9 @@ static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shif
   if (iz <= R(0.0)) return R(0.0);
   real hx, hy, hz;
   real oh = R(0.5) * normalize_sum(ix + o.x, iy + o.y, iz + o.z, &hx, &hy, &hz);
-  real q = MIS_C_VIS * vis_pdf_i_aniso(hx, hy, hz, o.x, o.y, o.z, wx, wy) +
-           MIS_C_SLOPE * pdf_slope_aniso(hx, hy, hz, wx, wy) / (R(4.0) * oh) + MIS_C_COS * iz * MFV_INV_PI;
-  real share = vis ? R(1.171875) : R(0.3125);
+  real q = ALB_C_VIS * vis_pdf_i_aniso(hx, hy, hz, o.x, o.y, o.z, wx, wy) +
+           ALB_C_SLOPE * pdf_slope_aniso(hx, hy, hz, wx, wy) / (R(4.0) * oh) + ALB_C_COS * iz * MFV_INV_PI;
+  real share = vis ? ALB_SHARE_VIS : cosine ? ALB_SHARE_COS : ALB_SHARE_SLOPE;
   return share * spec_brdf(s, (real3)(ix, iy, iz), o) * iz / q;
 }
 

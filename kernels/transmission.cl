@@ -285,7 +285,7 @@ static inline real bsdf_flux_mis(__global const IntegralSpec* s, uint4 shift, ui
   real q = flux_mis_pdf(ix, iz, ox, oy, oz, w, eta, lobe);
   if (!(q > R(0.0))) return R(0.0);
   real f = spec_bsdf_value(s, oz > R(0.0), ix, R(0.0), below * iz, ox, oy, below * oz);
-  real share = vis ? R(1.171875) : R(0.3125);  // c_t n / n_t, as albedo_mis_microfacet
+  real share = vis ? R(1.171875) : R(0.3125);  // c_t n / n_t: (15/16)(5/4), (1/32) 10 on the albedo's points
   return share * f * fabs(oz) / q;
 }
 

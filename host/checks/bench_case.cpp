@@ -178,7 +178,7 @@ std::string bench_case_json(const BenchCaseResult& r, const std::string& load_av
          {"case", fmt::format("{}/{}/{}:{:g}:{:g}", r.c.d, r.c.g, r.c.f, r.c.alpha, r.c.mu)},
          {"device", r.device},
          {"estimator",
-          "albedo_mis: visible normals (GGX shape) 15/16 + Cauchy slopes 1/32 + cosine 1/32, balance heuristic, "
+          "albedo_mis: visible normals (GGX shape) 61/64 + Cauchy slopes 1/64 + cosine 1/32, balance heuristic, "
           "Owen-scrambled Sobol replicates"},
          {"replicates", r.replicates},
          {"samples", t.samples},

@@ -251,7 +251,7 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 // cosine lobe (words 3, 2), each on Owen-scrambled Sobol points from its own
 // index 0; the shape and the slopes stretched to (width, width_y) where the
 // spec has a second width, the view at its azimuth phi_o. Balance heuristic
-// over the mixture c = (15/16, 1/32, 1/32) (Veach 1997 eq. 9.13), each point
+// over the mixture c = (61/64, 1/64, 1/32) (Veach 1997 eq. 9.13), each point
 // weighted c_t n / n_t: f cos / (Σ c_t p_t).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const MisPoint p = mis_point(s, seed, index);
@@ -271,10 +271,10 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   }
   if (i.z <= 0.0) return 0.0;
   const glm::dvec3 h = glm::normalize(i + o);
-  const double c_vis = 15.0 / 16.0, c_def = 1.0 / 32.0;
+  const double c_vis = 61.0 / 64.0, c_slope = 1.0 / 64.0, c_cos = 1.0 / 32.0;
   const double p_slope = pdf_slope_aniso(h, wx, wy) / (4.0 * glm::dot(o, h));
-  const double q = c_vis * vis_pdf_i(h, o, wx, wy) + c_def * p_slope + c_def * i.z / M_PI;
-  const double share = vis ? c_vis * n / n_vis : c_def * n / n_def;
+  const double q = c_vis * vis_pdf_i(h, o, wx, wy) + c_slope * p_slope + c_cos * i.z / M_PI;
+  const double share = vis ? c_vis * n / n_vis : (cosine ? c_cos : c_slope) * n / n_def;
   return share * spec_brdf(s.brdf, i, o) * i.z / q;
 }
 
