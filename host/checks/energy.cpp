@@ -90,15 +90,23 @@ double record_unit(EnergyReport& rep, const EnergyUnit& u, const std::vector<dou
 // 65536 points 3x low); docs/performance.md.
 class PilotThenFresh {
  public:
-  PilotThenFresh(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units)
-      : rep_(rep), in_(in), units_(units), prog_(units.size()) {}
+  // `family`: the units of the whole plan (a shard runs some of them)
+  PilotThenFresh(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units, size_t family)
+      : rep_(rep), in_(in), units_(units), family_(family), prog_(units.size()) {}
+
+  // Each unit's reported run.
+  std::vector<EnergyUnitResult> results() const {
+    std::vector<EnergyUnitResult> v;
+    for (auto& p : prog_) v.push_back({p.sum, p.b_sum, p.done});
+    return v;
+  }
 
   // The pilots on streams past every unit's own (from `free_stream` and
   // 2 `free_stream` on), then the fresh run on the units' own streams.
   void run(uint32_t free_stream) {
     const EnergyOptions& opt = rep_.opt;
     const double dof = double(opt.replicates - 1);
-    const double tail = 0.05 / double(std::max<size_t>(1, units_.size()));  // every unit at once
+    const double tail = 0.05 / double(std::max<size_t>(1, family_));  // every unit at once
     const double margin = std::sqrt(stats::chi_squared_upper_quantile(tail, dof) / dof);
     const uint64_t p0 = std::max<uint64_t>(64, opt.min_points / 4);
     rate_.assign(units_.size(), 1.0);
@@ -209,6 +217,7 @@ class PilotThenFresh {
   EnergyReport& rep_;
   Integrator& in_;
   const std::vector<EnergyUnit>& units_;
+  size_t family_;
   std::vector<Progress> prog_;
   std::vector<double> rate_;  // per unit: the error's measured rate b in N^-b
 };
@@ -229,14 +238,15 @@ std::string subject_of(const IntegralSpec& s) {
 }
 
 // The double reference on the identical first samples of every k-th integral.
+// Picked over the whole plan's units; a part compares those of its units [lo, hi).
 void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std::vector<EnergyUnit>& units,
-                                   bool fp64) {
+                                   bool fp64, size_t lo, size_t hi) {
   const EnergyOptions& opt = rep.opt;
   std::vector<IntegralSpec> subset;
   size_t k = 0;
-  for (auto& u : units)
-    for (auto& s : specs_of(u, size_t(opt.replicates)))
-      if (k++ % size_t(std::max(1, opt.reference_every)) == 0) {
+  for (size_t ui = 0; ui < units.size(); ++ui)
+    for (auto& s : specs_of(units[ui], size_t(opt.replicates)))
+      if (k++ % size_t(std::max(1, opt.reference_every)) == 0 && ui >= lo && ui < hi) {
         subset.push_back(s);
         if (s.check == static_cast<int32_t>(IntegralKind::AlbedoRqmc) && s.model == 0) {
           s.check = static_cast<int32_t>(IntegralKind::AlbedoRqmcB);  // and its B channel
@@ -260,23 +270,121 @@ void compare_sample_with_reference(EnergyReport& rep, Integrator& in, const std:
   }
 }
 
-}  // namespace
 
-EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
+// rep's axes, tables and models as opt selects them (cells not yet run).
+TermSelection init_report(EnergyReport& rep, const EnergyOptions& opt) {
   validate_energy_options(opt);
-  const auto t0 = std::chrono::steady_clock::now();
-  EnergyReport rep;
   rep.opt = opt;
-  rep.device = rt.device().name;
   rep.mu = opt.mu_axis.empty() ? energy_mu_grid(opt.n_mu) : opt.mu_axis;
   rep.alpha = opt.alpha_axis.empty() ? energy_alpha_grid(opt.n_alpha) : opt.alpha_axis;
   rep.paired = opt.paired;
   rep.midpoint_mu = !rep.paired && rep.mu == energy_mu_grid(int(rep.mu.size()));
+  return add_energy_subjects(rep);
+}
+
+// What follows the cells' runs: cross-checks, largest error, model gains.
+void finish_cells(EnergyReport& rep) {
+  if (rep.midpoint_mu) add_quadrature_cross_check(rep);
+  // a glass table's E_avg: the midpoint rule over its mu cells, with the rule's error (energy_judge.hpp)
+  for (EnergyTable& t : rep.tables)
+    if (t.bsdf) t.eavg = t.eavg_quad;
+  track_largest_error(rep);
+  judge_model_gains(rep);
+}
+
+// FNV-1a, 64-bit, as checks/shard.cpp's plan hash: equality of plans, not security.
+struct Digest {
+  uint64_t h = 14695981039346656037ull;
+  void bytes(const void* p, size_t n) {
+    auto* c = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  void doubles(const std::vector<double>& v) {
+    value(uint64_t(v.size()));
+    if (!v.empty()) bytes(v.data(), v.size() * sizeof(double));
+  }
+};
+
+}  // namespace
+
+EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt) {
+  EnergyReport rep;
+  init_report(rep, opt);
+  uint32_t free_stream = 0;
+  const std::vector<EnergyUnit> units = energy_units(rep, free_stream);
+  EnergyPlanSummary s;
+  Digest d;
+  const size_t R = size_t(opt.replicates);
+  for (auto& u : units) {
+    const std::vector<IntegralSpec> specs = specs_of(u, R);
+    s.cost.push_back(specs.size());
+    for (auto& sp : specs) d.bytes(&sp, sizeof sp);
+    d.value(u.table), d.value(u.index), d.value(u.eavg), d.value(u.model);
+  }
+  for (auto& t : rep.tables) {
+    const std::string n = t.name();
+    d.bytes(n.c_str(), n.size() + 1);
+  }
+  for (auto& m : rep.models) d.bytes(m.point.name.c_str(), m.point.name.size() + 1);
+  d.doubles(rep.mu), d.doubles(rep.alpha), d.doubles(opt.eta), d.doubles(opt.roughness);
+  d.value(free_stream), d.value(opt.paired), d.value(opt.fp64), d.value(opt.target), d.value(opt.gain_alpha);
+  d.value(opt.replicates), d.value(opt.min_points), d.value(opt.max_points);
+  d.value(opt.reference_samples), d.value(opt.reference_every);
+  d.bytes(opt.layout.c_str(), opt.layout.size() + 1);
+  s.hash = fmt::format("{:016x}", d.h);
+  return s;
+}
+
+EnergyReport merge_energy(const EnergyOptions& opt, const std::string& device, const std::vector<EnergyPart>& parts) {
+  EnergyReport rep;
+  init_report(rep, opt);
+  rep.device = device;
+  uint32_t free_stream = 0;
+  const std::vector<EnergyUnit> units = energy_units(rep, free_stream);
+  size_t next = 0;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const EnergyPart& p = parts[k];
+    if (p.lo != next || p.hi < p.lo || p.hi > units.size() || p.results.size() != p.hi - p.lo)
+      throw Error(fmt::format("part {} holds units [{}, {}) with {} results; the plan's next unit is {} of {}", k + 1,
+                              p.lo, p.hi, p.results.size(), next, units.size()));
+    for (size_t i = 0; i < p.results.size(); ++i) {
+      const EnergyUnitResult& r = p.results[i];
+      if (r.sum.size() != size_t(opt.replicates) || r.b_sum.size() != r.sum.size() || r.done == 0)
+        throw Error(fmt::format("part {}: unit {} has {} replicates, the plan {}", k + 1, p.lo + i, r.sum.size(),
+                                opt.replicates));
+      record_unit(rep, units[p.lo + i], r.sum, r.b_sum, r.done);
+    }
+    next = p.hi;
+    rep.samples += p.samples;
+    rep.topped_up += p.topped_up;
+    rep.reference_compared += p.reference_compared;
+    if (p.reference_worst > rep.reference_worst) {  // the first of the largest, as the whole run keeps it
+      rep.reference_worst = p.reference_worst;
+      rep.reference_worst_at = p.reference_worst_at;
+    }
+    rep.seconds += p.seconds;
+    rep.build_seconds += p.build_seconds;
+  }
+  if (next != units.size())
+    throw Error(fmt::format("the parts hold units [0, {}) of the plan's {}", next, units.size()));
+  finish_cells(rep);
+  rep.samples_per_second = double(rep.samples) / std::max(1e-9, rep.seconds - rep.build_seconds);
+  return rep;
+}
+
+EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt, EnergyPart* part) {
+  const auto t0 = std::chrono::steady_clock::now();
+  EnergyReport rep;
+  const TermSelection sel = init_report(rep, opt);
+  rep.device = rt.device().name;
   if (opt.fp64 && !rt.device().fp64)
     throw Error(fmt::format("--fp64: device '{}' has no cl_khr_fp64; run without --fp64 (float32 kernels) or pick "
                             "a device with it (mfv list-devices)",
                             rt.device().name));
-  const TermSelection sel = add_energy_subjects(rep);
   const double b0 = rt.build_stats().seconds;
   Integrator in = opt.fp64 ? Integrator(rt, build_energy_fp64_program(rt, sel)) : Integrator(rt, sel);
   in.set_mis_replicates(1);  // a glass cell's BsdfFlux: each of the R streams one RQMC replicate
@@ -284,19 +392,28 @@ EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt) {
 
   uint32_t stream = 0;
   const std::vector<EnergyUnit> units = energy_units(rep, stream);
-  PilotThenFresh(rep, in, units).run(stream);
+  const size_t lo = part ? std::min(part->lo, units.size()) : 0;
+  const size_t hi = part ? std::min(std::max(part->hi, lo), units.size()) : units.size();
+  const std::vector<EnergyUnit> mine(units.begin() + long(lo), units.begin() + long(hi));
+  PilotThenFresh run(rep, in, mine, units.size());
+  run.run(stream);
 
-  if (rep.midpoint_mu) add_quadrature_cross_check(rep);
-  // a glass table's E_avg: the midpoint rule over its mu cells, with the rule's error (energy_judge.hpp)
-  for (EnergyTable& t : rep.tables)
-    if (t.bsdf) t.eavg = t.eavg_quad;
-  track_largest_error(rep);
-  judge_model_gains(rep);
-  if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units, opt.fp64);
+  if (!part) finish_cells(rep);
+  if (opt.reference_samples > 0) compare_sample_with_reference(rep, in, units, opt.fp64, lo, hi);
 
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double run_s = std::max(1e-9, rep.seconds - rep.build_seconds);
   rep.samples_per_second = double(rep.samples) / run_s;
+  if (part) {
+    part->results = run.results();
+    part->samples = rep.samples;
+    part->topped_up = rep.topped_up;
+    part->reference_compared = rep.reference_compared;
+    part->reference_worst = rep.reference_worst;
+    part->reference_worst_at = rep.reference_worst_at;
+    part->seconds = rep.seconds;
+    part->build_seconds = rep.build_seconds;
+  }
   return rep;
 }
 

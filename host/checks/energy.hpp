@@ -148,7 +148,39 @@ double energy_eval_alpha(const Term& d, double alpha);
 std::vector<double> energy_alpha_grid(int n);
 
 void validate_energy_options(const EnergyOptions& opt);  // throws mfv::Error
-EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt);
+// mfv energy --shard K/N (docs/scale.md): a part of the whole run, the units
+// (energy_plan.hpp) [lo, hi) of the whole plan's list. Each unit keeps its
+// streams and the pilots' stream offsets of the whole plan, and its point
+// count is sized with the whole plan's family (Bonferroni over every unit),
+// so it computes what the whole run computes for it.
+struct EnergyUnitResult {
+  std::vector<double> sum, b_sum;  // per replicate, of the reported run
+  uint64_t done = 0;               // its points per replicate
+};
+struct EnergyPart {
+  size_t lo = 0, hi = 0;
+  // filled by run_energy: the units' results, and what the part measured
+  std::vector<EnergyUnitResult> results;
+  uint64_t samples = 0;
+  size_t topped_up = 0, reference_compared = 0;
+  double reference_worst = 0, seconds = 0, build_seconds = 0;
+  std::string reference_worst_at;
+};
+// The whole run, or (part != nullptr) the part's units only: then the
+// report's cells are those of the part's units and part->results is filled.
+EnergyReport run_energy(Runtime& rt, const EnergyOptions& opt, EnergyPart* part = nullptr);
+// The whole run's report from its parts' results (every unit once, parts in
+// order): the same cells, verdicts and reference summary as run_energy.
+// Throws mfv::Error where the parts do not cover the plan's units.
+EnergyReport merge_energy(const EnergyOptions& opt, const std::string& device, const std::vector<EnergyPart>& parts);
+// The whole plan's units' count and each unit's integrals (R, 2R for a glass
+// cell: its estimated cost), and a digest of the plan (16 hex digits): every
+// unit's integrals, streams and cells, and the options that change values.
+struct EnergyPlanSummary {
+  std::vector<uint64_t> cost;
+  std::string hash;
+};
+EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt);
 
 // `baseline_json` is the text of an earlier energy.json; family-wise
 // false-alarm rate `alpha_fw`. Throws mfv::Error on a malformed or

@@ -145,6 +145,23 @@ std::pair<size_t, size_t> share(size_t n, const ShardSpec& s) {
 
 }  // namespace
 
+std::pair<size_t, size_t> cut_by_cost(const std::vector<uint64_t>& cost, const ShardSpec& s) {
+  uint64_t total = 0;
+  for (uint64_t c : cost) total += c;
+  // the boundary whose cost before it is nearest C j / N (the lower on a tie; unsigned __int128: no overflow)
+  using u128 = unsigned __int128;
+  auto start = [&](uint32_t j) {
+    if (j >= s.count) return cost.size();
+    const u128 goal = u128(total) * j;
+    uint64_t before = 0, prev = 0;
+    size_t i = 0;
+    while (i < cost.size() && u128(before) * s.count < goal) prev = before, before += cost[i++];
+    if (i > 0 && goal - u128(prev) * s.count <= u128(before) * s.count - goal) --i;
+    return i;
+  };
+  return {start(s.index), start(s.index + 1)};
+}
+
 std::vector<size_t> shard_positions(const SuitePlans& sp, const ShardSpec& s) {
   std::vector<size_t> positions;
   size_t offset = 0;

@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mfv {
@@ -42,6 +43,11 @@ uint64_t integral_cost(const Plan& plan, double scale);
 // points, and the options that change records (scale, filters, reference
 // settings, family-wise rate). 16 hex digits.
 std::string plan_hash(const SuitePlans& sp, const SuiteOptions& opt);
+
+// Items [lo, hi) of shard s of a list cut into N contiguous parts of equal
+// estimated cost (`cost` per item): the items whose cumulative cost before
+// them is in [C k / N, C (k + 1) / N). mfv energy --shard cuts its units so.
+std::pair<size_t, size_t> cut_by_cost(const std::vector<uint64_t>& cost, const ShardSpec& s);
 
 // Integrals in the whole run (every plan, then reciprocity).
 size_t plan_integrals(const SuitePlans& sp);

@@ -1,10 +1,13 @@
 // mfv energy: energy-loss tables and Kulla-Conty compensation data.
 #include "checks/energy.hpp"
 #include "checks/energy_layouts.hpp"
+#include "cli/run_shard.hpp"
 #include "cli/shared_options.hpp"
 #include "checks/energy_compare.hpp"
 #include "report/energy_layout_out.hpp"
 #include "report/energy_report.hpp"
+#include "report/energy_shard_file.hpp"
+#include "runtime/provenance.hpp"
 #include "scene/scene_filters.hpp"
 #include "util/error.hpp"
 #include "util/files.hpp"
@@ -40,8 +43,10 @@ struct EnergyCommand : SharedValues {
   EnergyOptions opt;
   std::string grid, mu, alpha, roughness = "alpha", layout, compare;
   CLI::Option* target_opt = nullptr;
-  std::vector<std::string> at;
+  std::vector<std::string> at, merge;
   double alpha_fw = 1e-3;
+  std::string shard;
+  uint32_t shard_count = 0;
 
   void add_options(CLI::App* cmd) {
     cmd->description(
@@ -74,6 +79,17 @@ struct EnergyCommand : SharedValues {
                     "standard error per cell to reach (default 1e-4); cells above it get more points, up to the cap");
     cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 32)");
     cmd->add_option("--max-points", opt.max_points, "cap on points per replicate per value (default 16384)");
+    cmd->add_option("--shard", shard,
+                    "run part K of N (1 <= K <= N) of the table's cells into --out DIR/energy_shard.json, for "
+                    "mfv energy --merge; absent: Bazel's, GoogleTest's, Slurm's or a Kubernetes Indexed Job's "
+                    "variables if set; off: the whole run (docs/scale.md)");
+    cmd->add_option("--shard-count", shard_count,
+                    "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--merge", merge,
+                    "the --out folders of every shard (mfv energy --shard K/N, with the same options as here): "
+                    "the whole run's outputs from their values, integrating nothing")
+        ->expected(1, -1);
     SharedOptions(cmd, *this)
         .seed(opt.seed)
         .out("energy.json, report.md, kulla_conty.h, csv/ and plots/")
@@ -110,6 +126,29 @@ struct EnergyCommand : SharedValues {
     }
   }
 
+  // mfv energy --shard K/N: the shard's units into out_dir/energy_shard.json, no verdict.
+  int energy_shard(const Globals& g, const ShardSpec& s) {
+    if (out_dir.empty())
+      throw Error("a shard's values go to DIR/energy_shard.json: give --out DIR (then mfv energy --merge the DIRs)");
+    if (!compare.empty() || !baseline.empty())
+      throw Error("--compare and --baseline apply to the merged run (mfv energy --merge), not to a shard");
+    const EnergyPlanSummary plan = energy_plan_summary(opt);
+    EnergyPart part;
+    std::tie(part.lo, part.hi) = cut_by_cost(plan.cost, s);
+    fmt::print("shard {}/{} (from {}): units {}..{} of {}; plan {}, seed {}\n", s.index + 1, s.count, s.source,
+               part.lo + 1, part.hi, plan.cost.size(), plan.hash, opt.seed);
+    prepare_output_dir(out_dir);
+    Runtime rt(g.device, g.kernel_dir);
+    if (part.hi > part.lo) run_energy(rt, opt, &part);
+    write_files_atomically({{out_dir + "/energy_shard.json",
+                             energy_shard_json(part, opt, s, plan, rt.device().name, provenance_json())}});
+    fmt::print("device: {}; {} samples, {:.1f} s\n", rt.device().name, part.samples, part.seconds);
+    fmt::print("wrote {}/energy_shard.json: no verdict yet; mfv energy --merge the {} shards' folders (same options) "
+               "--out DIR writes the whole run's outputs\n",
+               out_dir, s.count);
+    return 0;
+  }
+
   int run(const Globals& g) {
     const Scene scene = load_scene_instead_of(!opt.models.empty(), "--models", "models");
     if (!scene_path.empty()) scene_energy_options(scene, opt);
@@ -124,9 +163,15 @@ struct EnergyCommand : SharedValues {
         compare.empty() ? std::vector<TheirTable>{}
                         : read_their_table(compare, *lay.layout, opt.mu_axis, opt.alpha_axis, opt.roughness, opt.eta);
     const std::string base_text = baseline.empty() ? "" : read_text_file(baseline, "--baseline");
+    if (!merge.empty() && !shard.empty() && shard != "off") throw Error("--merge and --shard: give one");
+    if (merge.empty())
+      if (std::optional<ShardSpec> s = shard_of(shard, shard_count)) return energy_shard(g, *s);
+    // every shard checked before any output
+    const EnergyShards shards = merge.empty() ? EnergyShards{} : read_energy_shards(merge, opt);
     prepare_out();
     Runtime rt(g.device, g.kernel_dir);
-    EnergyReport rep = run_energy(rt, opt);
+    for (auto& line : shards.lines) fmt::print("{}\n", line);
+    EnergyReport rep = merge.empty() ? run_energy(rt, opt) : merge_energy(opt, shards.device, shards.parts);
     if (!compare.empty() && rep.tables.size() != 1)
       throw Error(fmt::format("--compare: --models selects {} tables; name one (e.g. ggx/smith_ggx_correlated)",
                               rep.tables.size()));

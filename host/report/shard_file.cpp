@@ -16,6 +16,9 @@
 #include <map>
 
 namespace mfv {
+
+std::string ShardDoc::name() const { return fmt::format("shard {}/{} ({})", index + 1, count, path); }
+
 namespace {
 
 using nlohmann::json;
@@ -142,18 +145,13 @@ SuiteOptions options_of(const json& j) {
 json tool_json() { return {{"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}, {"describe", MFV_GIT_DESCRIBE}}; }
 
 // One shard's file, read and checked on its own.
-struct Shard {
-  std::string path;
-  json doc;
-  uint32_t index = 0, count = 0;
-  std::string name() const { return fmt::format("shard {}/{} ({})", index + 1, count, path); }
-};
+using Shard = ShardDoc;
 
-Shard read_shard(const std::string& input) {
+Shard read_shard(const std::string& input, const ShardKind& kind) {
   Shard s;
-  s.path = std::filesystem::is_directory(input) ? (std::filesystem::path(input) / "shard.json").string() : input;
+  s.path = std::filesystem::is_directory(input) ? (std::filesystem::path(input) / kind.file).string() : input;
   if (!std::filesystem::is_regular_file(s.path))
-    throw Error(fmt::format("{}: no shard file (mfv run --shard K/N --out DIR writes DIR/shard.json)", s.path));
+    throw Error(fmt::format("{}: no shard file ({} --out DIR writes DIR/{})", s.path, kind.writer, kind.file));
   const std::string text = read_text_file(s.path, "mfv merge");
   try {
     s.doc = json::parse(text);
@@ -161,7 +159,7 @@ Shard read_shard(const std::string& input) {
     throw Error(fmt::format("{}: truncated or not JSON ({}); rerun that shard", s.path, e.what()));
   }
   try {
-    if (s.doc.value("schema", "") != kSchema) throw Error(fmt::format("schema is not {}", kSchema));
+    if (s.doc.value("schema", "") != kind.schema) throw Error(fmt::format("schema is not {}", kind.schema));
     if (!s.doc.value("complete", false)) throw Error("the shard's run did not complete");
     s.index = s.doc.at("shard").at("index").get<uint32_t>() - 1;
     s.count = s.doc.at("shard").at("count").get<uint32_t>();
@@ -239,10 +237,12 @@ std::string shard_json(const SuiteReport& rep, const SuitePlans& cut, const std:
   return dump_with_results(j, records);
 }
 
-MergedRun merge_shards(const std::vector<std::string>& inputs) {
+nlohmann::json shard_tool_json() { return tool_json(); }
+
+std::vector<ShardDoc> read_shard_set(const std::vector<std::string>& inputs, const ShardKind& kind) {
   if (inputs.empty()) throw Error("mfv merge needs the shards' folders");
   std::vector<Shard> shards;
-  for (auto& in : inputs) shards.push_back(read_shard(in));
+  for (auto& in : inputs) shards.push_back(read_shard(in, kind));
   const Shard& first = shards.front();
   std::vector<const Shard*> by_index(first.count, nullptr);
   for (const Shard& s : shards) {
@@ -254,6 +254,16 @@ MergedRun merge_shards(const std::vector<std::string>& inputs) {
   for (uint32_t k = 0; k < first.count; ++k)
     if (!by_index[k]) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", k + 1, first.count);
   if (!missing.empty()) throw Error(fmt::format("shard {} missing: nothing merged (have {} of {})", missing, shards.size(), first.count));
+  std::vector<ShardDoc> ordered;
+  for (const Shard* s : by_index) ordered.push_back(*s);
+  return ordered;
+}
+
+MergedRun merge_shards(const std::vector<std::string>& inputs) {
+  const std::vector<Shard> ordered = read_shard_set(inputs, {"shard.json", kSchema, "mfv run --shard K/N"});
+  const Shard& first = ordered.front();
+  std::vector<const Shard*> by_index;
+  for (const Shard& s : ordered) by_index.push_back(&s);
 
   MergedRun m;
   try {

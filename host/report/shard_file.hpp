@@ -10,6 +10,8 @@
 #include "checks/shard.hpp"
 #include "report/suite_report.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -20,6 +22,26 @@ namespace mfv {
 std::string shard_json(const SuiteReport& rep, const SuitePlans& cut, const std::vector<size_t>& positions,
                        const SuiteOptions& opt, const ShardSpec& s, const std::string& hash, size_t integrals,
                        const OutputContext& ctx);
+
+// One shard's file as read: its path, its JSON, its 0-based index and count.
+struct ShardDoc {
+  std::string path;
+  nlohmann::json doc;
+  uint32_t index = 0, count = 0;
+  std::string name() const;  // "shard 2/3 (PATH)"
+};
+// Which shard files: DIR/`file` of schema `schema`, written by `writer`.
+struct ShardKind {
+  std::string file, schema, writer;
+};
+// The checks every merge makes before reading any record (docs/scale.md):
+// each input's file parses, has the schema and its closing `complete`, was
+// written by this mfv (version and commit), has the first's count, seed,
+// plan hash and options; none given twice, none missing. Returns the shards
+// by index; throws mfv::Error naming the shard.
+std::vector<ShardDoc> read_shard_set(const std::vector<std::string>& inputs, const ShardKind& kind);
+// {"version", "commit", "describe"} of this mfv, as a shard file records it.
+nlohmann::json shard_tool_json();
 
 struct MergedRun {
   SuiteReport rep;  // judged
