@@ -115,6 +115,9 @@ TEST_CASE("three mfv energy shards merged equal the single run value for value, 
   INFO(m.out);
   REQUIRE(m.code == single.code);
   require_equal_outputs(s / "single", s / "merged");
+  const json shards = json::parse(slurp(s / "merged/energy.json")).at("provenance").at("shards");
+  REQUIRE(shards.size() == 3);
+  CHECK(shards[1].get<std::string>().find("TEST_SHARD_INDEX") != std::string::npos);
 
   // bad inputs: exit 2, one line naming the shard, nothing written
   auto bad = [&](const std::string& dirs, const std::string& named, const std::string& options = kRun) {

@@ -130,6 +130,7 @@ struct EnergyReport {
   double reference_worst = 0, reference_bound = 5e-3;
   std::string reference_worst_at;
   std::string device;
+  std::vector<std::string> shards;  // mfv energy --merge: one line per shard (index, file, variable, device)
 };
 
 std::vector<double> energy_mu_grid(int n);

@@ -172,6 +172,7 @@ struct EnergyCommand : SharedValues {
     Runtime rt(g.device, g.kernel_dir);
     for (auto& line : shards.lines) fmt::print("{}\n", line);
     EnergyReport rep = merge.empty() ? run_energy(rt, opt) : merge_energy(opt, shards.device, shards.parts);
+    rep.shards = shards.lines;
     if (!compare.empty() && rep.tables.size() != 1)
       throw Error(fmt::format("--compare: --models selects {} tables; name one (e.g. ggx/smith_ggx_correlated)",
                               rep.tables.size()));

@@ -216,6 +216,7 @@ std::string energy_json(const EnergyReport& rep, const Runtime& rt) {
   j["schema"] = "mfv-energy/1";
   j["tool"] = {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
+  if (!rep.shards.empty()) j["provenance"]["shards"] = rep.shards;  // mfv energy --merge
   j["device"] = {{"name", rt.device().name},
                  {"platform", rt.device().platform},
                  {"driver", rt.device().driver},
