@@ -279,8 +279,10 @@ MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 // E and, in the second slot, the sum of B (MFV_CHECK_ALBEDO_RQMC) or the
 // squared differences of neighbouring strata's E (stratified: E_avg).
 __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ulong plane,
-                       __global const IntegralSpec* restrict specs, uint slices, __global acc_t* restrict sums) {
+                       __global const IntegralSpec* restrict specs, uint slices, __global acc_t* restrict sums,
+                       ulong groups) {
   size_t g = get_global_id(0);
+  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
   __global const float* v = values + g * per_group;
   __global const float* b = v + plane;
   bool stratified = specs[g / slices].strata > 0u;
@@ -297,8 +299,10 @@ __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ul
 // Sum and the sum of squared differences of neighbouring samples (pairs
 // 2i, 2i + 1: neighbouring strata) of each run of `per_group` values (a
 // multiple of 4), as `integrate` leaves a stratified integral's work-groups.
-__kernel void sum_pairs(__global const float* restrict values, uint per_group, __global acc_t* restrict sums) {
+__kernel void sum_pairs(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
+                        ulong groups) {
   size_t g = get_global_id(0);
+  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
   __global const float* v = values + g * per_group;
   acc_t s[2] = {0, 0}, q[2] = {0, 0};
   for (uint k = 0; k < per_group; k += 4) {
@@ -317,8 +321,10 @@ __kernel void sum_pairs(__global const float* restrict values, uint per_group, _
 // multiple of 4) into sums[2g], sums[2g + 1], as `integrate` leaves its
 // work-groups' sums; four partial sums each keep the adds from waiting on
 // one another.
-__kernel void sum_values(__global const float* restrict values, uint per_group, __global acc_t* restrict sums) {
+__kernel void sum_values(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
+                         ulong groups) {
   size_t g = get_global_id(0);
+  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
   __global const float* v = values + g * per_group;
   acc_t s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};
   for (uint k = 0; k < per_group; k += 4) {
@@ -337,9 +343,12 @@ __kernel void sum_values(__global const float* restrict values, uint per_group, 
 // same-sample comparison: the first n, or for a stratified integral n spread
 // over all its strata (so both mixture components are compared). In a
 // MFV_DOUBLE program (the double twin, host/checks/reference_compare.cpp)
-// the values are doubles.
-__kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpec* specs, uint n, ulong seed, __global real* out) {
-  size_t i = get_global_id(0);
+// the values are doubles. Work-item k writes value first + k of the `total`
+// (specs x n); the host launches it in chunks of one work-group size.
+__kernel MFV_NO_IMPLICIT_VECTORIZE void sample_values(__global const IntegralSpec* specs, uint n, ulong seed,
+                                                      __global real* out, ulong first, ulong total) {
+  ulong i = first + get_global_id(0);
+  if (i >= total) return;
   __global const IntegralSpec* s = specs + i / n;
   ulong stride = s->strata >= n ? (ulong)(s->strata / n) : 1ul;
   out[i] = sample_value(s, seed, (ulong)(i % n) * stride);

@@ -85,11 +85,8 @@ double lobe_width_of(const IntegralSpec& s) {
   return std::min(wx, wy) > 0 ? std::min(wx, wy) : 0.0;
 }
 
-ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms) : rt_(rt) {
-  if (!rt.device().fp64) return;
-  program_ = rt.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms), kDispatchBefore);
-  available_ = true;
-}
+ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms)
+    : rt_(rt), terms_(terms), available_(rt.device().fp64) {}
 
 namespace {
 
@@ -105,6 +102,9 @@ std::vector<TwinAgreement> ReferenceTwin::compare(Integrator& in, const std::vec
                                                   uint64_t seed) {
   std::vector<TwinAgreement> out;
   if (n == 0 || specs.empty() || !available_) return out;
+  if (!program_())
+    program_ =
+        rt_.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms_), kDispatchBefore);
   const std::vector<float> kf = in.sample_values(specs, n, seed);
   const std::vector<double> kd = program_sample_values<double>(rt_, program_, specs, n, seed);
   for (size_t j = 0; j < specs.size(); ++j) {

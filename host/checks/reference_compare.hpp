@@ -37,15 +37,18 @@ constexpr double kFloatRoundoff = 0x1p-24, kDoubleRoundoff = 0x1p-53;
 
 class ReferenceTwin {
  public:
-  // Builds the MFV_DOUBLE program of `terms` where the device has fp64.
+  // The MFV_DOUBLE program of `terms` where the device has fp64, built at
+  // the first compare() (a run whose plans compare nothing builds none).
   ReferenceTwin(Runtime& rt, const TermSelection& terms);
   bool available() const { return available_; }
+  int builds() const { return program_() ? 1 : 0; }
   // kf from `in` (the float program), kd from the twin, r from the reference;
   // n samples per integral as Integrator::sample_values takes them.
   std::vector<TwinAgreement> compare(Integrator& in, const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
 
  private:
   Runtime& rt_;
+  TermSelection terms_;
   cl::Program program_;
   bool available_ = false;
 };

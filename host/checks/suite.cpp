@@ -22,6 +22,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <thread>
 
 namespace mfv {
@@ -89,17 +90,21 @@ void compare_float_only(Integrator& in, const std::vector<IntegralSpec>& subset,
 // (reference_compare.hpp). The twin must agree with the reference to the
 // bound derived from the float rounding of the same samples; a point where it
 // does not fails its model x check. kf - kd bounds the point's rounding bias.
-void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep) {
+void compare_plan_with_reference(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep,
+                                 ReferenceTwin* shared) {
   if (opt.reference_samples == 0) return;
   std::vector<size_t> which = plan.reference_pick ? *plan.reference_pick : reference_subset(plan, opt.reference_every);
   std::vector<IntegralSpec> subset;
   for (size_t i : which) subset.push_back(plan.specs[i]);
-  ReferenceTwin twin(in.runtime(), plan.terms);
+  std::optional<ReferenceTwin> own;
+  if (!shared) own.emplace(in.runtime(), plan.terms);
+  ReferenceTwin& twin = shared ? *shared : *own;
   if (!twin.available()) return compare_float_only(in, subset, which, plan, opt, rep);
   rep.reference_twin = true;
-  rep.reference_builds++;
   rep.reference_bound = 1.0;
+  const int builds0 = twin.builds();
   auto agree = twin.compare(in, subset, opt.reference_samples, opt.seed);
+  rep.reference_builds += twin.builds() - builds0;
   for (size_t j = 0; j < agree.size(); ++j) {
     const TwinAgreement& a = agree[j];
     PointResult& p = plan.points[which[j]];
@@ -157,7 +162,7 @@ void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::ve
 }
 
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep,
-              const std::vector<Integrator*>& others) {
+              const std::vector<Integrator*>& others, ReferenceTwin* twin) {
   if (plan.specs.empty()) return;
   if (!plan.streams_set) assign_streams(plan.check, plan.specs);  // by identity (checks/streams.hpp), not by place
   in.stratify(plan.specs, plan.samples);  // the reference must see the same samples
@@ -175,7 +180,7 @@ void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& 
   }
   rep.stats.push_back({plan.check, plan.specs.size(), plan.specs.size() * in.samples_used(plan.samples), secs});
   rep.double_accumulation = rep.double_accumulation && in.runtime().device().fp64;  // integrate.cl: acc_t
-  compare_plan_with_reference(in, plan, opt, rep);
+  compare_plan_with_reference(in, plan, opt, rep, twin);
   rep.points.insert(rep.points.end(), plan.points.begin(), plan.points.end());
 }
 
@@ -244,11 +249,14 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
   const std::vector<std::unique_ptr<Integrator>> others = integrators_ready(pending, rt, more, rep.device_shares);
   std::vector<Integrator*> other;
   for (auto& o : others) other.push_back(o.get());
+  // One double twin for every plan's reference comparison, as one program integrates them
+  std::optional<ReferenceTwin> twin;
+  if (opt.reference_samples > 0) twin.emplace(rt, terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
     if (check_kind(plans[i].check).truth) attach_furnace_truth(plans[i]);  // its pooled test is two-sided
-    run_plan(in, plans[i], opt, rep, other);
+    run_plan(in, plans[i], opt, rep, other, twin ? &*twin : nullptr);
   }
   if (!rp.specs.empty()) {
     progress::Task task("reciprocity", 0);

@@ -6,6 +6,7 @@
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/device_share.hpp"
+#include "checks/reference_compare.hpp"
 #include "checks/registry.hpp"
 #include "checks/integrate.hpp"
 #include "runtime/dispatch.hpp"
@@ -206,8 +207,11 @@ Plan new_plan(const std::string& check, uint64_t base_samples, double scale);
 // checks/streams.hpp), records estimates, timing and, when
 // opt.reference_samples > 0, the same-sample reference comparison into `rep`.
 // `others`: more devices sharing the integration (run_suite's `more`).
+// `twin`: the double twin (checks/reference_compare.hpp) of a program with
+// at least plan.terms, shared by the plans of a run (one build, and one
+// compile of its sample_values, for the run); nullptr: one built here.
 void run_plan(Integrator& in, Plan& plan, const SuiteOptions& opt, SuiteReport& rep,
-              const std::vector<Integrator*>& others = {});
+              const std::vector<Integrator*>& others = {}, ReferenceTwin* twin = nullptr);
 // The same through a program built here with plan.terms (its build time goes to rep.build_seconds).
 void run_plan(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteReport& rep);
 

@@ -217,8 +217,12 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
   const uint64_t kMaxValues = uint64_t(1) << 22;                // 16 MiB of samples a launch
   // A launch takes `count` integrals over slices [s0, s0 + nslices).
-  const uint32_t nslices = uint32_t(std::clamp<uint64_t>(kMaxValues / per_slice, 1, slices));
-  const size_t per_launch = nslices == slices ? std::max<size_t>(1, kMaxValues / (per_slice * slices)) : 1;
+  // and at most kMaxCountedGrid work-groups, one work-item each in the reduction (runtime/work_group.hpp)
+  const uint32_t nslices =
+      uint32_t(std::clamp<uint64_t>(std::min<uint64_t>(kMaxValues / per_slice, kMaxCountedGrid), 1, slices));
+  const size_t per_launch =
+      nslices == slices ? std::max<size_t>(1, std::min(kMaxValues / (per_slice * slices), kMaxCountedGrid / slices))
+                        : 1;
   // stratified d_norm: neighbouring strata's squared differences, as `integrate`
   const bool pairs = base == "d_norm_values" || base == "d_norm_aniso_values";
   // RQMC: an E and a B plane, reduced by sum_rqmc
@@ -250,10 +254,12 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
         sum_k.setArg(3, spec_buf);                          // stratified (E_avg) or not, per integral
         sum_k.setArg(4, static_cast<cl_uint>(ns));
         sum_k.setArg(5, sums);
+        sum_k.setArg(6, static_cast<cl_ulong>(groups));
       } else {
         sum_k.setArg(2, sums);
+        sum_k.setArg(3, static_cast<cl_ulong>(groups));
       }
-      rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(groups));
+      enqueue_counted(rt_.queue(), sum_k, rt_.device().device, groups);
       add_sums(sums, count, ns, out.data() + first);
     }
   }
@@ -268,8 +274,29 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
   sum_k.setArg(0, values);
   sum_k.setArg(1, static_cast<cl_uint>(per_row));
   sum_k.setArg(2, sums);
-  rt_.queue().enqueueNDRangeKernel(sum_k, cl::NullRange, cl::NDRange(rows));
+  sum_k.setArg(3, static_cast<cl_ulong>(rows));
+  enqueue_counted(rt_.queue(), sum_k, rt_.device().device, rows);
   add_sums(sums, rows, 1, out);
+}
+
+// The work-group size of a replicate kernel over rows of n points. Short
+// rows (at most 16 SIMD widths, the default run's n = 40 and 80) take one
+// SIMD width, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE (8 on PoCL), where
+// it divides n: PoCL compiles a kernel once per work-group size, so furnace
+// (n = 80) and energy (n = 40) then share each pair's compile, 45 compiles
+// fewer on a cold default run, and the furnace's integration took no longer
+// (median of 5: 0.97 s against 1.03 s with 16; docs/performance.md, "Cold
+// start"). Longer rows take the largest power of two that divides n within
+// the device's and kernel's limits (up to 1024): there small work-groups cost
+// more per point (mfv bench --case, n = 1280: 0.56 ms to SE 1e-4 with 8
+// against 0.41 ms with 256; with 64 against up to 1024, 1.5-1.7 ms against
+// 1.0-1.4 ms).
+static size_t mis_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n) {
+  const size_t simd = k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device);
+  size_t local = fit_local_size(k, device, 1024);
+  while (n % local != 0) local /= 2;
+  if (simd > 0 && n <= 16 * simd && n % simd == 0) local = std::min(local, fit_local_size(k, device, simd));
+  return local;
 }
 
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
@@ -307,15 +334,10 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   for (const auto& s : specs)
     if (s.points != n || n % 4 != 0) throw Error("internal: AlbedoMis integrals of one run take the same points");
   const uint64_t kMaxValues = uint64_t(1) << 22;  // 16 MiB of samples a launch
-  const size_t per_launch = size_t(std::max<uint64_t>(1, kMaxValues / n));
+  // rows a launch: at most kMaxCountedGrid, sum_rows' one launch (runtime/work_group.hpp)
+  const size_t per_launch = size_t(std::clamp<uint64_t>(kMaxValues / n, 1, kMaxCountedGrid));
   cl::Kernel k = launched(kernel);
-  // The device's and kernel's limits, a power of two that divides n. (At
-  // most 64 would give every point count of the default checks one
-  // work-group size, so that furnace and energy share PoCL's compile of a
-  // kernel, but small work-groups cost more per point: mfv bench --case took
-  // 1.5-1.7 ms to SE 1e-4 with 64 against 1.0-1.4 ms with up to 1024.)
-  size_t local = fit_local_size(k, rt_.device().device, 1024);
-  while (n % local != 0) local /= 2;
+  size_t local = mis_local_size(k, rt_.device().device, n);
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
@@ -465,7 +487,12 @@ std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, co
   k.setArg(1, static_cast<cl_uint>(n));
   k.setArg(2, static_cast<cl_ulong>(seed));
   k.setArg(3, vals);
-  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(out.size()));
+  k.setArg(5, static_cast<cl_ulong>(out.size()));
+  // one work-group size and grid width for every launch: one compile (runtime/work_group.hpp)
+  for (size_t first = 0; first < out.size(); first += kMaxCountedGrid) {
+    k.setArg(4, static_cast<cl_ulong>(first));
+    enqueue_counted(rt.queue(), k, rt.device().device, std::min(kMaxCountedGrid, out.size() - first));
+  }
   rt.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(T), out.data());
   return out;
 }

@@ -34,4 +34,17 @@ size_t fit_local_size(const cl::Kernel& kernel, const cl::Device& device, size_t
   return local;
 }
 
+size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device) {
+  return fit_local_size(kernel, device, 64);
+}
+
+void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count) {
+  if (count == 0) return;
+  if (count > kMaxCountedGrid)
+    throw Error(fmt::format("internal: {} work-items in one counted launch (at most {})", count, kMaxCountedGrid));
+  const size_t local = counted_local_size(kernel, device);
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange((count + local - 1) / local * local),
+                             cl::NDRange(local));
+}
+
 }  // namespace mfv

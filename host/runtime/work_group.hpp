@@ -17,6 +17,21 @@ namespace mfv {
 // MFV_MAX_LOCAL_SIZE (not a positive integer).
 size_t fit_local_size(const cl::Kernel& kernel, const cl::Device& device, size_t preferred);
 
+// Launches of a one-dimensional kernel over `count` work-items whose count
+// varies from launch to launch (the reductions sum_values, sum_pairs,
+// sum_rqmc, and sample_values: kernels/integrate.cl). PoCL compiles a kernel
+// at its first launch with each work-group size, and once more for a grid
+// of 65535 work-items or more ("smallgrid" or not); a size left to the driver
+// (cl::NullRange) follows the count, so a kernel launched over many counts
+// was compiled many times: sample_values 12 times in one default run, each
+// 2-8 s of CPU cold (docs/performance.md, "Cold start"). So these launches
+// take work-groups of one size, fit_local_size(kernel, device, 64), the grid
+// rounded up to whole groups (the kernel ignores work-items past `count`), and
+// at most kMaxCountedGrid work-items a launch (callers cut larger counts).
+constexpr size_t kMaxCountedGrid = 32768;
+size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device);
+void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count);
+
 // MFV_MAX_LOCAL_SIZE as a number, 0 when unset. Throws mfv::Error when it is
 // set to anything but a positive integer.
 size_t local_size_cap_from_env();

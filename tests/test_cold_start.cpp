@@ -1,0 +1,115 @@
+// The cold first run (issue 30): PoCL compiles a kernel at its first launch
+// with each work-group size (and grid class), so a run that launches one
+// kernel over many sizes pays many compiles (docs/performance.md, "Cold
+// start"). These tests run mfv with PoCL's kernel cache in an empty folder
+// and read back what PoCL compiled: one work-group variant per kernel and
+// one double-twin program for the run. They also check that the counted
+// launches (runtime/work_group.hpp) give the values of whole launches.
+#include "albedo_spec.hpp"
+#include "device_fixture.hpp"
+#include "run_mfv.hpp"
+#include "runtime/integrator.hpp"
+#include "runtime/work_group.hpp"
+#include "test_files.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+
+using namespace mfv;
+namespace fs = std::filesystem;
+
+namespace {
+
+// PoCL's cache: PROGRAM_HASH (two levels) / KERNEL / VARIANT / KERNEL.so.
+// Returns, per kernel name, how many work-group variants were compiled,
+// summed over programs, and the number of programs.
+struct Compiled {
+  std::map<std::string, int> variants;
+  std::map<std::string, int> programs_with;  // programs that compiled the kernel at least once
+  int programs = 0;
+};
+
+Compiled read_pocl_cache(const fs::path& dir) {
+  Compiled c;
+  for (auto& a : fs::directory_iterator(dir)) {
+    if (!a.is_directory()) continue;
+    for (auto& prog : fs::directory_iterator(a.path())) {
+      if (!prog.is_directory()) continue;
+      bool any = false;
+      for (auto& kernel : fs::directory_iterator(prog.path())) {
+        if (!kernel.is_directory()) continue;
+        const std::string name = kernel.path().filename().string();
+        int n = 0;
+        for (auto& variant : fs::directory_iterator(kernel.path()))
+          if (fs::exists(variant.path() / (name + ".so"))) ++n;
+        if (n == 0) continue;
+        any = true;
+        c.variants[name] += n;
+        c.programs_with[name] += 1;
+      }
+      c.programs += any ? 1 : 0;
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("A cold mfv run compiles each kernel once: one work-group size per kernel and one double twin",
+          "[device][cold]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  if (!test::is_pocl(*rt)) return test::skip("the compile count is read from PoCL's kernel cache");
+  test::Scratch scratch("mfv_cold");
+  const fs::path cache = scratch.dir / "pocl", out = scratch.dir / "out";
+  fs::create_directories(cache);
+  // d_norm and masking (sum_pairs, sum_values over many counts), furnace
+  // (n = 80 points a replicate) and energy (n = 40) of the same pairs, and
+  // the reference comparison (sample_values over each plan's subset, float
+  // and double twin) in every plan
+  const test::Run r = test::run_mfv(
+      "--quiet run --check d_norm --check masking --check furnace --check energy --model ggx/smith_ggx_correlated "
+      "--model beckmann/smith_beckmann --out " + out.string(),
+      "POCL_CACHE_DIR=" + cache.string() + " POCL_KERNEL_CACHE=1");
+  INFO(r.out);
+  REQUIRE(r.code == 0);
+  const Compiled c = read_pocl_cache(cache);
+  REQUIRE(c.variants.count("sample_values") == 1);
+  for (const auto& [name, n] : c.variants) {
+    CAPTURE(name, c.programs_with.at(name));
+    CHECK(n == c.programs_with.at(name));  // one work-group variant in each program that compiled it
+  }
+  // sample_values in two programs: the float integration program and the run's one double twin
+  CHECK(c.programs_with.at("sample_values") == 2);
+  CHECK(c.programs == 2);
+}
+
+TEST_CASE("sample_values launched in chunks of one work-group size gives each integral's values as alone",
+          "[device][cold]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  // more values than one counted launch takes, and a count that is no multiple of the work-group size
+  const uint32_t n = 251;
+  std::vector<IntegralSpec> specs;
+  for (uint32_t i = 0; i < 150; ++i)
+    specs.push_back(test::albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.05 + 0.005 * i, 0.3 + 0.004 * i,
+                                      0.04, 0.0, i, IntegralKind::Masking));
+  REQUIRE(specs.size() * n > kMaxCountedGrid);
+  Integrator in(*rt, TermSelection::all());
+  const std::vector<float> all = in.sample_values(specs, n, 5);
+  REQUIRE(all.size() == specs.size() * n);
+  for (size_t j : {size_t(0), size_t(130), specs.size() - 1}) {  // the last integrals lie in the second launch
+    CAPTURE(j);
+    const std::vector<float> one = in.sample_values({specs[j]}, n, 5);
+    for (uint32_t k = 0; k < n; ++k) {
+      CAPTURE(k);
+      REQUIRE(std::isfinite(all[j * n + k]));
+      REQUIRE(std::memcmp(&all[j * n + k], &one[k], sizeof(float)) == 0);
+    }
+  }
+}
