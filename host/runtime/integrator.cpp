@@ -279,26 +279,6 @@ void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_ro
   add_sums(sums, rows, 1, out);
 }
 
-// The work-group size of a replicate kernel over rows of n points. Short
-// rows (at most 16 SIMD widths, the default run's n = 40 and 80) take one
-// SIMD width, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE (8 on PoCL), where
-// it divides n: PoCL compiles a kernel once per work-group size, so furnace
-// (n = 80) and energy (n = 40) then share each pair's compile, 45 compiles
-// fewer on a cold default run, and the furnace's integration took no longer
-// (median of 5: 0.97 s against 1.03 s with 16; docs/performance.md, "Cold
-// start"). Longer rows take the largest power of two that divides n within
-// the device's and kernel's limits (up to 1024): there small work-groups cost
-// more per point (mfv bench --case, n = 1280: 0.56 ms to SE 1e-4 with 8
-// against 0.41 ms with 256; with 64 against up to 1024, 1.5-1.7 ms against
-// 1.0-1.4 ms).
-static size_t mis_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n) {
-  const size_t simd = k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device);
-  size_t local = fit_local_size(k, device, 1024);
-  while (n % local != 0) local /= 2;
-  if (simd > 0 && n <= 16 * simd && n % simd == 0) local = std::min(local, fit_local_size(k, device, simd));
-  return local;
-}
-
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
 // one row per replicate) and sum_values (one sum per row).
 std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
@@ -337,7 +317,7 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   // rows a launch: at most kMaxCountedGrid, sum_rows' one launch (runtime/work_group.hpp)
   const size_t per_launch = size_t(std::clamp<uint64_t>(kMaxValues / n, 1, kMaxCountedGrid));
   cl::Kernel k = launched(kernel);
-  size_t local = mis_local_size(k, rt_.device().device, n);
+  size_t local = row_local_size(k, rt_.device().device, n);
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));

@@ -47,4 +47,12 @@ void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl
                              cl::NDRange(local));
 }
 
+size_t row_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n) {
+  const size_t simd = k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device);
+  size_t local = fit_local_size(k, device, 1024);
+  while (n % local != 0) local /= 2;
+  if (simd > 0 && n <= 16 * simd && n % simd == 0) local = std::min(local, fit_local_size(k, device, simd));
+  return local;
+}
+
 }  // namespace mfv

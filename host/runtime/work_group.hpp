@@ -7,6 +7,7 @@
 #include <CL/opencl.hpp>
 
 #include <cstddef>
+#include <cstdint>
 
 namespace mfv {
 
@@ -31,6 +32,21 @@ size_t fit_local_size(const cl::Kernel& kernel, const cl::Device& device, size_t
 constexpr size_t kMaxCountedGrid = 32768;
 size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device);
 void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count);
+
+// The work-group size of a replicate kernel (albedo_mis_values and the
+// other MFV_*_ROWS kernels) over rows of n points. Short
+// rows (at most 16 SIMD widths, the default run's n = 40 and 80) take one
+// SIMD width, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE (8 on PoCL), where
+// it divides n: PoCL compiles a kernel once per work-group size, so furnace
+// (n = 80) and energy (n = 40) then share each pair's compile, 45 compiles
+// fewer on a cold default run, and the furnace's integration took no longer
+// (median of 5: 0.97 s against 1.03 s with 16; docs/performance.md, "Cold
+// start"). Longer rows take the largest power of two that divides n within
+// the device's and kernel's limits (up to 1024): there small work-groups cost
+// more per point (mfv bench --case, n = 1280: 0.56 ms to SE 1e-4 with 8
+// against 0.41 ms with 256; with 64 against up to 1024, 1.5-1.7 ms against
+// 1.0-1.4 ms).
+size_t row_local_size(const cl::Kernel& kernel, const cl::Device& device, uint32_t n);
 
 // MFV_MAX_LOCAL_SIZE as a number, 0 when unset. Throws mfv::Error when it is
 // set to anything but a positive integer.
