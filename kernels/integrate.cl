@@ -281,11 +281,13 @@ MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ulong plane,
                        __global const IntegralSpec* restrict specs, uint slices, __global acc_t* restrict sums,
                        ulong groups) {
-  size_t g = get_global_id(0);
-  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
-  __global const float* v = values + g * per_group;
+  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
+  // work-item past the last run reads the last run (a select, not a branch, so
+  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
+  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  __global const float* v = values + r * per_group;
   __global const float* b = v + plane;
-  bool stratified = specs[g / slices].strata > 0u;
+  bool stratified = specs[r / slices].strata > 0u;
   acc_t s = 0, q = 0;
   for (uint k = 0; k < per_group; k += 2) {
     acc_t e0 = (acc_t)v[k], e1 = (acc_t)v[k + 1];
@@ -301,9 +303,11 @@ __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ul
 // multiple of 4), as `integrate` leaves a stratified integral's work-groups.
 __kernel void sum_pairs(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
                         ulong groups) {
-  size_t g = get_global_id(0);
-  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
-  __global const float* v = values + g * per_group;
+  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
+  // work-item past the last run reads the last run (a select, not a branch, so
+  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
+  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  __global const float* v = values + r * per_group;
   acc_t s[2] = {0, 0}, q[2] = {0, 0};
   for (uint k = 0; k < per_group; k += 4) {
 #pragma unroll
@@ -323,9 +327,11 @@ __kernel void sum_pairs(__global const float* restrict values, uint per_group, _
 // one another.
 __kernel void sum_values(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
                          ulong groups) {
-  size_t g = get_global_id(0);
-  if (g >= groups) return;  // the grid is rounded up to whole work-groups (runtime/work_group.hpp)
-  __global const float* v = values + g * per_group;
+  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
+  // work-item past the last run reads the last run (a select, not a branch, so
+  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
+  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  __global const float* v = values + r * per_group;
   acc_t s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};
   for (uint k = 0; k < per_group; k += 4) {
 #pragma unroll

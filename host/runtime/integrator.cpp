@@ -246,7 +246,8 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
       values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
       values_k.setArg(3, values);
       rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
-      cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, groups * MFV_SUM_SLOTS * acc);
+      const size_t padded = counted_grid(sum_k, rt_.device().device, groups);  // a sum per launched work-item
+      cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, padded * MFV_SUM_SLOTS * acc);
       sum_k.setArg(0, values);
       sum_k.setArg(1, static_cast<cl_uint>(per_slice));
       if (rqmc) {
@@ -270,7 +271,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
 void Integrator::sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out) {
   cl::Kernel sum_k(program_, "sum_values");
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
-  cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, rows * MFV_SUM_SLOTS * acc);
+  cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, counted_grid(sum_k, rt_.device().device, rows) * MFV_SUM_SLOTS * acc);
   sum_k.setArg(0, values);
   sum_k.setArg(1, static_cast<cl_uint>(per_row));
   sum_k.setArg(2, sums);

@@ -38,13 +38,17 @@ size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device) {
   return fit_local_size(kernel, device, 64);
 }
 
+size_t counted_grid(const cl::Kernel& kernel, const cl::Device& device, size_t count) {
+  const size_t local = counted_local_size(kernel, device);
+  return (count + local - 1) / local * local;
+}
+
 void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count) {
   if (count == 0) return;
   if (count > kMaxCountedGrid)
     throw Error(fmt::format("internal: {} work-items in one counted launch (at most {})", count, kMaxCountedGrid));
-  const size_t local = counted_local_size(kernel, device);
-  queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange((count + local - 1) / local * local),
-                             cl::NDRange(local));
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(counted_grid(kernel, device, count)),
+                             cl::NDRange(counted_local_size(kernel, device)));
 }
 
 size_t row_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n) {

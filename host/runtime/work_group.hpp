@@ -31,6 +31,9 @@ size_t fit_local_size(const cl::Kernel& kernel, const cl::Device& device, size_t
 // at most kMaxCountedGrid work-items a launch (callers cut larger counts).
 constexpr size_t kMaxCountedGrid = 32768;
 size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device);
+// The work-items enqueue_counted launches for `count`: count rounded up to
+// whole work-groups (buffers a kernel writes per work-item are this long).
+size_t counted_grid(const cl::Kernel& kernel, const cl::Device& device, size_t count);
 void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count);
 
 // The work-group size of a replicate kernel (albedo_mis_values and the
