@@ -180,8 +180,10 @@ std::vector<size_t> cut_to_shard(SuitePlans& sp, const SuiteOptions& opt, const 
   auto cut = [&](Plan& p, bool pick) {
     auto [lo, hi] = share(p.specs.size(), s);
     std::vector<size_t> ref;
+    // the whole plan's pick: its own where the plan chose one (bsdf_plan
+    // leaves out the known-bad entries and the index-matched points)
     if (pick)
-      for (size_t i : reference_subset(p, opt.reference_every))
+      for (size_t i : p.reference_pick ? *p.reference_pick : reference_subset(p, opt.reference_every))
         if (i >= lo && i < hi) ref.push_back(i - lo);
     p.specs = std::vector<IntegralSpec>(p.specs.begin() + long(lo), p.specs.begin() + long(hi));
     p.points = std::vector<PointResult>(p.points.begin() + long(lo), p.points.begin() + long(hi));
