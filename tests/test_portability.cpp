@@ -9,9 +9,14 @@
 #include "run_mfv.hpp"
 #include "test_files.hpp"
 
-#include <catch2/catch.hpp>
+#include "stats/verdict.hpp"
 
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 using namespace mfv::test;
@@ -56,6 +61,62 @@ void conforms(const std::string& name, bool with_integrals) {
 }  // namespace
 
 TEST_CASE("The suite conforms on Intel's CPU OpenCL runtime", "[portability][intel]") { conforms("intel", true); }
+
+// mfv run --device all across two OpenCL implementations of this machine:
+// Intel's CPU runtime and PoCL, each from its own ICD file in one folder.
+// The shared run gives the one-device run's verdicts, sample counts and
+// exit code, and each estimate within the two runs' float rounding (each
+// lies within stats::float_rounding_bound of the exact value of the same
+// samples); both devices take work (docs/scale.md).
+TEST_CASE("mfv run --device all shares one plan between Intel's runtime and PoCL and agrees with a one-device run",
+          "[portability][intel]") {
+  namespace fs = std::filesystem;
+  const std::string intel = vendor_dir("intel");
+  if (intel.empty()) return;
+  const fs::path pocl_icd = "/etc/OpenCL/vendors/pocl.icd";
+  if (!fs::exists(pocl_icd)) {
+    skip("PoCL's ICD file " + pocl_icd.string() + " is missing: --device all on two implementations");
+    return;
+  }
+  Scratch s("mfv_device_all_two");
+  fs::create_directories(s / "vendors");
+  fs::copy_file(fs::path(intel) / "intel.icd", s / "vendors/intel.icd");
+  fs::copy_file(pocl_icd, s / "vendors/pocl.icd");
+  const std::string env = "OCL_ICD_VENDORS=" + (s / "vendors");
+  const auto devs = run_mfv("devices", env);
+  REQUIRE(devs.code == 0);
+  CAPTURE(devs.out);
+  REQUIRE(devs.out.find("Intel(R) OpenCL") != std::string::npos);
+  REQUIRE(devs.out.find("Portable Computing Language") != std::string::npos);
+  const std::string base =
+      "--quiet run --scale 0.05 --seed 3 --model ggx --check d_norm --check masking --check furnace --out ";
+  const auto one = run_mfv("--device 0 " + base + s / "one", env);
+  CAPTURE(one.out);
+  REQUIRE(one.code <= 1);
+  const auto all = run_mfv("--device all " + base + s / "all", env);
+  CAPTURE(all.out);
+  REQUIRE(all.code == one.code);
+  using nlohmann::json;
+  const json a = json::parse(slurp(s / "one/results.json")), b = json::parse(slurp(s / "all/results.json"));
+  CHECK(a.at("groups") == b.at("groups"));
+  const json &ra = a.at("results"), &rb = b.at("results");
+  REQUIRE(ra.size() == rb.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < ra.size(); ++i) {
+    INFO("record " << i << ": " << ra[i].dump() << " against " << rb[i].dump());
+    REQUIRE(ra[i].at("verdict") == rb[i].at("verdict"));
+    REQUIRE(ra[i].at("samples") == rb[i].at("samples"));
+    const double x = ra[i].at("estimate"), y = rb[i].at("estimate");
+    const uint64_t n = ra[i].at("samples");
+    differ += x != y;
+    CHECK(std::fabs(x - y) <= mfv::stats::float_rounding_bound(x, n) + mfv::stats::float_rounding_bound(y, n));
+  }
+  // both implementations integrated part of the plan
+  const json& shared = b.at("device").at("shared");
+  REQUIRE(shared.size() == 2);
+  for (auto& d : shared) CHECK(d.at("integrals").get<uint64_t>() > 0);
+  WARN(differ << " of " << ra.size() << " estimates differ in their last bits between the shared and one-device run");
+}
 
 TEST_CASE("agree, samplers and stability conform on Mesa rusticl (llvmpipe), a flush-to-zero device without fp64",
           "[portability][rusticl]") {
