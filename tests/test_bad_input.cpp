@@ -78,6 +78,9 @@ const BadCase kBadCases[] = {
     {"eval aniso_ggx/smith_ggx/schlick", "anisotropic Smith G"},
     {"eval ggx --h 0,0,1", "--h is for anisotropic D terms"},
     {"--device '' list", "empty"},
+    {"agree --shard 1/2", "give --out DIR"},
+    {"stability --shard 3/2 --out /tmp/x", "expected K/N"},
+    {"agree --shard 1/2 --merge /tmp --out /tmp/x", "give one"},
     {"--device 99999999999999999999999 eval ggx", "out of range"},
 };
 

@@ -4,6 +4,7 @@
 // (energy.json, CSV, C header, layout files, report); each bad merge input
 // exits 2 with one line naming the shard.
 #include "checks/shard.hpp"
+#include "bad_shards.hpp"
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
 #include "test_files.hpp"
@@ -120,49 +121,11 @@ TEST_CASE("three mfv energy shards merged equal the single run value for value, 
   CHECK(shards[1].get<std::string>().find("TEST_SHARD_INDEX") != std::string::npos);
 
   // bad inputs: exit 2, one line naming the shard, nothing written
-  auto bad = [&](const std::string& dirs, const std::string& named, const std::string& options = kRun) {
-    std::filesystem::remove_all(s / "bad");
-    auto r = run_mfv(options + " --merge " + dirs + " --out " + s / "bad");
-    INFO(dirs << "\n" << r.out);
-    CHECK(r.code == 2);
-    CHECK(r.out.rfind("mfv: error: ", 0) == 0);
-    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
-    CHECK(r.out.find(named) != std::string::npos);
-    CHECK(!std::filesystem::exists(s / "bad/energy.json"));
-  };
-  bad(s1 + " " + s3, "shard 2/3 missing");
-  bad(s1 + " " + s2 + " " + s2 + " " + s3, "shard 2/3 (" + s2 + "/energy_shard.json) is given twice");
-  const std::string text = slurp(s2 + "/energy_shard.json");
-  std::filesystem::create_directories(s / "cut");
-  std::ofstream(s / "cut/energy_shard.json") << text.substr(0, text.size() / 2);
-  bad(s1 + " " + s / "cut" + " " + s3, s / "cut/energy_shard.json: truncated or not JSON");
-  const json doc = json::parse(text);
-  auto edited = [&](const std::string& name, const json& d) {
-    std::filesystem::create_directories(s / name);
-    std::ofstream(s / (name + "/energy_shard.json")) << d.dump();
-    return s / name;
-  };
-  json version = doc;
-  version["tool"]["commit"] = "0000000";
-  bad(s1 + " " + edited("version", version) + " " + s3, "shard 2/3 (" + s / "version/energy_shard.json) was written by");
-  json dropped = doc;
-  dropped["units"].erase(dropped["units"].begin());
-  bad(s1 + " " + edited("dropped", dropped) + " " + s3, "shard 2/3 (" + s / "dropped/energy_shard.json)");
-  json incomplete = doc;
-  incomplete.erase("complete");
-  bad(s1 + " " + edited("incomplete", incomplete) + " " + s3, s / "incomplete/energy_shard.json");
-  // foreign shards: another seed, another plan, another count
-  REQUIRE(run_mfv(kBase + " --target 5e-5 --seed 6 --shard 2/3 --out " + s / "seed6").code == 0);
-  bad(s1 + " " + s / "seed6" + " " + s3, "shard 2/3 (" + s / "seed6/energy_shard.json) ran seed 6");
-  REQUIRE(run_mfv(kBase + " --target 6e-5 --seed 5 --shard 2/3 --out " + s / "plan").code == 0);
-  bad(s1 + " " + s / "plan" + " " + s3, "shard 2/3 (" + s / "plan/energy_shard.json) ran another plan");
-  // the merge's options another plan than every shard's: the first shard is named
-  bad(s1 + " " + s2 + " " + s3, "shard 1/3 (" + s1 + "/energy_shard.json) ran another plan",
-      kBase + " --target 6e-5 --seed 5");
-  bad(s1 + " " + s2 + " " + s3, "shard 1/3 (" + s1 + "/energy_shard.json) ran seed 5", kBase + " --target 5e-5 --seed 7");
-  REQUIRE(run_mfv(kRun + " --shard 2/4 --out " + s / "four").code == 0);
-  bad(s1 + " " + s / "four" + " " + s3, "is one of 4 shards");
-  bad(s / "nothing", "no shard file");
+  const BadMerges bad{s, kRun, "energy_shard.json", "energy.json"};
+  bad.common(s1, s2, s3);
+  // foreign shards: another seed, another plan (than a shard, or the merge's options)
+  bad.foreign(s1, s2, s3, kBase + " --target 5e-5 --seed 6", "ran seed 6", "ran seed 5");
+  bad.foreign(s1, s2, s3, kBase + " --target 6e-5 --seed 5", "ran another plan", "ran another plan");
 }
 
 TEST_CASE("mfv energy --shard: a bad K/N, no --out, --merge with --shard, or a bad engine variable is a one-line "

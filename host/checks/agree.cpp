@@ -332,13 +332,42 @@ AgreeResult result_of(const Case& c, Stats& total, uint64_t samples) {
   return r;
 }
 
-}  // namespace
-
-namespace {
 cl::Program build_agree_program(Runtime& rt, bool fp64);
+
+// Each case's Philox stream is a hash of its name (checks/streams.hpp), not
+// its position in the list: adding a term, selecting cases with --only, or
+// running a shard's part leaves every other case's inputs, and so its
+// record, unchanged.
+std::vector<uint32_t> case_streams(const std::vector<Case>& cases) {
+  std::vector<uint32_t> streams;
+  std::map<uint32_t, std::string> seen;
+  for (const Case& c : cases) {
+    const uint32_t st = static_cast<uint32_t>(stream_of_key("agree " + c.name));
+    if (auto [it, fresh] = seen.emplace(st, c.name); !fresh)
+      throw Error(fmt::format("internal: agree cases '{}' and '{}' hash to one stream", it->second, c.name));
+    streams.push_back(st);
+  }
+  return streams;
 }
 
-AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
+}  // namespace
+
+UnitPlan agree_plan(const AgreeOptions& opt) {
+  const std::vector<Case> cases = make_cases(opt);
+  const std::vector<uint32_t> streams = case_streams(cases);
+  UnitPlan plan;
+  PlanDigest d;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    d.text(c.name), d.value(int(c.mode)), d.value(c.ulp_budget), d.value(c.abs_floor), d.value(streams[i]);
+    plan.cost.push_back(opt.samples);
+  }
+  d.value(opt.samples), d.value(opt.fp64);
+  plan.hash = d.hex();
+  return plan;
+}
+
+AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt, std::pair<size_t, size_t> part) {
   if (opt.samples == 0) throw Error("--samples must be at least 1");
   if (opt.fp64 && !rt.device().fp64)
     throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
@@ -359,20 +388,10 @@ AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   const double ftz_floor = !opt.fp64 && !rt.device().fp32_denorms ? std::numeric_limits<float>::min() : 0.0;
 
-  // Each case's Philox stream is a hash of its name (checks/streams.hpp), not
-  // its position in the list: adding a term, or selecting cases with --only,
-  // leaves every other case's inputs, and so its record, unchanged.
-  std::vector<uint32_t> streams;
-  std::map<uint32_t, std::string> seen;
-  for (const Case& c : cases) {
-    const uint32_t st = static_cast<uint32_t>(stream_of_key("agree " + c.name));
-    if (auto [it, fresh] = seen.emplace(st, c.name); !fresh)
-      throw Error(fmt::format("internal: agree cases '{}' and '{}' hash to one stream", it->second, c.name));
-    streams.push_back(st);
-  }
-
-  progress::Task task("agree: cases", cases.size());
-  for (size_t ci = 0; ci < cases.size(); ++ci) {
+  const std::vector<uint32_t> streams = case_streams(cases);
+  const size_t hi = std::min(part.second, cases.size());
+  progress::Task task("agree: cases", hi - std::min(part.first, hi));
+  for (size_t ci = part.first; ci < hi; ++ci) {
     const Case& c = cases[ci];
     const DrawRanges ranges =
         draw_ranges(c.d, c.g, c.f, c.model, c.mode == EvalMode::Brdf || c.mode == EvalMode::BrdfAniso,

@@ -3,10 +3,13 @@
 #pragma once
 
 #include "abi/pointwise.h"
+#include "checks/unit_plan.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mfv {
@@ -36,7 +39,15 @@ struct AgreeReport {
   uint64_t samples = 0;
 };
 
-AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt);
+// Cases [part.first, part.second) of the whole plan's (mfv agree --shard,
+// docs/scale.md): each case's inputs come from its own Philox stream, keyed
+// by its name, so a shard's cases are the whole run's, value for value.
+AgreeReport run_agree(Runtime& rt, const AgreeOptions& opt,
+                      std::pair<size_t, size_t> part = {0, std::numeric_limits<size_t>::max()});
+// The whole plan's cases as units, each costing its samples (one launch
+// and reference pass per input), and a digest of the cases, their streams,
+// samples and precision.
+UnitPlan agree_plan(const AgreeOptions& opt);
 
 // One point evaluated by the kernel and the reference (mfv eval), through
 // the records of mfv agree (kernels/abi/pointwise.h): for a BRDF or a whole

@@ -292,23 +292,6 @@ void finish_cells(EnergyReport& rep) {
   judge_model_gains(rep);
 }
 
-// FNV-1a, 64-bit, as checks/shard.cpp's plan hash: equality of plans, not security.
-struct Digest {
-  uint64_t h = 14695981039346656037ull;
-  void bytes(const void* p, size_t n) {
-    auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-  }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-  void doubles(const std::vector<double>& v) {
-    value(uint64_t(v.size()));
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(double));
-  }
-};
-
 }  // namespace
 
 EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt) {
@@ -317,7 +300,7 @@ EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt) {
   uint32_t free_stream = 0;
   const std::vector<EnergyUnit> units = energy_units(rep, free_stream);
   EnergyPlanSummary s;
-  Digest d;
+  PlanDigest d;
   const size_t R = size_t(opt.replicates);
   for (auto& u : units) {
     const std::vector<IntegralSpec> specs = specs_of(u, R);
@@ -325,17 +308,14 @@ EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt) {
     for (auto& sp : specs) d.bytes(&sp, sizeof sp);
     d.value(u.table), d.value(u.index), d.value(u.eavg), d.value(u.model);
   }
-  for (auto& t : rep.tables) {
-    const std::string n = t.name();
-    d.bytes(n.c_str(), n.size() + 1);
-  }
-  for (auto& m : rep.models) d.bytes(m.point.name.c_str(), m.point.name.size() + 1);
+  for (auto& t : rep.tables) d.text(t.name());
+  for (auto& m : rep.models) d.text(m.point.name);
   d.doubles(rep.mu), d.doubles(rep.alpha), d.doubles(opt.eta), d.doubles(opt.roughness);
   d.value(free_stream), d.value(opt.paired), d.value(opt.fp64), d.value(opt.target), d.value(opt.gain_alpha);
   d.value(opt.replicates), d.value(opt.min_points), d.value(opt.max_points);
   d.value(opt.reference_samples), d.value(opt.reference_every);
-  d.bytes(opt.layout.c_str(), opt.layout.size() + 1);
-  s.hash = fmt::format("{:016x}", d.h);
+  d.text(opt.layout);
+  s.hash = d.hex();
   return s;
 }
 

@@ -26,6 +26,7 @@
 #include "catalog/catalog.hpp"
 #include "catalog/models.hpp"
 #include "checks/baseline.hpp"
+#include "checks/unit_plan.hpp"
 #include "runtime/opencl.hpp"
 
 #include <cstdint>
@@ -177,10 +178,7 @@ EnergyReport merge_energy(const EnergyOptions& opt, const std::string& device, c
 // The whole plan's units' count and each unit's integrals (R, 2R for a glass
 // cell: its estimated cost), and a digest of the plan (16 hex digits): every
 // unit's integrals, streams and cells, and the options that change values.
-struct EnergyPlanSummary {
-  std::vector<uint64_t> cost;
-  std::string hash;
-};
+using EnergyPlanSummary = UnitPlan;
 EnergyPlanSummary energy_plan_summary(const EnergyOptions& opt);
 
 // `baseline_json` is the text of an earlier energy.json; family-wise

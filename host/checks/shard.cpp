@@ -37,21 +37,7 @@ ShardSpec checked(uint32_t index, uint32_t count, std::string source) {
   return {index, count, std::move(source)};
 }
 
-// FNV-1a, 64-bit: a digest for equality of plans, not for security.
-struct Fnv {
-  uint64_t h = 14695981039346656037ull;
-  void bytes(const void* p, size_t n) {
-    auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-  }
-  void text(const std::string& s) { bytes(s.c_str(), s.size() + 1); }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-};
-
-void hash_plan(Fnv& f, const Plan& p) {
+void hash_plan(PlanDigest& f, const Plan& p) {
   f.text(p.check);
   f.value(p.samples);
   f.value(uint64_t(p.specs.size()));
@@ -114,8 +100,10 @@ uint64_t integral_cost(const Plan& plan, double scale) {
   return std::max<uint64_t>(plan.samples, 1);
 }
 
+std::string PlanDigest::hex() const { return fmt::format("{:016x}", h); }
+
 std::string plan_hash(const SuitePlans& sp, const SuiteOptions& opt) {
-  Fnv f;
+  PlanDigest f;
   for (auto& p : sp.plans) hash_plan(f, p);
   hash_plan(f, sp.reciprocity);
   f.value(opt.scale);
@@ -126,7 +114,7 @@ std::string plan_hash(const SuitePlans& sp, const SuiteOptions& opt) {
   for (auto& c : opt.checks) f.text(c);
   f.text("|");
   for (auto& m : opt.models) f.text(m);
-  return fmt::format("{:016x}", f.h);
+  return f.hex();
 }
 
 size_t plan_integrals(const SuitePlans& sp) {

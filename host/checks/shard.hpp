@@ -6,6 +6,7 @@
 #pragma once
 
 #include "checks/suite.hpp"
+#include "checks/unit_plan.hpp"
 
 #include <cstdint>
 #include <functional>

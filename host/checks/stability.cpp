@@ -283,7 +283,42 @@ void run_case(Runtime& rt, cl::Kernel& kern, const CaseDef& c, bool fp64, Stabil
 
 }  // namespace
 
-StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
+UnitPlan stability_plan(const StabilityOptions& opt) {
+  UnitPlan plan;
+  PlanDigest d;
+  for (const CaseDef& c : make_cases(opt)) {
+    const StabilityCase& i = c.info;
+    d.text(i.name), d.text(i.group), d.text(i.family), d.text(i.formula), d.value(i.stable), d.value(i.is_default);
+    d.value(int(c.mode)), d.value(c.variant), d.value(c.f_code);
+    for (auto& r : c.regions) d.text(r.name), d.text(r.what), d.value(r.in_domain), d.text(r.expect);
+    for (auto& p : c.points) d.value(p.in), d.value(p.region), d.value(p.theta), d.value(p.alpha);
+    plan.cost.push_back(c.points.size());
+  }
+  d.value(opt.fp64);
+  plan.hash = d.hex();
+  return plan;
+}
+
+StabilityReport merge_stability(const std::vector<StabilityReport>& parts) {
+  StabilityReport rep;
+  if (parts.empty()) return rep;
+  const StabilityReport& first = parts.front();
+  rep.device = first.device, rep.platform = first.platform, rep.driver = first.driver;
+  rep.precision = first.precision, rep.build_options = first.build_options;
+  for (const StabilityReport& p : parts) {
+    for (auto& c : p.cases) {
+      gate(c, rep);
+      rep.cases.push_back(c);
+    }
+    rep.scans.insert(rep.scans.end(), p.scans.begin(), p.scans.end());
+    rep.points += p.points;
+    rep.build_seconds += p.build_seconds, rep.kernel_seconds += p.kernel_seconds;
+    rep.reference_seconds += p.reference_seconds, rep.total_seconds += p.total_seconds;
+  }
+  return rep;
+}
+
+StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt, std::pair<size_t, size_t> part) {
   auto t_start = std::chrono::steady_clock::now();
   if (opt.fp64 && !rt.device().fp64)
     throw Error(fmt::format("device '{}' has no cl_khr_fp64; run without --fp64", rt.device().name));
@@ -299,10 +334,11 @@ StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt) {
   cl::Program prog = build_stability_program(rt, cases, opt.fp64);
   rep.build_seconds = rt.build_stats().seconds - build0;
   cl::Kernel kern(prog, "stability_eval");
-  progress::Task task("stability: cases", cases.size());
-  for (auto& c : cases) {
+  const size_t hi = std::min(part.second, cases.size()), lo = std::min(part.first, hi);
+  progress::Task task("stability: cases", hi - lo);
+  for (size_t i = lo; i < hi; ++i) {
     task.advance(1);
-    run_case(rt, kern, c, opt.fp64, rep);
+    run_case(rt, kern, cases[i], opt.fp64, rep);
   }
   rep.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return rep;

@@ -7,11 +7,14 @@
 // the double reference on identical inputs.
 #pragma once
 
+#include "checks/unit_plan.hpp"
 #include "runtime/opencl.hpp"
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mfv {
@@ -94,6 +97,17 @@ inline constexpr double kBreakUlps = 4096;
 // 6.1e-5 near a = 1.59 (its own formula; pinned by a reference test).
 inline constexpr double kGOvershoot = 6.1e-5;
 
-StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt);
+// Cases [part.first, part.second) of the whole plan's (mfv stability
+// --shard, docs/scale.md), with the whole plan's program: the sweep is a
+// grid, so a shard's cases are the whole run's, point for point. The gate
+// counts the part's cases; merge_stability judges the whole run's.
+StabilityReport run_stability(Runtime& rt, const StabilityOptions& opt,
+                              std::pair<size_t, size_t> part = {0, std::numeric_limits<size_t>::max()});
+// The whole plan's cases as units, each costing its points, and a digest of
+// every case's mode, terms, regions and points.
+UnitPlan stability_plan(const StabilityOptions& opt);
+// The whole run from its parts (cases in plan order): their cases and scans
+// concatenated, the gate judged once over all of them.
+StabilityReport merge_stability(const std::vector<StabilityReport>& parts);
 
 }  // namespace mfv

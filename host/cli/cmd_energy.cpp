@@ -43,10 +43,8 @@ struct EnergyCommand : SharedValues {
   EnergyOptions opt;
   std::string grid, mu, alpha, roughness = "alpha", layout, compare;
   CLI::Option* target_opt = nullptr;
-  std::vector<std::string> at, merge;
+  std::vector<std::string> at;
   double alpha_fw = 1e-3;
-  std::string shard;
-  uint32_t shard_count = 0;
 
   void add_options(CLI::App* cmd) {
     cmd->description(
@@ -79,17 +77,6 @@ struct EnergyCommand : SharedValues {
                     "standard error per cell to reach (default 1e-4); cells above it get more points, up to the cap");
     cmd->add_option("--replicates", opt.replicates, "independent randomizations per value (default 32)");
     cmd->add_option("--max-points", opt.max_points, "cap on points per replicate per value (default 16384)");
-    cmd->add_option("--shard", shard,
-                    "run part K of N (1 <= K <= N) of the table's cells into --out DIR/energy_shard.json, for "
-                    "mfv energy --merge; absent: Bazel's, GoogleTest's, Slurm's or a Kubernetes Indexed Job's "
-                    "variables if set; off: the whole run (docs/scale.md)");
-    cmd->add_option("--shard-count", shard_count,
-                    "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--merge", merge,
-                    "the --out folders of every shard (mfv energy --shard K/N, with the same options as here): "
-                    "the whole run's outputs from their values, integrating nothing")
-        ->expected(1, -1);
     SharedOptions(cmd, *this)
         .seed(opt.seed)
         .out("energy.json, report.md, kulla_conty.h, csv/ and plots/")
@@ -99,7 +86,8 @@ struct EnergyCommand : SharedValues {
             "--alpha-fw", alpha_fw)
         .scene(
             "only what the materials of this scene use (.gltf, .glb, material .json): the glTF model at each "
-            "material's parameters, the D x G tables of the others; prints each material's energy loss");
+            "material's parameters, the D x G tables of the others; prints each material's energy loss")
+        .shard("the table's cells", "energy_shard.json", "mfv energy --merge", "values, integrating nothing");
   }
 
   // --mu/--alpha, --at or --layout: one way of giving the cells, each without --grid.
@@ -128,25 +116,17 @@ struct EnergyCommand : SharedValues {
 
   // mfv energy --shard K/N: the shard's units into out_dir/energy_shard.json, no verdict.
   int energy_shard(const Globals& g, const ShardSpec& s) {
-    if (out_dir.empty())
-      throw Error("a shard's values go to DIR/energy_shard.json: give --out DIR (then mfv energy --merge the DIRs)");
     if (!compare.empty() || !baseline.empty())
       throw Error("--compare and --baseline apply to the merged run (mfv energy --merge), not to a shard");
     const EnergyPlanSummary plan = energy_plan_summary(opt);
-    EnergyPart part;
-    std::tie(part.lo, part.hi) = cut_by_cost(plan.cost, s);
-    fmt::print("shard {}/{} (from {}): units {}..{} of {}; plan {}, seed {}\n", s.index + 1, s.count, s.source,
-               part.lo + 1, part.hi, plan.cost.size(), plan.hash, opt.seed);
-    prepare_output_dir(out_dir);
-    Runtime rt(g.device, g.kernel_dir);
-    if (part.hi > part.lo) run_energy(rt, opt, &part);
-    write_files_atomically({{out_dir + "/energy_shard.json",
-                             energy_shard_json(part, opt, s, plan, rt.device().name, provenance_json())}});
-    fmt::print("device: {}; {} samples, {:.1f} s\n", rt.device().name, part.samples, part.seconds);
-    fmt::print("wrote {}/energy_shard.json: no verdict yet; mfv energy --merge the {} shards' folders (same options) "
-               "--out DIR writes the whole run's outputs\n",
-               out_dir, s.count);
-    return 0;
+    const auto run = [&](Runtime& rt, std::pair<size_t, size_t> units) {
+      EnergyPart part;
+      std::tie(part.lo, part.hi) = units;
+      if (part.hi > part.lo) run_energy(rt, opt, &part);
+      fmt::print("device: {}; {} samples, {:.1f} s\n", rt.device().name, part.samples, part.seconds);
+      return energy_shard_json(part, opt, s, plan, rt.device().name, provenance_json());
+    };
+    return run_unit_shard(g, energy_unit_shard(plan, opt.seed), s, out_dir, run);
   }
 
   int run(const Globals& g) {
@@ -163,9 +143,7 @@ struct EnergyCommand : SharedValues {
         compare.empty() ? std::vector<TheirTable>{}
                         : read_their_table(compare, *lay.layout, opt.mu_axis, opt.alpha_axis, opt.roughness, opt.eta);
     const std::string base_text = baseline.empty() ? "" : read_text_file(baseline, "--baseline");
-    if (!merge.empty() && !shard.empty() && shard != "off") throw Error("--merge and --shard: give one");
-    if (merge.empty())
-      if (std::optional<ShardSpec> s = shard_of(shard, shard_count)) return energy_shard(g, *s);
+    if (std::optional<ShardSpec> s = shard_to_run("energy_shard.json", "mfv energy --merge")) return energy_shard(g, *s);
     // every shard checked before any output
     const EnergyShards shards = merge.empty() ? EnergyShards{} : read_energy_shards(merge, opt);
     prepare_out();

@@ -32,6 +32,20 @@ std::optional<ShardSpec> shard_of(const std::string& option, uint32_t count) {
   return s;
 }
 
+int run_unit_shard(const Globals& g, const UnitShard& u, const ShardSpec& s, const std::string& out_dir,
+                   const std::function<std::string(Runtime&, std::pair<size_t, size_t>)>& run) {
+  const std::pair<size_t, size_t> part = cut_by_cost(u.plan.cost, s);
+  fmt::print("{}\n", plan_shard_line(u, s, part));
+  prepare_output_dir(out_dir);
+  Runtime rt(g.device, g.kernel_dir);
+  write_files_atomically({{out_dir + "/" + u.kind.file, run(rt, part)}});
+  const std::string command = u.kind.writer.substr(0, u.kind.writer.find(" --shard"));
+  fmt::print("wrote {}/{}: no verdict yet; {} --merge the {} shards' folders (same options) --out DIR writes the "
+             "whole run's outputs\n",
+             out_dir, u.kind.file, command, s.count);
+  return 0;
+}
+
 int run_shard(const Globals& g, const SuiteOptions& opt, const ShardSpec& shard, const std::string& out_dir) {
   if (out_dir.empty()) throw Error("a shard's records go to DIR/shard.json: give --out DIR (then mfv merge the DIRs)");
   SuitePlans sp = make_suite_plans(opt);

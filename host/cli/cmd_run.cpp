@@ -26,8 +26,7 @@ struct RunCommand : SharedValues {
   bool compare_full = false;
   double baseline_alpha = 1e-3;
   CLI::Option* every_opt = nullptr;
-  std::string shard, profile = "default";
-  uint32_t shard_count = 0;
+  std::string profile = "default";
   bool dry = false;
 
   void add_options(CLI::App* cmd) {
@@ -43,19 +42,14 @@ struct RunCommand : SharedValues {
         .baseline(
             "earlier results.json: exit 1 if an estimate moved beyond its combined standard errors (Welch t, "
             "Bonferroni over all integrals, as mfv energy)",
-            "--baseline-alpha-fw", baseline_alpha);
+            "--baseline-alpha-fw", baseline_alpha)
+        .shard("the plan", "shard.json", "mfv merge");
     cmd->add_option("--check", opt.checks, "only these checks (" + suite_check_list() + ")");
     cmd->add_option("--model", opt.models, "only models whose D/G/F or model[case] name contains one of these");
     cmd->add_option("--reference-samples", opt.reference_samples, "samples compared with the reference per integral");
     every_opt = cmd->add_option("--reference-every", opt.reference_every,
                                 "compare every k-th integral with the reference (1 = all)")
                     ->check(CLI::PositiveNumber);
-    cmd->add_option("--shard", shard,
-                    "run part K of N (1 <= K <= N) of the plan into --out DIR/shard.json, for mfv merge; absent: "
-                    "Bazel's, GoogleTest's, Slurm's or a Kubernetes Indexed Job's variables if set; off: the whole run");
-    cmd->add_option("--shard-count", shard_count,
-                    "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
-        ->check(CLI::PositiveNumber);
     cmd->add_option("--profile", profile,
                     "default: the CI-sized run; deep: denser widths, views, lights and F parameters (over 10^6 "
                     "integrals, docs/scale.md)");

@@ -1,6 +1,7 @@
 #include "cli/shared_options.hpp"
 
 #include "checks/check_table.hpp"
+#include "cli/run_shard.hpp"
 #include "util/error.hpp"
 #include "util/files.hpp"
 
@@ -25,6 +26,15 @@ Scene SharedValues::load_scene_instead_of(bool other_given, const std::string& o
   if (other_given)
     throw Error(fmt::format("{} and --scene cannot be combined: the scene chooses the {}", other, chosen));
   return load_scene(scene_path);
+}
+
+std::optional<ShardSpec> SharedValues::shard_to_run(const std::string& file, const std::string& merger) const {
+  if (!merge.empty() && !shard.empty() && shard != "off") throw Error("--merge and --shard: give one");
+  if (!merge.empty()) return std::nullopt;
+  std::optional<ShardSpec> s = shard_of(shard, shard_count);
+  if (s && out_dir.empty())
+    throw Error(fmt::format("a shard's values go to DIR/{}: give --out DIR (then {} the DIRs)", file, merger));
+  return s;
 }
 
 SharedOptions& SharedOptions::seed(uint64_t& seed) {
@@ -71,6 +81,23 @@ SharedOptions& SharedOptions::baseline(const std::string& help, const std::strin
   cmd_->add_option("--baseline", values_.baseline, help);
   cmd_->add_option(alpha_name, alpha_fw, "family-wise false-alarm rate of the baseline comparison (default 1e-3)")
       ->check(CLI::Range(1e-300, 0.5));
+  return *this;
+}
+
+SharedOptions& SharedOptions::shard(const std::string& part, const std::string& file, const std::string& merger,
+                                    const std::string& merged) {
+  cmd_->add_option("--shard", values_.shard,
+                   "run part K of N (1 <= K <= N) of " + part + " into --out DIR/" + file + ", for " + merger +
+                       "; absent: Bazel's, GoogleTest's, Slurm's or a Kubernetes Indexed Job's variables if set; off: "
+                       "the whole run (docs/scale.md)");
+  cmd_->add_option("--shard-count", values_.shard_count,
+                   "with JOB_COMPLETION_INDEX (Kubernetes): the number of shards (else MFV_SHARD_COUNT)")
+      ->check(CLI::PositiveNumber);
+  if (!merged.empty())
+    cmd_->add_option("--merge", values_.merge,
+                     "the --out folders of every shard (" + merger.substr(0, merger.find(" --merge")) +
+                         " --shard K/N, with the same options as here): the whole run's outputs from their " + merged)
+        ->expected(1, -1);
   return *this;
 }
 

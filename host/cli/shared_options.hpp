@@ -4,11 +4,13 @@
 // command's callback. A command adds only the options that are its own.
 #pragma once
 
+#include "checks/shard.hpp"
 #include "cli/commands.hpp"
 #include "scene/scene.hpp"
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +26,9 @@ struct SharedValues {
   bool terms_only = false;  // --terms-only: the single terms alone
   int64_t samples = 0;      // --samples of run and check: sets the scale
   CLI::Option* samples_option = nullptr;
+  std::string shard;               // --shard K/N ("" = the engines' variables, "off" = the whole run)
+  uint32_t shard_count = 0;        // --shard-count: JOB_COMPLETION_INDEX's count (Kubernetes)
+  std::vector<std::string> merge;  // --merge DIR...: the shards' --out folders (energy, agree, stability)
 
   // Creates the --out folder, if one was given: checked before the work, not after it.
   void prepare_out() const;
@@ -32,6 +37,11 @@ struct SharedValues {
   // The --scene file, when given. The scene chooses what runs, so the option
   // `other` (--only, --model, --models) that would too must not be given.
   Scene load_scene_instead_of(bool other_given, const std::string& other, const std::string& chosen) const;
+  // The shard a command with --merge runs (--shard, else the engines'
+  // variables: cli/run_shard.hpp shard_of), nullopt for the whole run or a
+  // merge. A shard writes DIR/`file` and needs --out DIR; --merge and
+  // --shard go apart; `merger` (e.g. "mfv agree --merge") names the merge.
+  std::optional<ShardSpec> shard_to_run(const std::string& file, const std::string& merger) const;
 };
 
 // Adds the subcommand `name`. A Command is one command's values, options and
@@ -66,6 +76,11 @@ class SharedOptions {
   SharedOptions& budget(double& scale, double& family_alpha);
   // --baseline FILE and its family-wise false-alarm rate, the option `alpha_name`.
   SharedOptions& baseline(const std::string& help, const std::string& alpha_name, double& alpha_fw);
+  // --shard K/N and --shard-count (docs/scale.md): "run part K of N of PART
+  // into --out DIR/FILE, for MERGER"; and, where `merged` is given, --merge
+  // DIR...: the whole run's outputs from the shards' MERGED.
+  SharedOptions& shard(const std::string& part, const std::string& file, const std::string& merger,
+                       const std::string& merged = "");
 
  private:
   CLI::App* cmd_;

@@ -5,6 +5,8 @@
 
 #include "checks/agree.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 
 namespace mfv {
@@ -13,5 +15,10 @@ namespace mfv {
 std::string agree_console(const AgreeReport& rep, const std::string& device);
 // Cases that failed.
 int agree_failures(const AgreeReport& rep);
+// One case's result, every field at full precision (agree.json, agree_shard.json), and back.
+nlohmann::json agree_result_json(const AgreeResult& r);
+AgreeResult agree_result_of(const nlohmann::json& j);
+// agree.json (schema mfv-agree/1): the run's options, device, times and every case's result.
+std::string agree_json(const AgreeReport& rep, const AgreeOptions& opt, const std::string& device);
 
 }  // namespace mfv

@@ -7,6 +7,7 @@
 
 #include "checks/energy.hpp"
 #include "checks/shard.hpp"
+#include "report/shard_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,9 @@
 #include <vector>
 
 namespace mfv {
+
+// mfv energy's shard files (report/shard_file.hpp's units: the cells).
+UnitShard energy_unit_shard(const EnergyPlanSummary& plan, uint64_t seed);
 
 std::string energy_shard_json(const EnergyPart& part, const EnergyOptions& opt, const ShardSpec& s,
                               const EnergyPlanSummary& plan, const std::string& device, const nlohmann::json& provenance);

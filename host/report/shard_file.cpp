@@ -11,26 +11,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
 
 namespace mfv {
 
-std::string ShardDoc::name() const { return fmt::format("shard {}/{} ({})", index + 1, count, path); }
-
-namespace {
-
 using nlohmann::json;
 
-constexpr const char* kSchema = "mfv-shard/1";
-
-// Doubles at full precision; JSON has no NaN or infinity: those as text.
-json num(double x) {
+json shard_number(double x) {
   if (std::isfinite(x)) return x;
   return std::isnan(x) ? "nan" : x > 0 ? "inf" : "-inf";
 }
-double num_of(const json& j) {
+
+double shard_number_of(const json& j) {
   if (j.is_number()) return j.get<double>();
   const std::string s = j.get<std::string>();
   if (s == "nan") return std::nan("");
@@ -39,11 +34,17 @@ double num_of(const json& j) {
   throw Error("not a number: " + s);
 }
 
+std::string ShardDoc::name() const { return fmt::format("shard {}/{} ({})", index + 1, count, path); }
+
+namespace {
+
+constexpr const char* kSchema = "mfv-shard/1";
+
 // Every field of a point, defaults left out.
 json point_json(const PointResult& p, size_t position) {
-  json r{{"i", position}, {"check", p.check}, {"estimate", num(p.estimate)}, {"samples", p.samples}};
+  json r{{"i", position}, {"check", p.check}, {"estimate", shard_number(p.estimate)}, {"samples", p.samples}};
   auto put = [&](const char* k, double v) {
-    if (v != 0 || std::isnan(v)) r[k] = num(v);
+    if (v != 0 || std::isnan(v)) r[k] = shard_number(v);
   };
   auto text = [&](const char* k, const std::string& v) {
     if (!v.empty()) r[k] = v;
@@ -53,13 +54,13 @@ json point_json(const PointResult& p, size_t position) {
   text("F", p.f ? p.f->id : "");
   text("model", p.model);
   json params = json::object();
-  for (auto& [k, v] : p.params) params[k] = num(v);
+  for (auto& [k, v] : p.params) params[k] = shard_number(v);
   r["params"] = params;
   put("stderr", p.stderr_);
   put("rounding_bound", p.rounding_bound);
   if (p.dof) r["dof"] = p.dof;
   put("expected", p.expected);
-  if (p.known) r["known"] = {num(p.known_value), num(p.known_error)};
+  if (p.known) r["known"] = {shard_number(p.known_value), shard_number(p.known_error)};
   put("bound", p.bound);
   if (p.upper_only) r["upper_only"] = true;
   if (p.expect != Expect::Hold) r["expect"] = int(p.expect);
@@ -83,15 +84,15 @@ const Term* term_of(const json& r, const char* key, Kind kind) {
 
 PointResult point_of(const json& r) {
   PointResult p;
-  auto get = [&](const char* k) { return r.contains(k) ? num_of(r.at(k)) : 0.0; };
+  auto get = [&](const char* k) { return r.contains(k) ? shard_number_of(r.at(k)) : 0.0; };
   auto text = [&](const char* k) { return r.contains(k) ? r.at(k).get<std::string>() : std::string(); };
   p.check = r.at("check").get<std::string>();
   p.d = term_of(r, "D", Kind::D);
   p.g = term_of(r, "G", Kind::G);
   p.f = term_of(r, "F", Kind::F);
   p.model = text("model");
-  for (auto& [k, v] : r.at("params").items()) p.params[k] = num_of(v);
-  p.estimate = num_of(r.at("estimate"));
+  for (auto& [k, v] : r.at("params").items()) p.params[k] = shard_number_of(v);
+  p.estimate = shard_number_of(r.at("estimate"));
   p.samples = r.at("samples").get<uint64_t>();
   p.stderr_ = get("stderr");
   p.rounding_bound = get("rounding_bound");
@@ -99,8 +100,8 @@ PointResult point_of(const json& r) {
   p.expected = get("expected");
   if (r.contains("known")) {
     p.known = true;
-    p.known_value = num_of(r.at("known").at(0));
-    p.known_error = num_of(r.at("known").at(1));
+    p.known_value = shard_number_of(r.at("known").at(0));
+    p.known_error = shard_number_of(r.at("known").at(1));
   }
   p.bound = get("bound");
   p.upper_only = r.value("upper_only", false);
@@ -226,8 +227,8 @@ std::string shard_json(const SuiteReport& rep, const SuitePlans& cut, const std:
   }
   j["double_accumulation"] = rep.double_accumulation;
   j["reference"] = {{"compared", rep.reference_compared}, {"twin", rep.reference_twin},
-                    {"bound", num(rep.reference_bound)},  {"builds", rep.reference_builds},
-                    {"worst", num(rep.reference_worst)},  {"worst_at", rep.reference_worst_at},
+                    {"bound", shard_number(rep.reference_bound)},  {"builds", rep.reference_builds},
+                    {"worst", shard_number(rep.reference_worst)},  {"worst_at", rep.reference_worst_at},
                     {"worst_point", rep.reference_compared ? json(positions.at(rep.reference_worst_point)) : json()}};
   std::string records = "[";
   for (size_t k = 0; k < rep.points.size(); ++k) records += (k ? "," : "") + point_json(rep.points[k], positions[k]).dump();
@@ -238,6 +239,83 @@ std::string shard_json(const SuiteReport& rep, const SuitePlans& cut, const std:
 }
 
 nlohmann::json shard_tool_json() { return tool_json(); }
+
+json shard_bits(const std::vector<double>& v) {
+  json a = json::array();
+  for (double x : v) {
+    uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    a.push_back(b);
+  }
+  return a;
+}
+
+std::vector<double> shard_doubles(const json& a) {
+  std::vector<double> v;
+  for (auto& e : a) {
+    const uint64_t b = e.get<uint64_t>();
+    double x;
+    std::memcpy(&x, &b, sizeof x);
+    v.push_back(x);
+  }
+  return v;
+}
+
+json plan_shard_json(const UnitShard& u, const ShardSpec& s, std::pair<size_t, size_t> part, const std::string& device,
+                     const json& provenance) {
+  json j;
+  j["schema"] = u.kind.schema;
+  j["tool"] = tool_json();
+  j["plan"] = {{"hash", u.plan.hash}, {"units", u.plan.cost.size()}, {"options", {{"seed", u.seed}}}};
+  j["shard"] = {{"index", s.index + 1}, {"count", s.count},        {"source", s.source},
+                {"date", utc_timestamp()}, {"lo", part.first}, {"hi", part.second}};
+  j["device"] = {{"name", device}};
+  j["provenance"] = provenance;
+  return j;
+}
+
+std::string plan_shard_line(const UnitShard& u, const ShardSpec& s, std::pair<size_t, size_t> part) {
+  return fmt::format("shard {}/{} (from {}): {} {}..{} of {}; plan {}{}", s.index + 1, s.count, s.source, u.noun,
+                     part.first + 1, part.second, u.plan.cost.size(), u.plan.hash,
+                     u.seed.is_null() ? "" : ", seed " + u.seed.dump());
+}
+
+UnitShards read_unit_shards(const std::vector<std::string>& inputs, const UnitShard& u,
+                            const std::function<void(const ShardDoc&, const json& units)>& read) {
+  const std::vector<ShardDoc> shards = read_shard_set(inputs, u.kind);
+  UnitShards m;
+  std::vector<std::string> devices;
+  for (const ShardDoc& s : shards) {
+    // read_shard_set checked plan, hash and options alike in every shard
+    const json& p = s.doc.at("plan");
+    if (p.at("options").at("seed") != u.seed)
+      throw Error(fmt::format("{} ran seed {}, this merge --seed {}: nothing merged", s.name(),
+                              p.at("options").at("seed").dump(), u.seed.dump()));
+    if (p.at("hash") != json(u.plan.hash))
+      throw Error(fmt::format("{} ran another plan (hash {}) than these options give (hash {}): merge with the "
+                              "shards' options; nothing merged",
+                              s.name(), p.at("hash").dump(), u.plan.hash));
+    try {
+      const auto [lo, hi] = cut_by_cost(u.plan.cost, {s.index, s.count, ""});
+      const size_t slo = s.doc.at("shard").at("lo").get<size_t>(), shi = s.doc.at("shard").at("hi").get<size_t>();
+      const json& units = s.doc.at("units");
+      if (slo != lo || shi != hi || units.size() != hi - lo)
+        throw Error(fmt::format("{} {} [{}, {}) but the plan gives this shard {} [{}, {})", units.size(), u.noun, slo,
+                                shi, hi - lo, lo, hi));
+      read(s, units);
+      const std::string dev = s.doc.at("device").at("name").get<std::string>();
+      if (std::find(devices.begin(), devices.end(), dev) == devices.end()) devices.push_back(dev);
+      m.lines.push_back(fmt::format("{}: {} {}..{} of {} from {} on {}", s.name(), u.noun, lo + 1, hi,
+                                    u.plan.cost.size(), s.doc.at("shard").at("source").get<std::string>(), dev));
+    } catch (const json::exception& e) {
+      throw Error(fmt::format("{}: malformed ({}); nothing merged", s.name(), e.what()));
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}; nothing merged", s.name(), e.what()));
+    }
+  }
+  for (size_t k = 0; k < devices.size(); ++k) m.device += (k ? " + " : "") + devices[k];
+  return m;
+}
 
 std::vector<ShardDoc> read_shard_set(const std::vector<std::string>& inputs, const ShardKind& kind) {
   if (inputs.empty()) throw Error("mfv merge needs the shards' folders");
@@ -315,10 +393,10 @@ MergedRun merge_shards(const std::vector<std::string>& inputs) {
       rep.reference_compared += ref.at("compared").get<uint64_t>();
       rep.reference_twin = rep.reference_twin || ref.at("twin").get<bool>();
       rep.reference_builds += ref.at("builds").get<int>();
-      if (ref.at("twin").get<bool>()) rep.reference_bound = num_of(ref.at("bound"));
+      if (ref.at("twin").get<bool>()) rep.reference_bound = shard_number_of(ref.at("bound"));
       if (!ref.at("worst_point").is_null()) {
         // run_suite keeps the first integral of the largest disagreement
-        const double w = num_of(ref.at("worst"));
+        const double w = shard_number_of(ref.at("worst"));
         const size_t pos = ref.at("worst_point").get<size_t>();
         if (!have_worst || w > rep.reference_worst || (w == rep.reference_worst && pos < worst_pos)) {
           rep.reference_worst = w;

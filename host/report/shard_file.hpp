@@ -12,7 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mfv {
@@ -42,6 +44,42 @@ struct ShardKind {
 std::vector<ShardDoc> read_shard_set(const std::vector<std::string>& inputs, const ShardKind& kind);
 // {"version", "commit", "describe"} of this mfv, as a shard file records it.
 nlohmann::json shard_tool_json();
+
+// A double at full precision (JSON has no NaN or infinity: those as text), and back.
+nlohmann::json shard_number(double x);
+double shard_number_of(const nlohmann::json& j);
+// Doubles as their bit patterns: exact, NaN and infinities included.
+nlohmann::json shard_bits(const std::vector<double>& v);
+std::vector<double> shard_doubles(const nlohmann::json& a);
+
+// The shard files of a command whose plan is cut into whole units
+// (checks/unit_plan.hpp: mfv energy's cells, mfv agree's and mfv stability's
+// cases), given the plan by the command's own options. Each file is
+// plan_shard_json's header, the command's fields, and "units": one entry per
+// unit [lo, hi) of the shard, in plan order.
+struct UnitShard {
+  ShardKind kind;
+  const UnitPlan& plan;
+  nlohmann::json seed;  // the plan's seed (null where a command has none)
+  std::string noun;     // what a unit is, for the console ("units", "cases")
+};
+// The header: schema, tool, plan {hash, units, options {seed}}, shard
+// {index, count, source, date, lo, hi}, device {name}, provenance; the
+// caller adds its fields and "units", then "complete": true last.
+nlohmann::json plan_shard_json(const UnitShard& u, const ShardSpec& s, std::pair<size_t, size_t> part,
+                               const std::string& device, const nlohmann::json& provenance);
+// "shard 2/3 (from --shard): cases 5..9 of 14; plan HASH, seed 5", as a shard prints it first.
+std::string plan_shard_line(const UnitShard& u, const ShardSpec& s, std::pair<size_t, size_t> part);
+struct UnitShards {
+  std::string device;              // the shards' devices, " + " between different ones
+  std::vector<std::string> lines;  // one per shard, for the console
+};
+// read_shard_set, then each shard against the merge's plan: its seed, its
+// hash and its units [lo, hi) as cut_by_cost gives them; `read` takes the
+// shard's own fields and its units (in index order). Throws mfv::Error
+// naming the shard ("...; nothing merged").
+UnitShards read_unit_shards(const std::vector<std::string>& inputs, const UnitShard& u,
+                            const std::function<void(const ShardDoc&, const nlohmann::json& units)>& read);
 
 struct MergedRun {
   SuiteReport rep;  // judged
