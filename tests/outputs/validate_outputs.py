@@ -119,6 +119,8 @@ with tempfile.TemporaryDirectory(prefix="mfv_schemas_") as d:
     validate(o("stability/stability.json"), "mfv-stability-1")
     if have_gnuplot:
         check_plot_pairs(o("stability"))
+    run(["agree", "--samples", "200", "--only", "ggx", "--out", o("agree")])
+    validate(o("agree/agree.json"), "mfv-agree-1")
     run(["bench", "--integrand", "d_norm", "--integrals", "4", "--samples", "4096", "--ref-samples", "256",
          "--repeats", "1", "--out", o("bench")])
     validate(o("bench/bench.json"), "mfv-bench-1")
