@@ -44,7 +44,7 @@ TEST_CASE("A shared option's bad value gets the same one-line error on every com
     CHECK(r.out.find('\n') == r.out.size() - 1);
     CHECK(r.out.find(c.says) != std::string::npos);
   }
-  for (const char* command : {"stability", "run", "samplers", "bench", "energy"}) {
+  for (const char* command : {"stability", "run", "samplers", "bench", "energy", "agree"}) {
     CAPTURE(command);
     const auto r = run_mfv(std::string("--quiet ") + command + " --out ''");
     CHECK(r.code == 2);

@@ -3,8 +3,8 @@
 // variables), merged, equal the single run value for value in every output
 // (energy.json, CSV, C header, layout files, report); each bad merge input
 // exits 2 with one line naming the shard.
-#include "checks/shard.hpp"
 #include "bad_shards.hpp"
+#include "checks/shard.hpp"
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
 #include "test_files.hpp"
@@ -12,9 +12,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 using namespace mfv;

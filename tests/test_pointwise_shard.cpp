@@ -41,10 +41,12 @@ std::string text_of(const std::string& text) {
 
 // The command's three shards (with their index from --shard, Bazel's,
 // Slurm's or Kubernetes' variables as `how` says), merged in another order,
-// against the single run: the same exit code, console (less times) and files.
+// against the single run: the same exit code, console (less times) and files;
+// the merged `output` names each shard and its variable in its provenance.
 // Returns the shards' folders.
 std::array<std::string, 3> require_merge_equals_single(const Scratch& s, const std::string& options,
-                                                       const std::string& file, const std::array<int, 3>& how) {
+                                                       const std::string& file, const std::string& output,
+                                                       const std::array<int, 3>& how) {
   const Run single = run_mfv(options + " --out " + s / "single");
   INFO(single.out);
   REQUIRE(single.code <= 1);
@@ -88,6 +90,14 @@ std::array<std::string, 3> require_merge_equals_single(const Scratch& s, const s
       CHECK(slurp(e.path()) == slurp(other));
   }
   CHECK(files >= 1);
+  // each shard, with the variable its index came from, in the merged output's provenance
+  const json shards = json::parse(slurp(s / ("merged/" + output))).at("provenance").at("shards");
+  REQUIRE(shards.size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    const std::string source[] = {"from --shard", "from TEST_SHARD_INDEX", "from SLURM_ARRAY_TASK_ID",
+                                  "from JOB_COMPLETION_INDEX"};
+    CHECK(shards[size_t(k)].get<std::string>().find(source[how[size_t(k)]]) != std::string::npos);
+  }
   return dirs;
 }
 
@@ -101,7 +111,7 @@ TEST_CASE(
   Scratch s("mfv_agree_shard");
   const std::string opts = "--quiet agree --only 'D ' --only 'G1 ' --only 'BRDF ggx/' --only MODEL";
   const std::string run = opts + " --samples 2000 --seed 5";
-  const auto [s1, s2, s3] = require_merge_equals_single(s, run, "agree_shard.json", {0, 1, 2});
+  const auto [s1, s2, s3] = require_merge_equals_single(s, run, "agree_shard.json", "agree.json", {0, 1, 2});
   CHECK(values_of(s / "single/agree.json").at("results").size() >= 20);
 
   const BadMerges bad{s, run, "agree_shard.json", "agree.json"};
@@ -117,7 +127,7 @@ TEST_CASE(
   if (!device_runtime()) return;
   Scratch s("mfv_stability_shard");
   const std::string run = "--quiet stability --terms-only";
-  const auto [s1, s2, s3] = require_merge_equals_single(s, run, "stability_shard.json", {3, 0, 2});
+  const auto [s1, s2, s3] = require_merge_equals_single(s, run, "stability_shard.json", "stability.json", {3, 0, 2});
   CHECK(values_of(s / "single/stability.json").at("cases").size() >= 20);
 
   const BadMerges bad{s, run, "stability_shard.json", "stability.json"};

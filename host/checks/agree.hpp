@@ -37,6 +37,7 @@ struct AgreeReport {
   std::vector<AgreeResult> results;
   double kernel_seconds = 0, reference_seconds = 0, build_seconds = 0;
   uint64_t samples = 0;
+  std::vector<std::string> shards;  // mfv agree --merge: one line per shard (index, file, variable, device)
 };
 
 // Cases [part.first, part.second) of the whole plan's (mfv agree --shard,

@@ -87,6 +87,7 @@ struct StabilityReport {
   std::vector<ScanSeries> scans;
   uint64_t points = 0;
   double build_seconds = 0, kernel_seconds = 0, reference_seconds = 0, total_seconds = 0;
+  std::vector<std::string> shards;  // mfv stability --merge: one line per shard (index, file, variable, device)
   std::vector<std::string> gate_failures;  // stable cases with NaN/Inf or out-of-domain values in an in-domain region
   bool gate_pass() const { return gate_failures.empty(); }
 };

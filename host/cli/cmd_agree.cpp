@@ -52,6 +52,7 @@ struct AgreeCommand : SharedValues {
       prepare_out();
       for (auto& l : shards.lines) fmt::print("{}\n", l);
       rep = std::move(shards.rep);
+      rep.shards = shards.lines;
       device = shards.device;
       line = fmt::format("device: {} ({} shards merged); kernels in {}", device, shards.lines.size(),
                          opt.fp64 ? "float64" : "float32");

@@ -57,6 +57,7 @@ struct StabilityCommand : SharedValues {
       prepare_out();
       for (auto& l : shards.lines) fmt::print("{}\n", l);
       rep = merge_stability(shards.parts);
+      rep.shards = shards.lines;
     } else {
       prepare_out();
       Runtime rt(g.device, g.kernel_dir);

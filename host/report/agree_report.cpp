@@ -48,6 +48,7 @@ std::string agree_json(const AgreeReport& rep, const AgreeOptions& opt, const st
   j["schema"] = "mfv-agree/1";
   j["tool"] = {{"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
   j["provenance"] = provenance_json();
+  if (!rep.shards.empty()) j["provenance"]["shards"] = rep.shards;  // mfv agree --merge
   j["created"] = utc_timestamp();
   j["device"] = device;
   j["options"] = {{"seed", opt.seed}, {"samples", opt.samples}, {"fp64", opt.fp64}};

@@ -106,6 +106,7 @@ std::string stability_json(const StabilityReport& rep) {
   j["schema"] = "mfv-stability/1";
   j["tool"] = {{"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}};
   j["provenance"] = provenance_json();  // command line, --kernel-dir, kernel hashes, device (runtime/provenance.hpp)
+  if (!rep.shards.empty()) j["provenance"]["shards"] = rep.shards;  // mfv stability --merge
   j["created"] = utc_timestamp();
   j["device"] = {{"name", rep.device}, {"platform", rep.platform}, {"driver", rep.driver}};
   j["precision"] = rep.precision;
