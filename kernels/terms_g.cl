@@ -79,7 +79,14 @@ static inline real G_kelemen(real NoL, real NoV, real NoH, real VoH, real unused
   // seed 000: G / ((L·N)(V·N)) ≈ 1 / (L·H)²  (Kelemen and Szirmay-Kalos 2001)
   // (n·l / l·h)(n·v / v·h): the same product, without the underflow of
   // (n·l)(n·v) and (l·h)² at grazing, where each quotient stays near 1.
-  real g = (NoL / VoH) * (NoV / VoH);
+  // The second quotient passes through a select that the horizon select
+  // below makes moot (VoH <= 0 returns 0 either way; NaN keeps the
+  // quotient): two fdivs multiplied are a pair LLVM's SLP pass packs into
+  // one <2 x float> division on haswell (AVX2), which kept every albedo
+  // kernel of a program with this G scalar there (docs/performance.md,
+  // "AVX2"). The same floats.
+  real qv = VoH <= R(0.0) ? R(0.0) : NoV / VoH;
+  real g = (NoL / VoH) * qv;
   return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 

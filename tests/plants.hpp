@@ -33,6 +33,16 @@ inline const Plant kGgxCorrelatedHorizonPaired = {
     "  return fmin(fmin(NoL, NoV), VoH) > R(0.0) ? g : R(0.0);",
     "  return fmin(fmin(NoL, NoV), VoH) <= R(0.0) ? R(0.0) : g;"};
 
+// G_kelemen's two quotients multiplied as they come, (NoL / VoH) * (NoV /
+// VoH) (the form before issue 31's fix): the same floats, but on haswell
+// (AVX2) LLVM's SLP pass packs the two divisions into one <2 x float>
+// division and every albedo kernel of a program with this G stays scalar
+// there, while AVX-512 vectorizes them (tests/test_vectorize_targets.cpp).
+inline const Plant kKelemenQuotientsPaired = {
+    "G_kelemen's two quotients as one product of two divisions", "terms_g.cl",
+    "  real qv = VoH <= R(0.0) ? R(0.0) : NoV / VoH;\n  real g = (NoL / VoH) * qv;",
+    "  real g = (NoL / VoH) * (NoV / VoH);"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).
