@@ -44,7 +44,11 @@ const char* const kEnergyGgxG12 =
 // alone; all of them stayed scalar on haswell while G_kelemen's two
 // quotients were a pair SLP packed into one <2 x float> division there.
 const char* const kEnergyG6 = "energy --models /kelemen --grid 2x2 --max-points 1024 --replicates 2";
-const char* const kEnergyGgxG6 = "energy --models ggx/kelemen --grid 2x2 --max-points 1024 --replicates 2";
+// The program of ggx with every isotropic G, kelemen among them: its generic
+// kernels evaluate every G in a select chain (the multi-G programs of the
+// default mfv run), and the same pair kept masking_values and
+// reciprocity_values_microfacet scalar on haswell.
+const char* const kEnergyGgxAllG = "energy --models ggx/ --grid 2x2 --max-points 1024 --replicates 2";
 
 std::map<std::string, Widths> vectorization(const std::string& kernel_dir, const std::string& command = kBench) {
   const std::string script = std::string(MFV_KERNEL_SOURCE_DIR) + "/../scripts/pocl-vectorization.sh";
@@ -173,12 +177,12 @@ TEST_CASE("The smith_ggx_correlated vectorization test fails on a horizon select
   }
 }
 
-TEST_CASE("The energy kernels of every D with kelemen vectorize on AVX2 and on AVX-512, and no kernel of the program "
-          "differs between them",
+TEST_CASE("The kernels of every D with kelemen, and of ggx with every G, vectorize on AVX2 as on AVX-512: no kernel "
+          "of those programs differs between them",
           "[vectorize][device]") {
   const mfv::test::PlantedKernelDir kernels;
-  // masking, albedo_mis and albedo_rqmc for d0..d4, and for d2 alone
-  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG6, 15}, {kEnergyGgxG6, 3}}) {
+  // masking, albedo_mis and albedo_rqmc for d0..d4, and for d2 beside every other G
+  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG6, 15}, {kEnergyGgxAllG, 3}}) {
     INFO(command);
     const auto w = vectorization(kernels.path(), command);
     if (!have_remarks(w)) {
@@ -192,8 +196,17 @@ TEST_CASE("The energy kernels of every D with kelemen vectorize on AVX2 and on A
       CHECK(x.avx2 != "scalar");
       CHECK(x.avx512 != "scalar");
     }
-    // the generic kernels too (albedo_values, albedo_mis_values,
-    // albedo_rqmc_values, albedo_aniso_values: kelemen is their only G)
+    // the generic kernels too (in kEnergyG6's program albedo_values,
+    // albedo_mis_values, albedo_rqmc_values and albedo_aniso_values, whose
+    // only G is kelemen; in kEnergyGgxAllG's the multi-G masking_values and
+    // reciprocity_values_microfacet, which must be wide)
+    if (command == kEnergyGgxAllG)
+      for (const char* k : {"masking_values", "reciprocity_values_microfacet"}) {
+        INFO(k);
+        REQUIRE(w.count(k));
+        CHECK(w.at(k).avx2 != "scalar");
+        CHECK(w.at(k).avx512 != "scalar");
+      }
     for (const auto& [k, x] : w) {
       INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
       CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
@@ -205,13 +218,15 @@ TEST_CASE("The kelemen vectorization test fails on G_kelemen's two quotients tha
           "[vectorize][device]") {
   const auto& p = mfv::test::kKelemenQuotientsPaired;
   const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
-  const auto w = vectorization(kernels.path(), kEnergyGgxG6);
+  const auto w = vectorization(kernels.path(), kEnergyGgxAllG);
   if (!have_remarks(w)) {
     mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
     return;
   }
-  // planted: the albedo kernels go scalar on avx2 only, so the test above fails
-  for (const char* k : {"albedo_mis_values__d2_g6", "albedo_rqmc_values__d2_g6", "albedo_mis_values"}) {
+  // planted: the pair's albedo kernels and the multi-G generic masking and
+  // reciprocity kernels go scalar on avx2 only, so the test above fails
+  for (const char* k : {"albedo_mis_values__d2_g6", "albedo_rqmc_values__d2_g6", "masking_values",
+                        "reciprocity_values_microfacet"}) {
     INFO(k);
     REQUIRE(w.count(k));
     CHECK(w.at(k).avx2 == "scalar");
