@@ -13,6 +13,7 @@
 #include "test_files.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstring>
@@ -112,4 +113,92 @@ TEST_CASE("sample_values launched in chunks of one work-group size gives each in
       REQUIRE(std::memcmp(&all[j * n + k], &one[k], sizeof(float)) == 0);
     }
   }
+}
+
+namespace {
+
+// The .so files of PoCL's cache under `dir`, by path relative to it.
+std::set<std::string> compiled_files(const fs::path& dir) {
+  std::set<std::string> out;
+  for (auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().extension() == ".so") out.insert(fs::relative(e.path(), dir).string());
+  return out;
+}
+
+// The plan of the census test above.
+const char* const kPlanArgs =
+    "--check d_norm --check masking --check furnace --check energy --model ggx/smith_ggx_correlated "
+    "--model beckmann/smith_beckmann";
+
+// Runs the compile-ahead child alone (MFV_COMPILE_AHEAD=only) on an empty
+// cache, then the run without a child on that cache: the files the run added.
+std::set<std::string> left_to_the_run(const fs::path& dir, const std::string& child_env) {
+  const fs::path cache = dir / "pocl";
+  fs::create_directories(cache);
+  const std::string pocl = "POCL_CACHE_DIR=" + cache.string() + " POCL_KERNEL_CACHE=1";
+  const std::string run = std::string("--quiet run ") + kPlanArgs + " --out " + (dir / "out").string();
+  const test::Run child = test::run_mfv(run, pocl + " MFV_COMPILE_AHEAD=only " + child_env);
+  INFO(child.out);
+  REQUIRE(child.code == 0);
+  REQUIRE(!fs::exists(dir / "out" / "results.json"));  // it ran nothing itself
+  const std::set<std::string> by_child = compiled_files(cache);
+  REQUIRE(!by_child.empty());
+  const test::Run alone = test::run_mfv(run, pocl + " MFV_COMPILE_AHEAD=0");
+  INFO(alone.out);
+  REQUIRE(alone.code == 0);
+  std::set<std::string> added;
+  for (const std::string& f : compiled_files(cache))
+    if (!by_child.count(f)) added.insert(f);
+  return added;
+}
+
+}  // namespace
+
+TEST_CASE("The compile-ahead child compiles the run's kernels as the run launches them", "[device][cold]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  if (!test::is_pocl(*rt)) return test::skip("compile-ahead fills PoCL's kernel cache");
+  test::Scratch scratch("mfv_ahead");
+  // Everything but the reference comparison's sample_values (the float
+  // program's and the double twin's), which the run reaches early and the
+  // child leaves to it: the child's variants are the ones the run launches.
+  const std::set<std::string> added = left_to_the_run(scratch.dir / "same", "");
+  CAPTURE(added);
+  REQUIRE(added.size() == 2);
+  for (const std::string& f : added) CHECK(fs::path(f).filename() == "sample_values.so");
+  // Planted: a child that launches at other work-group sizes leaves the run
+  // its kernels to compile again.
+  const std::set<std::string> planted = left_to_the_run(scratch.dir / "planted", "MFV_MAX_LOCAL_SIZE=4");
+  CHECK(planted.size() > 2);
+}
+
+TEST_CASE("A compile-ahead child that fails or never ends leaves the run's results as without it", "[device][cold]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  if (!test::is_pocl(*rt)) return test::skip("compile-ahead runs where the device is PoCL");
+  test::Scratch scratch("mfv_ahead_fail");
+  const std::string args = "--quiet run --check d_norm --check masking --model ggx/smith_ggx_correlated --out ";
+  auto results = [&](const std::string& name, const std::string& env) {
+    fs::create_directories(scratch.dir / name);
+    const test::Run r = test::run_mfv(args + (scratch.dir / name / "out").string() + "/",
+                                      "MFV_COMPILE_AHEAD_LOG=" + (scratch.dir / name / "child.log").string() + " " + env);
+    INFO(r.out);
+    REQUIRE(r.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(test::slurp(scratch.dir / name / "out" / "results.json"));
+    return std::make_pair(j.at("results"), j.at("groups"));
+  };
+  const auto without = results("off", "");  // off by default
+  CHECK(!fs::exists(scratch.dir / "off" / "child.log"));
+  for (const char* failure : {"abort", "hang"}) {
+    CAPTURE(failure);
+    CHECK(results(failure, std::string("MFV_COMPILE_AHEAD=1 MFV_COMPILE_AHEAD_TEST=") + failure) == without);
+    // the child started, and the run ended it
+    CHECK(test::slurp(scratch.dir / failure / "child.log").find("started") != std::string::npos);
+    // a hung child is ended by the run: none is left with the run's --out in its command line
+    const test::Run left = test::run_mfv_shell("pgrep -f '[-]-out " + (scratch.dir / failure).string() + "/'");
+    CHECK(left.code == 1);
+  }
+  const test::Run bad = test::run_mfv(args + (scratch.dir / "bad").string(), "MFV_COMPILE_AHEAD=yes");
+  CHECK(bad.code == 2);
+  CHECK(bad.out.find("MFV_COMPILE_AHEAD=yes") != std::string::npos);
 }

@@ -139,13 +139,15 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
   record_reciprocity(in, plan.specs, plan.points, kReciprocityBound, opt.scale, opt.seed, t0, rep);
 }
 
+uint32_t reciprocity_pairs(double scale) { return 64 * std::max<uint32_t>(1, uint32_t(64 * scale)); }
+
 void record_reciprocity(Integrator& in, std::vector<IntegralSpec> specs, std::vector<PointResult> pts, double bound,
                         double scale, uint64_t seed, std::chrono::steady_clock::time_point t0, SuiteReport& rep,
                         bool streams_set) {
   if (specs.empty()) return;
   if (!(64 * scale <= double(UINT32_MAX / 64)))
     throw Error(fmt::format("--samples/--scale ask for {:.3g} reciprocity pairs per integral: too many", 4096 * scale));
-  const uint32_t pairs = 64 * std::max<uint32_t>(1, uint32_t(64 * scale));
+  const uint32_t pairs = reciprocity_pairs(scale);
   if (!streams_set) assign_streams("reciprocity", specs);  // by identity (checks/streams.hpp)
   const WorstPairs w = in.reciprocity(specs, pairs, seed);  // one pair per work-item
   for (size_t i = 0; i < specs.size(); ++i) {
@@ -231,18 +233,23 @@ SuitePlans make_suite_plans(const SuiteOptions& opt) {
   return sp;
 }
 
+TermSelection suite_terms(SuitePlans& sp) {
+  // One program for every plan: the kernels specialized per term pair
+  // (runtime/specialize.hpp) are shared by the plans that integrate the
+  // same pair (furnace, energy, energy_diffuse), so each is compiled once.
+  TermSelection terms = sp.reciprocity.terms;
+  for (auto& p : sp.plans) {
+    p.terms.specialized = fast_path_pairs(p.specs);
+    terms.add(p.terms);
+  }
+  return terms;
+}
+
 void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
                      const std::vector<Runtime*>& more) {
   std::vector<Plan>& plans = sp.plans;
   Plan& rp = sp.reciprocity;
-  // One program for every plan: the kernels specialized per term pair
-  // (runtime/specialize.hpp) are shared by the plans that integrate the
-  // same pair (furnace, energy, energy_diffuse), so each is compiled once.
-  TermSelection terms = rp.terms;
-  for (auto& p : plans) {
-    p.terms.specialized = fast_path_pairs(p.specs);
-    terms.add(p.terms);
-  }
+  const TermSelection terms = suite_terms(sp);
   const double b0 = rt.build_stats().seconds;
   PendingIntegrators pending = integrators_beside(more, terms);  // the other devices' builds beside this one
   Integrator in(rt, terms);
@@ -267,8 +274,11 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
 
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Runtime*>& more) {
   validate_suite_options(opt);
+  return run_suite(rt, opt, make_suite_plans(opt), more);
+}
+
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, SuitePlans sp, const std::vector<Runtime*>& more) {
   SuiteReport rep;
-  SuitePlans sp = make_suite_plans(opt);
   run_suite_plans(rt, sp, opt, rep, more);
   // the pointwise kinds (agree, stability) run whole, never in a shard (docs/scale.md)
   run_pointwise_kinds(rt, opt, rep);

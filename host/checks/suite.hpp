@@ -163,6 +163,9 @@ void validate_suite_options(const SuiteOptions& opt);  // throws mfv::Error nami
 // (mfv run --device all: checks/device_share.hpp); the reference comparison,
 // reciprocity and the pointwise kinds run on `rt`.
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Runtime*>& more = {});
+struct SuitePlans;
+// The same over plans made by make_suite_plans(opt) (opt validated).
+SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, SuitePlans sp, const std::vector<Runtime*>& more = {});
 
 
 // ---- Pieces mfv check (host/user/) shares with mfv run --------------------
@@ -189,6 +192,9 @@ struct SuitePlans {
   Plan reciprocity;
 };
 SuitePlans make_suite_plans(const SuiteOptions& opt);
+// The one integration program's terms for all of sp's plans (run_suite_plans);
+// sets each plan's specialized pairs.
+TermSelection suite_terms(SuitePlans& sp);
 void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
                      const std::vector<Runtime*>& more = {});
 // Which integrals of a plan the reference compares: every whole-model and
@@ -227,6 +233,7 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
 // point per case, filtered by opt.checks and opt.models (checks/suite_pointwise.cpp).
 void run_pointwise_kinds(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep);
 
+uint32_t reciprocity_pairs(double scale);  // pairs per reciprocity integral at --scale (record_reciprocity)
 // Integrator::reciprocity over `specs`, 64 x per_item pairs each (per_item from the scale): one bounded point per spec
 // (pts[i] describes spec i; estimate = worst asymmetry, with the pair index)
 // and the check's timing since t0 go into `rep`.

@@ -1,4 +1,5 @@
 // mfv run: the conformance suite and CI gate.
+#include "checks/compile_ahead.hpp"
 #include "checks/profile.hpp"
 #include "checks/suite.hpp"
 #include "cli/run_shard.hpp"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 namespace mfv::cli {
 
@@ -101,8 +103,15 @@ struct RunCommand : SharedValues {
     }
     prepare_out();
     if (is_device_set(g.device)) return run_on_devices(g, opt, compare);
+    SuitePlans plans = make_suite_plans(opt);
+    // MFV_COMPILE_AHEAD=1: a child process compiles the run's kernels from its
+    // end meanwhile (checks/compile_ahead.hpp), forked before this process's
+    // first OpenCL call
+    CompileAhead ahead(plans, opt, g.device, g.kernel_dir);
+    if (ahead.only()) return ahead.wait() == 0 ? 0 : 1;
     Runtime rt(g.device, g.kernel_dir);
-    SuiteReport rep = run_suite(rt, opt);
+    SuiteReport rep = run_suite(rt, opt, std::move(plans));
+    ahead.end();  // every kernel of the run has been launched
     print_suite_console(rep, rt, opt);
     if (!out_dir.empty()) write_suite_outputs(rep, rt, opt, out_dir);
     return std::max(rep.gate_ok() ? 0 : 1, compare(rep));

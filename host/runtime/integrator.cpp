@@ -187,7 +187,7 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
   // short, and at least 16 of them let progress (util/progress.hpp) advance
   // during a check; the samples and sums do not depend on the batching.
   const size_t per_batch = std::max<size_t>(1, std::min((size_t(1) << 15) / slices, (specs.size() + 15) / 16));
-  for (size_t first = 0; first < specs.size(); first += per_batch) {
+  for (size_t first = 0; first < specs.size() && !(compile_ahead_ && first > 0); first += per_batch) {
     size_t count = std::min(per_batch, specs.size() - first);
     size_t groups = count * slices;
     cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
@@ -231,11 +231,11 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
-  for (size_t first = 0; first < specs.size(); first += per_launch) {
+  for (size_t first = 0; first < specs.size() && !(compile_ahead_ && first > 0); first += per_launch) {
     const size_t count = std::min(per_launch, specs.size() - first);
     cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec),
                         const_cast<IntegralSpec*>(specs.data() + first));
-    for (uint32_t s0 = 0; s0 < slices; s0 += nslices) {
+    for (uint32_t s0 = 0; s0 < slices && !(compile_ahead_ && s0 > 0); s0 += nslices) {
       const uint32_t ns = std::min(nslices, slices - s0);
       const size_t m = size_t(ns) * per_slice, groups = count * ns;
       // the largest power of two up to 1024 that divides m and that the device and kernel allow
@@ -296,6 +296,10 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
                     : std::string("albedo_mis_general_values")]
         .push_back(i);
   }
+  if (compile_ahead_) {  // one integral of each kernel's group, the last group first
+    for (auto g = by_kernel.rbegin(); g != by_kernel.rend(); ++g) sums_mis({specs[g->second.front()]}, g->first, seed);
+    return out;
+  }
   for (const auto& [kernel, at] : by_kernel) {
     std::vector<IntegralSpec> group;
     for (size_t i : at) group.push_back(specs[i]);
@@ -322,7 +326,7 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
-  for (size_t row0 = 0; row0 < rows; row0 += per_launch) {
+  for (size_t row0 = 0; row0 < rows && !(compile_ahead_ && row0 > 0); row0 += per_launch) {
     const size_t count = std::min(per_launch, rows - row0);
     k.setArg(0, spec_buf);
     k.setArg(1, static_cast<cl_ulong>(seed));
@@ -417,6 +421,14 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   progress::Task task("samples", specs.size() * n);
   task_ = &task;
   group_samples_ = uint64_t(local_size_) * per_item;
+  if (compile_ahead_) {  // each kernel's first launch, on one integral of each specialized group, the last first
+    sums_mis(mis, seed);
+    sums_integrate(general, per_item, slices, seed, first_index);
+    for (auto g = fast_at.rbegin(); g != fast_at.rend(); ++g)
+      sums_values({specs[g->second.front()]}, g->first.first, g->first.second, per_item, slices, seed, first_index);
+    task_ = nullptr;
+    return std::vector<Estimate>(specs.size());
+  }
   for (const auto& [kernel, at] : fast_at) {
     std::vector<IntegralSpec> fast;
     for (size_t j : at) fast.push_back(specs[j]);
@@ -453,48 +465,6 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
       e.mean = e.stderr_ = e.b_mean = std::numeric_limits<double>::quiet_NaN();
   }
   return out;
-}
-
-template <class T>
-std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
-                                     uint32_t n, uint64_t seed) {
-  std::vector<T> out(specs.size() * n);
-  if (out.empty()) return out;
-  cl::Kernel k(program, "sample_values");
-  cl::Buffer spec_buf(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
-                      const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer vals = nan_filled_buffer(rt, CL_MEM_WRITE_ONLY, out.size() * sizeof(T));
-  k.setArg(0, spec_buf);
-  k.setArg(1, static_cast<cl_uint>(n));
-  k.setArg(2, static_cast<cl_ulong>(seed));
-  k.setArg(3, vals);
-  k.setArg(5, static_cast<cl_ulong>(out.size()));
-  // one work-group size and grid width for every launch: one compile (runtime/work_group.hpp)
-  for (size_t first = 0; first < out.size(); first += kMaxCountedGrid) {
-    k.setArg(4, static_cast<cl_ulong>(first));
-    enqueue_counted(rt.queue(), k, rt.device().device, std::min(kMaxCountedGrid, out.size() - first));
-  }
-  rt.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(T), out.data());
-  return out;
-}
-template std::vector<float> program_sample_values<float>(Runtime&, const cl::Program&, const std::vector<IntegralSpec>&,
-                                                         uint32_t, uint64_t);
-template std::vector<double> program_sample_values<double>(Runtime&, const cl::Program&,
-                                                           const std::vector<IntegralSpec>&, uint32_t, uint64_t);
-
-std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
-  return program_sample_values<float>(rt_, program_, specs, n, seed);
-}
-
-cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
-
-cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
-  cl::Buffer b(rt.context(), flags, bytes);
-  // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
-  // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
-  const cl_uint pattern = 0x7fffffffu;
-  if (bytes > 0) rt.queue().enqueueFillBuffer(b, pattern, 0, bytes / sizeof(pattern) * sizeof(pattern));
-  return b;
 }
 
 }  // namespace mfv

@@ -142,6 +142,12 @@ class Integrator {
   // The fast-path kernels launched so far, by name (the specialized ones
   // carry their term ids: runtime/specialize.hpp).
   const std::set<std::string>& launched_kernels() const { return launched_; }
+  // Compile-ahead (checks/compile_ahead.hpp): run() and reciprocity() launch
+  // each kernel once, as the first launch of the whole run would (the same
+  // work-group size and grid class, so PoCL compiles the same variant),
+  // taking one integral of each specialized kernel's group, and launch
+  // run()'s groups in reverse order. Their results are then meaningless.
+  void set_compile_ahead(bool on) { compile_ahead_ = on; }
 
  private:
   struct Sums {
@@ -176,6 +182,7 @@ class Integrator {
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
   std::set<std::string> kernel_names_, launched_;
+  bool compile_ahead_ = false;
   uint32_t mis_replicates_ = kMisReplicates;
   size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less
   progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read

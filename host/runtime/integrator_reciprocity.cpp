@@ -4,6 +4,7 @@
 #include "runtime/specialize.hpp"
 #include "runtime/work_group.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -18,7 +19,7 @@ void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs,
   const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
   size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
   while (pairs % local != 0) local /= 2;                       // a power of two that divides pairs
-  for (size_t first = 0; first < at.size(); first += per_launch) {
+  for (size_t first = 0; first < at.size() && !(compile_ahead_ && first > 0); first += per_launch) {
     const size_t count = std::min(per_launch, at.size() - first);
     std::vector<IntegralSpec> batch;
     for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
@@ -63,6 +64,10 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
     const std::string name = specialized_name("model_reciprocity_values", specs[i]);
     if (specs[i].model != MFV_MODEL_MICROFACET && kernel_names_.count(name)) by_model[name].push_back(i);
     else slow.push_back(i);
+  }
+  if (compile_ahead_) {  // one integral of each kernel's group
+    for (auto* at : {&fast, &slow}) at->resize(std::min<size_t>(at->size(), 1));
+    for (auto& [name, at] : by_model) at.resize(1);
   }
   if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
   for (const auto& [name, at] : by_model) {

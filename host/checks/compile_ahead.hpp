@@ -1,0 +1,65 @@
+// Compile-ahead (issue 30, docs/ci.md "Cold start"): PoCL compiles each
+// kernel at its first launch, for that launch's work-group size and grid
+// class, and keeps it in its kernel cache ($POCL_CACHE_DIR); one process
+// compiles one kernel at a time (a process-wide lock). So while `mfv run`
+// works through its plans from the first, a child process (forked before
+// the run touches OpenCL) builds the same programs and launches each kernel
+// once as the run's first launch of it would, from the run's end backwards:
+// reciprocity, the pointwise kinds, then the plans in reverse
+// (Integrator::set_compile_ahead). The run then finds those kernels
+// compiled in the cache. PoCL writes each entry to a temporary file and
+// renames it, so neither process sees half an entry.
+//
+// The child shares nothing with the run but the cache: its output goes to
+// /dev/null (or MFV_COMPILE_AHEAD_LOG), its exit status is ignored, and the
+// run ends it (SIGKILL) once the run has launched all its kernels; it dies
+// with the run (PR_SET_PDEATHSIG). The run's results are its own, whatever
+// the child does. Where the cache is warm (the child's first launches, the
+// reciprocity kernels, compile nothing), the child stops there.
+//
+// Off by default: on this project's shared 2-core machine (load 7-8) the
+// cold run took longer with the child than without (docs/ci.md, "Cold
+// start"). MFV_COMPILE_AHEAD=1 turns it on where the device is PoCL with
+// its kernel cache on (POCL_KERNEL_CACHE not 0), and MFV_COMPILE_AHEAD=only
+// runs the child alone (the run waits for it and then runs nothing: a cache
+// filled as the child fills it, for tests and CI).
+#pragma once
+
+#include "checks/suite.hpp"
+#include "runtime/opencl.hpp"
+
+#include <string>
+
+#include <sys/types.h>
+
+namespace mfv {
+
+class CompileAhead {
+ public:
+  // Forks the child for run_suite over `sp` on the device `device_selector`
+  // (as Runtime takes it) where MFV_COMPILE_AHEAD is 1 or only and
+  // POCL_KERNEL_CACHE is not 0;
+  // the child ends at once where the device is not PoCL. Call it before this
+  // process's first OpenCL call. Throws mfv::Error for a bad
+  // MFV_COMPILE_AHEAD; a child that cannot start is no error.
+  CompileAhead(const SuitePlans& sp, const SuiteOptions& opt, const std::string& device_selector,
+               const std::string& kernel_dir);
+  ~CompileAhead() { end(); }
+  CompileAhead(const CompileAhead&) = delete;
+  CompileAhead& operator=(const CompileAhead&) = delete;
+  bool started() const { return pid_ > 0; }
+  bool only() const { return only_; }  // MFV_COMPILE_AHEAD=only
+  int wait();  // waits for the child; its exit status (1 where it did not start or was killed)
+  void end();  // ends the child (SIGKILL) if it still runs
+
+ private:
+  pid_t pid_ = -1;
+  bool only_ = false;
+};
+
+// The child's work, on its own Runtime: returns its exit status.
+// MFV_COMPILE_AHEAD_TEST=abort or =hang makes it fail at once or never end
+// (the tests of a failing child).
+int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt);
+
+}  // namespace mfv

@@ -1,0 +1,50 @@
+// Integrator's per-sample values for the reference comparison
+// (sample_values, program_sample_values) and its NaN-filled buffers.
+#include "runtime/integrator.hpp"
+#include "runtime/work_group.hpp"
+
+namespace mfv {
+
+template <class T>
+std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, const std::vector<IntegralSpec>& specs,
+                                     uint32_t n, uint64_t seed) {
+  std::vector<T> out(specs.size() * n);
+  if (out.empty()) return out;
+  cl::Kernel k(program, "sample_values");
+  cl::Buffer spec_buf(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
+                      const_cast<IntegralSpec*>(specs.data()));
+  cl::Buffer vals = nan_filled_buffer(rt, CL_MEM_WRITE_ONLY, out.size() * sizeof(T));
+  k.setArg(0, spec_buf);
+  k.setArg(1, static_cast<cl_uint>(n));
+  k.setArg(2, static_cast<cl_ulong>(seed));
+  k.setArg(3, vals);
+  k.setArg(5, static_cast<cl_ulong>(out.size()));
+  // one work-group size and grid width for every launch: one compile (runtime/work_group.hpp)
+  for (size_t first = 0; first < out.size(); first += kMaxCountedGrid) {
+    k.setArg(4, static_cast<cl_ulong>(first));
+    enqueue_counted(rt.queue(), k, rt.device().device, std::min(kMaxCountedGrid, out.size() - first));
+  }
+  rt.queue().enqueueReadBuffer(vals, CL_TRUE, 0, out.size() * sizeof(T), out.data());
+  return out;
+}
+template std::vector<float> program_sample_values<float>(Runtime&, const cl::Program&, const std::vector<IntegralSpec>&,
+                                                         uint32_t, uint64_t);
+template std::vector<double> program_sample_values<double>(Runtime&, const cl::Program&,
+                                                           const std::vector<IntegralSpec>&, uint32_t, uint64_t);
+
+std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed) {
+  return program_sample_values<float>(rt_, program_, specs, n, seed);
+}
+
+cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
+
+cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
+  cl::Buffer b(rt.context(), flags, bytes);
+  // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
+  // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
+  const cl_uint pattern = 0x7fffffffu;
+  if (bytes > 0) rt.queue().enqueueFillBuffer(b, pattern, 0, bytes / sizeof(pattern) * sizeof(pattern));
+  return b;
+}
+
+}  // namespace mfv
