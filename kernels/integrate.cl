@@ -273,6 +273,12 @@ MFV_MASKING_VALUES(masking_values, s->d, s->g)
 MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 #endif
 
+// The run a summing work-item g reads. The grid is rounded up to whole
+// work-groups (runtime/work_group.hpp): a work-item past the last run reads
+// the last run (a select, not a branch, so the loop over work-items
+// vectorizes on AVX2 too) and writes a padding slot of the sums buffer.
+inline size_t counted_row(size_t g, ulong groups) { return g < groups ? g : (size_t)(groups - 1); }
+
 // The sums `integrate` leaves for the RQMC integrals from the E and B planes
 // of albedo_rqmc_values (B `plane` values after E), per run of `per_group`
 // values (a multiple of 2; run g belongs to integral g / slices): the sum of
@@ -281,10 +287,7 @@ MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values, s->d, s->g)
 __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ulong plane,
                        __global const IntegralSpec* restrict specs, uint slices, __global acc_t* restrict sums,
                        ulong groups) {
-  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
-  // work-item past the last run reads the last run (a select, not a branch, so
-  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
-  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  size_t g = get_global_id(0), r = counted_row(g, groups);
   __global const float* v = values + r * per_group;
   __global const float* b = v + plane;
   bool stratified = specs[r / slices].strata > 0u;
@@ -303,10 +306,7 @@ __kernel void sum_rqmc(__global const float* restrict values, uint per_group, ul
 // multiple of 4), as `integrate` leaves a stratified integral's work-groups.
 __kernel void sum_pairs(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
                         ulong groups) {
-  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
-  // work-item past the last run reads the last run (a select, not a branch, so
-  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
-  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  size_t g = get_global_id(0), r = counted_row(g, groups);
   __global const float* v = values + r * per_group;
   acc_t s[2] = {0, 0}, q[2] = {0, 0};
   for (uint k = 0; k < per_group; k += 4) {
@@ -327,10 +327,7 @@ __kernel void sum_pairs(__global const float* restrict values, uint per_group, _
 // one another.
 __kernel void sum_values(__global const float* restrict values, uint per_group, __global acc_t* restrict sums,
                          ulong groups) {
-  // The grid is rounded up to whole work-groups (runtime/work_group.hpp): a
-  // work-item past the last run reads the last run (a select, not a branch, so
-  // the loop over work-items vectorizes on AVX2 too) and writes a padding slot.
-  size_t g = get_global_id(0), r = g < groups ? g : (size_t)(groups - 1);
+  size_t g = get_global_id(0), r = counted_row(g, groups);
   __global const float* v = values + r * per_group;
   acc_t s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};
   for (uint k = 0; k < per_group; k += 4) {
