@@ -53,7 +53,6 @@ class Runtime {
   Runtime(const DeviceInfo& device, std::string kernel_dir);
 
   const DeviceInfo& device() const { return info_; }
-  const std::string& kernel_dir() const { return kernel_dir_; }  // "" = the embedded kernels
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
