@@ -4,15 +4,20 @@
 # (alpha, mu) = (0.5, 0.5), (0.1, 0.1), (0.01, 0.9) (quadrature 0.6982507,
 # 0.8834550, 0.9998865: ggx_np.py beside the peers' scripts).
 #
-# mfv: `mfv bench --case` (the suite's estimator), one call's wall time and SE
-# at the fewest points reaching SE 1e-4 and 1e-5.
+# mfv: `mfv bench --case` (the suite's estimator), 9 timed calls at each
+# whole-net point count per replicate (its bench.json `grid`).
 # Mitsuba 3 (the stronger anchor, mitsuba_albedo_qmc.py: visible normals on
 # its low-discrepancy samplers, SE from 32 independently randomized
-# replicates): multijitter and multijitter + dr.freeze at 256 ... 65536
-# points per replicate, ldsampler at 4096; for each, one call's wall time
-# and SE, the extrapolated time to SE 1e-4 and 1e-5 (variance / SE² /
-# samples per second, from the 4096-point run), and the smallest measured
-# call reaching each SE. Not part of CI (the peers need Python packages from PyPI).
+# replicates): multijitter and multijitter + dr.freeze at SIZES points per
+# replicate (multijitter rounds a size to its grid), 9 timed calls each,
+# ldsampler at 4096; the extrapolated time to SE 1e-4 and 1e-5 (variance /
+# SE² / samples per second, from the 4096-point run).
+# One rule for both sides: a point count "reaches" SE s where the median over
+# rounds of its timed calls' rms SE is at most s, and the cell's call is the
+# reaching count with the smallest median wall time. The last table gives,
+# per cell, mfv's call, Mitsuba 3's best (multijitter with or without
+# dr.freeze) and mfv / Mitsuba. Not part of CI (the peers need Python
+# packages from PyPI).
 #
 # Setup (Debian 12, once):
 #   apt-get install -y libllvm19                 # Dr.Jit 1.5 fails on Debian's LLVM 15
@@ -28,7 +33,7 @@ peers=${2:-$here/../shared/peers}
 venv=${3:-/work/peers-venv}
 rounds=${ROUNDS:-1}
 cases=${CASES:-0.5:0.5:0.6982507 0.1:0.1:0.8834550 0.01:0.9:0.9998865}
-sizes=${SIZES:-256 1024 4096 16384 65536}
+sizes=${SIZES:-256 384 512 768 1024 1536 2048 3072 4096 8192 16384 65536}
 export DRJIT_LIBLLVM_PATH=${DRJIT_LIBLLVM_PATH:-$(dpkg -L libllvm19 2>/dev/null | grep -m1 'libLLVM.so.19' || true)}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -52,20 +57,30 @@ python3 - "$out" "$rounds" "$cases" <<'PY'
 import json, statistics as st, sys
 out, rounds, cases = sys.argv[1], int(sys.argv[2]), sys.argv[3].split()
 med = lambda xs: st.median(xs) if xs else float("nan")
+targets = (1e-4, 1e-5)
+summary = []
 for c in cases:
     a, mu, truth = c.split(":")
     print(f"\n## alpha {a}, mu {mu} (truth {truth}); medians of {rounds} round(s)\n")
     m = [json.load(open(f"{out}/mfv_{c}_{r}.json")) for r in range(1, rounds + 1)]
     rows = [json.loads(l) for r in range(1, rounds + 1) for l in open(f"{out}/mi_{c}_{r}.jsonl") if l.startswith("{")]
-    print("| system | points x replicates | variance/sample | one call: wall, SE | extrapolated s to SE 1e-4, 1e-5 |")
+    print("| system | points x replicates | variance/sample | one call: wall, rms SE | extrapolated s to SE 1e-4, 1e-5 |")
     print("|---|---|---|---|---|")
-    for k in range(2):
-        ts = [x["targets"][k] for x in m]
-        t = ts[0]
-        print(f"| mfv bench --case, SE target {t['target_se']:g} | {t['points_per_replicate']} x {m[0]['replicates']} "
-              f"| {med([x['variance_per_sample'] for x in ts]):.3g} | {1e3 * med([x['median_seconds'] for x in ts]):.3g} ms, "
-              f"{med([x['rms_stderr'] for x in ts]):.2g} | - |")
-    best = {}
+    best = {"mfv": {}, "Mitsuba 3": {}}
+    def consider(side, what, n, wall, se):
+        for t in targets:
+            if se <= t and (t not in best[side] or wall < best[side][t][0]):
+                best[side][t] = (wall, se, what)
+    # mfv: each whole-net count of bench --case's grid (medians over the rounds that timed it)
+    by_n = {}
+    for x in m:
+        for g in x["grid"]: by_n.setdefault(g["points_per_replicate"], []).append(g)
+    for n in sorted(by_n):
+        gs = by_n[n]
+        wall, se = med([g["median_seconds"] for g in gs]), med([g["rms_stderr"] for g in gs])
+        consider("mfv", f"{n} x {m[0]['replicates']}", n, wall, se)
+        print(f"| mfv bench --case | {n} x {m[0]['replicates']} | {med([g['variance_per_sample'] for g in gs]):.3g} "
+              f"| {1e3 * wall:.3g} ms, {se:.2g} | - |")
     for tag in ("mj", "mj+freeze", "ld"):
         by_n = {}
         for x in rows:
@@ -76,18 +91,17 @@ for c in cases:
             se = med([x["rms_se_per_call"] for x in xs])
             var = med([x["var_per_sample"] for x in xs])
             rate = med([x["samples_per_s_median"] for x in xs])
-            for target in (1e-4, 1e-5):
-                if se <= target and tag != "ld" and (target not in best or wall < best[target][0]):
-                    best[target] = (wall, f"{tag} {n} x 32")
+            if tag != "ld": consider("Mitsuba 3", f"{tag} {n} x 32", n, wall, se)
             extra = f"{var / 1e-8 / rate * 1e3:.3g} ms, {var / 1e-10 / rate * 1e3:.3g} ms" if n == 4096 else "-"
             print(f"| Mitsuba 3 {tag} | {n} x 32 | {var:.3g} | {1e3 * wall:.3g} ms, {se:.2g} | {extra} |")
-    print()
-    for k, target in enumerate((1e-4, 1e-5)):
-        mf = med([x["targets"][k]["median_seconds"] for x in m])
-        if target in best:
-            w, what = best[target]
-            print(f"one call to SE <= {target:g}: mfv {1e3 * mf:.3g} ms, Mitsuba 3's best measured {1e3 * w:.3g} ms ({what}): "
-                  f"mfv {'<=' if mf <= w else '>'} Mitsuba")
-        else:
-            print(f"one call to SE <= {target:g}: mfv {1e3 * mf:.3g} ms; no measured Mitsuba 3 call reached it (SIZES)")
+    for t in targets:
+        summary.append((a, mu, t, best["mfv"].get(t), best["Mitsuba 3"].get(t)))
+print("\n## One call reaching each SE: mfv against Mitsuba 3's best (multijitter, with or without dr.freeze)\n")
+print(f"Medians of {rounds} round(s); a count reaches SE s where its timed calls' rms SE (median over rounds) is at most s.\n")
+print("| alpha, mu | SE | mfv: points x replicates, wall, rms SE | Mitsuba 3 best: sampler, points x replicates, wall, rms SE | mfv / Mitsuba |")
+print("|---|---|---|---|---|")
+fmt = lambda b: f"{b[2]}, {1e3 * b[0]:.3g} ms, {b[1]:.2g}" if b else "none reached (SIZES)"
+for a, mu, t, bm, bi in summary:
+    ratio = f"{bm[0] / bi[0]:.2f}" if bm and bi else "-"
+    print(f"| {a}, {mu} | {t:g} | {fmt(bm)} | {fmt(bi)} | {ratio} |")
 PY

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <sstream>
 
@@ -48,16 +49,6 @@ IntegralSpec case_spec(const BenchCase& c) {
   IntegralSpec s = spec_of(m);
   s.stream = 0;
   return s;
-}
-
-// rms SE of `seeds` calls with n samples
-double rms_se(Integrator& in, const IntegralSpec& spec, uint64_t n, uint64_t seed, int seeds) {
-  double ss = 0;
-  for (int k = 0; k < seeds; ++k) {
-    const Estimate e = in.run({spec}, n, seed + 1000 + uint64_t(k))[0];
-    ss += e.stderr_ * e.stderr_;
-  }
-  return std::sqrt(ss / seeds);
 }
 
 }  // namespace
@@ -104,16 +95,22 @@ BenchCaseResult run_bench_case(const std::string& device_selector, const std::st
   r.device = dev.name;
   r.replicates = kMisReplicates;
   r.repeats = repeats;
-  // points per replicate 20, 40, 80, ... (Integrator::mis_points: 5·2^(m-2));
-  // requesting exactly points x replicates samples gives that count
-  constexpr uint64_t kMaxPoints = uint64_t(5) << 20;
-  uint64_t points = 20;
-  in.run({spec}, points * kMisReplicates, seed);  // warm-up: first launch, allocations
-  for (const double target : {1e-4, 1e-5}) {
-    BenchCaseTarget t;
-    t.target_se = target;
-    while (points < kMaxPoints && rms_se(in, spec, points * kMisReplicates, seed, 3) > target) points *= 2;
-    const uint64_t n = points * kMisReplicates;
+  // Every whole-net count 20, 40, 80, ... (Integrator::mis_points: 5·2^(m-2),
+  // each share a whole Owen-scrambled Sobol net; counts between them, the
+  // shares' first points, gave no smaller SE: docs/performance.md) is timed
+  // with `repeats` calls, from the smallest up to the first count that
+  // reaches the last target and one count beyond it (so a script taking
+  // medians over rounds sees both sides of each target, as for Mitsuba's
+  // sizes). A target's call is the fewest points whose timed calls' rms SE
+  // is at most the target: the rule scripts/bench-peers.sh applies to
+  // Mitsuba 3's sizes.
+  constexpr uint32_t kMaxPoints = uint32_t(5) << 20;
+  in.run({spec}, 20 * kMisReplicates, seed);  // warm-up: first launch, allocations
+  const double last_target = kBenchCaseTargets[std::size(kBenchCaseTargets) - 1];
+  bool beyond = false;
+  for (uint32_t points = 20; points <= kMaxPoints; points *= 2) {
+    const uint64_t n = uint64_t(points) * kMisReplicates;
+    BenchCaseCount t;
     t.points = in.mis_points(n);
     t.samples = uint64_t(t.points) * kMisReplicates;
     std::vector<double> wall, cpu;
@@ -132,6 +129,18 @@ BenchCaseResult run_bench_case(const std::string& device_selector, const std::st
     t.median_cpu_seconds = bench_median(cpu);
     t.samples_per_s = double(t.samples) / t.median_seconds;
     t.variance_per_sample = double(t.samples) * t.rms_stderr * t.rms_stderr;
+    r.grid.push_back(t);
+    if (beyond) break;
+    beyond = t.rms_stderr <= last_target;
+  }
+  for (const double target : kBenchCaseTargets) {
+    // the fewest points reaching the target; else the largest count, its
+    // time scaled by (SE / target)² (an RQMC error falls faster than that:
+    // an upper bound, flagged by seconds_to_se > median_seconds)
+    auto it = std::find_if(r.grid.begin(), r.grid.end(), [&](const BenchCaseCount& t) { return t.rms_stderr <= target; });
+    BenchCaseTarget t;
+    static_cast<BenchCaseCount&>(t) = it != r.grid.end() ? *it : r.grid.back();
+    t.target_se = target;
     const double over = t.rms_stderr / target;
     t.seconds_to_se = t.median_seconds * (over > 1 ? over * over : 1.0);
     r.targets.push_back(t);
@@ -152,24 +161,33 @@ std::string bench_case_text(const BenchCaseResult& r) {
         t.target_se, t.median_seconds, r.repeats, t.median_cpu_seconds, t.stderr_, r.repeats, t.rms_stderr,
         t.estimate, t.points, r.replicates, t.samples, t.samples_per_s, t.variance_per_sample, t.target_se,
         t.seconds_to_se);
+  s += "  every count timed (points x replicates: median wall, rms SE):";
+  for (const BenchCaseCount& t : r.grid) s += fmt::format(" {}: {:.3g} s, {:.2e};", t.points, t.median_seconds, t.rms_stderr);
+  s.back() = '\n';
   return s;
 }
 
 std::string bench_case_json(const BenchCaseResult& r, const std::string& load_average, const std::string& date) {
   using nlohmann::json;
-  json targets = json::array();
-  for (const BenchCaseTarget& t : r.targets)
-    targets.push_back({{"target_se", t.target_se},
-                       {"points_per_replicate", t.points},
-                       {"samples", t.samples},
-                       {"estimate", t.estimate},
-                       {"stderr", t.stderr_},
-                       {"rms_stderr", t.rms_stderr},
-                       {"median_seconds", t.median_seconds},
-                       {"median_cpu_seconds", t.median_cpu_seconds},
-                       {"samples_per_s", t.samples_per_s},
-                       {"variance_per_sample", t.variance_per_sample},
-                       {"seconds_to_se", t.seconds_to_se}});
+  const auto count_json = [](const BenchCaseCount& t) {
+    return json{{"points_per_replicate", t.points},
+                {"samples", t.samples},
+                {"estimate", t.estimate},
+                {"stderr", t.stderr_},
+                {"rms_stderr", t.rms_stderr},
+                {"median_seconds", t.median_seconds},
+                {"median_cpu_seconds", t.median_cpu_seconds},
+                {"samples_per_s", t.samples_per_s},
+                {"variance_per_sample", t.variance_per_sample}};
+  };
+  json targets = json::array(), grid = json::array();
+  for (const BenchCaseTarget& t : r.targets) {
+    json j = count_json(t);
+    j["target_se"] = t.target_se;
+    j["seconds_to_se"] = t.seconds_to_se;
+    targets.push_back(j);
+  }
+  for (const BenchCaseCount& t : r.grid) grid.push_back(count_json(t));
   const BenchCaseTarget& t = r.targets.front();  // SE 1e-4: the top-level fields of mfv-bench-case/1
   json j{{"schema", "mfv-bench-case/1"},
          {"tool", {{"name", "mfv"}, {"version", MFV_VERSION}, {"commit", MFV_GIT_COMMIT}}},
@@ -192,7 +210,8 @@ std::string bench_case_json(const BenchCaseResult& r, const std::string& load_av
          {"variance_per_sample", t.variance_per_sample},
          {"seconds_to_se_1e-4", t.seconds_to_se},
          {"seconds_to_se_1e-5", r.targets.back().seconds_to_se},
-         {"targets", targets}};
+         {"targets", targets},
+         {"grid", grid}};
   return j.dump(2) + "\n";
 }
 
