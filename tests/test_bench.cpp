@@ -96,7 +96,8 @@ TEST_CASE("mfv bench --case gives one integral's time to standard errors of 1e-4
         CHECK(g["median_seconds"].get<double>() == t["median_seconds"].get<double>());
     }
   }
-  CHECK(grid.back()["points_per_replicate"].get<uint32_t>() == 2 * j["targets"][1]["points_per_replicate"].get<uint32_t>());
+  CHECK(grid.back()["points_per_replicate"].get<uint32_t>() ==
+        2 * j["targets"][1]["points_per_replicate"].get<uint32_t>());
   CHECK(j["rms_stderr"].get<double>() <= 1e-4);
   CHECK(std::fabs(j["estimate"].get<double>() - 0.6982507) < 6 * j["stderr"].get<double>());
   // the second target: one call's wall time and SE at 1e-5, more points than at 1e-4

@@ -137,7 +137,8 @@ BenchCaseResult run_bench_case(const std::string& device_selector, const std::st
     // the fewest points reaching the target; else the largest count, its
     // time scaled by (SE / target)² (an RQMC error falls faster than that:
     // an upper bound, flagged by seconds_to_se > median_seconds)
-    auto it = std::find_if(r.grid.begin(), r.grid.end(), [&](const BenchCaseCount& t) { return t.rms_stderr <= target; });
+    auto it =
+        std::find_if(r.grid.begin(), r.grid.end(), [&](const BenchCaseCount& t) { return t.rms_stderr <= target; });
     BenchCaseTarget t;
     static_cast<BenchCaseCount&>(t) = it != r.grid.end() ? *it : r.grid.back();
     t.target_se = target;
@@ -158,11 +159,11 @@ std::string bench_case_text(const BenchCaseResult& r) {
         "  SE {:g}: one call {:.4g} s (median of {}; CPU {:.4g} s), SE {:.2e} (rms of {} calls {:.2e}); estimate "
         "{:.7f}\n    {} points x {} replicates = {} samples, samples/s {:.3e}, variance/sample {:.3g} (n SE^2), "
         "seconds to SE {:g}: {:.4g}\n",
-        t.target_se, t.median_seconds, r.repeats, t.median_cpu_seconds, t.stderr_, r.repeats, t.rms_stderr,
-        t.estimate, t.points, r.replicates, t.samples, t.samples_per_s, t.variance_per_sample, t.target_se,
-        t.seconds_to_se);
+        t.target_se, t.median_seconds, r.repeats, t.median_cpu_seconds, t.stderr_, r.repeats, t.rms_stderr, t.estimate,
+        t.points, r.replicates, t.samples, t.samples_per_s, t.variance_per_sample, t.target_se, t.seconds_to_se);
   s += "  every count timed (points x replicates: median wall, rms SE):";
-  for (const BenchCaseCount& t : r.grid) s += fmt::format(" {}: {:.3g} s, {:.2e};", t.points, t.median_seconds, t.rms_stderr);
+  for (const BenchCaseCount& t : r.grid)
+    s += fmt::format(" {}: {:.3g} s, {:.2e};", t.points, t.median_seconds, t.rms_stderr);
   s.back() = '\n';
   return s;
 }

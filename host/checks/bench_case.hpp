@@ -21,10 +21,10 @@ BenchCase parse_bench_case(const std::string& text);
 
 // One point count's timed calls.
 struct BenchCaseCount {
-  uint32_t points = 0;               // per replicate
-  uint64_t samples = 0;              // per timed call: points x replicates
-  double estimate = 0, stderr_ = 0;  // of the first timed call
-  double rms_stderr = 0;             // root mean square of the timed calls' standard errors
+  uint32_t points = 0;                                // per replicate
+  uint64_t samples = 0;                               // per timed call: points x replicates
+  double estimate = 0, stderr_ = 0;                   // of the first timed call
+  double rms_stderr = 0;                              // root mean square of the timed calls' standard errors
   double median_seconds = 0, median_cpu_seconds = 0;  // wall and process CPU time of one call
   double samples_per_s = 0;
   double variance_per_sample = 0;  // samples x rms_stderr²: for RQMC the effective variance (it falls with N)
