@@ -5,19 +5,28 @@
 #pragma once
 
 #include "checks/suite.hpp"
+#include "numeric/hemisphere_quadrature.hpp"
 
 #include <vector>
 
 namespace mfv {
 
 struct KnownValue {
-  double value = 0, error = 0;  // error: |fine - coarse rule|, a bound on the fine rule's error
+  double value = 0, error = 0;  // error: the larger of |fine - coarse| and |fine - coarser rule|
 };
 
 // E(o) = ∫ f(i, o) (n·i) di of the integral's BRDF (ref::brdf on the float
 // parameters the device sees) by product Gauss-Legendre over half vectors
 // (host/numeric/hemisphere_quadrature.hpp).
 KnownValue albedo_by_quadrature(const IntegralSpec& s);
+// The same by given rules (value: fine; error: the larger of |fine - coarse|
+// and |fine - coarser|), one integral at a time; the truth's own rules are
+// furnace_rules().
+struct RuleSet {
+  ProductRule fine, coarse, coarser;
+};
+KnownValue albedo_by_rules(const IntegralSpec& s, const RuleSet& rules);
+const RuleSet& furnace_rules();
 // The same for many integrals, the same bits: those at one view share the
 // rule's nodes, the shading at them and each term's values (furnace_truth.cpp);
 // the views split over `threads` threads, each writing its own slots.
