@@ -1,15 +1,24 @@
 // The furnace's quadrature truth (checks/furnace_truth.cpp): the batched path
 // that shares each view's nodes, shading and term values must give the bits
-// of one integral at a time, on any number of threads.
+// of one integral at a time, on any number of threads; its error estimate
+// covers its error; the copy kept on disk is read back, or recomputed where
+// it does not check out.
 #include "catalog/catalog.hpp"
 #include "checks/furnace_truth.hpp"
 #include "checks/integrate.hpp"
 #include "checks/suite.hpp"
 #include "runtime/dispatch.hpp"
+#include "runtime/program_cache.hpp"
+#include "scoped_env.hpp"
+#include "test_files.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
 #include <vector>
 
 using namespace mfv;
@@ -128,4 +137,102 @@ TEST_CASE("The furnace truth's error estimate covers its actual error in the poo
   const auto [est0, act0] = mean_estimate_and_error(specs, 16, {r.coarser, r.coarser, r.coarser});
   CHECK(est0 == 0);
   CHECK(act0 > 0);
+}
+
+namespace {
+
+std::vector<unsigned char> bytes_of(const std::vector<KnownValue>& v) {
+  const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+  return {p, p + v.size() * sizeof(KnownValue)};
+}
+
+void require_bits(const std::vector<KnownValue>& got, const std::vector<KnownValue>& want) {
+  REQUIRE(got.size() == want.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    INFO("integral " << i << ": " << got[i].value << " +- " << got[i].error << ", computed " << want[i].value);
+    CHECK(same_bits(got[i].value, want[i].value));
+    CHECK(same_bits(got[i].error, want[i].error));
+  }
+}
+
+}  // namespace
+
+// The truths kept on disk across runs (stored_albedos_by_quadrature): a
+// second run reads them (shown by an entry planted with other values, which
+// comes back), and a truncated or corrupt entry is recomputed and replaced.
+TEST_CASE("The furnace truth comes from disk on a second run, and a truncated or corrupt entry is recomputed",
+          "[furnace][truth][planted]") {
+  namespace fs = std::filesystem;
+  const test::Scratch scratch("mfv_truth_cache");
+  const std::string dir = scratch / "furnace-truth";
+  std::vector<IntegralSpec> specs;
+  for (const IntegralSpec& s : model_furnace_specs("ggx/smith_ggx_correlated"))
+    if (specs.size() < 48) specs.push_back(s);
+  REQUIRE(specs.size() == 48);
+  const std::vector<KnownValue> fresh = albedos_by_quadrature(specs, 2);
+  require_bits(stored_albedos_by_quadrature(specs, 2, dir), fresh);  // computed, and stored
+  const std::string key = truth_cache_key(specs);
+  REQUIRE(key.size() == 64);
+  const std::string entry = ProgramCache(dir).path(key);
+  REQUIRE(fs::exists(entry));
+  CHECK(ProgramCache(dir).load(key) == bytes_of(fresh));
+
+  // planted: an entry that checks out but holds other values is what a second run reads
+  std::vector<KnownValue> other = fresh;
+  for (KnownValue& v : other) v.value += 1;
+  ProgramCache(dir).store(key, bytes_of(other));
+  require_bits(stored_albedos_by_quadrature(specs, 2, dir), other);
+
+  ProgramCache(dir).store(key, bytes_of(fresh));
+  const uintmax_t size = fs::file_size(entry);
+  SECTION("one flipped bit in the values") {
+    std::fstream f(entry, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(std::streamoff(size - 5));
+    const char c = char(f.get() ^ 0x10);
+    f.seekp(std::streamoff(size - 5));
+    f.put(c);
+  }
+  SECTION("truncated") { fs::resize_file(entry, size - sizeof(KnownValue)); }
+  SECTION("empty") { fs::resize_file(entry, 0); }
+  CHECK(!ProgramCache(dir).load(key));
+  require_bits(stored_albedos_by_quadrature(specs, 2, dir), fresh);  // recomputed
+  CHECK(ProgramCache(dir).load(key) == bytes_of(fresh));             // and replaced
+}
+
+TEST_CASE("The furnace truth's disk key holds every parameter, but not the stream", "[furnace][truth]") {
+  const std::vector<IntegralSpec> specs = variants();
+  std::set<std::string> keys;
+  for (const IntegralSpec& s : specs) keys.insert(truth_cache_key({s}));
+  CHECK(keys.size() == specs.size());
+  IntegralSpec streamed = specs[0];
+  streamed.stream = 7;
+  streamed.stream_hi = 3;
+  CHECK(truth_cache_key({streamed}) == truth_cache_key({specs[0]}));
+  CHECK(truth_cache_key({specs[0], specs[1]}) != truth_cache_key({specs[1], specs[0]}));
+  // a test's planted reference term must not read nor write the disk
+  const Term& ggx = find_term("ggx");
+  plant_reference_term(&ggx, &ggx);
+  CHECK(truth_cache_key({specs[0]}).empty());
+  plant_reference_term(&ggx, nullptr);
+  CHECK(!truth_cache_key({specs[0]}).empty());
+}
+
+TEST_CASE("MFV_TRUTH_CACHE turns the furnace truth's disk cache off and on", "[furnace][truth]") {
+  const test::ScopedEnv where("MFV_CACHE_DIR", "/tmp/mfv-x");
+  {
+    const test::ScopedEnv on("MFV_TRUTH_CACHE", nullptr);
+    CHECK(truth_cache_dir() == "/tmp/mfv-x/furnace-truth");
+  }
+  {
+    const test::ScopedEnv on("MFV_TRUTH_CACHE", "1");
+    CHECK(truth_cache_dir() == "/tmp/mfv-x/furnace-truth");
+  }
+  {
+    const test::ScopedEnv off("MFV_TRUTH_CACHE", "0");
+    CHECK(truth_cache_dir().empty());
+  }
+  {
+    const test::ScopedEnv bad("MFV_TRUTH_CACHE", "yes");
+    CHECK_THROWS_AS(truth_cache_dir(), Error);
+  }
 }

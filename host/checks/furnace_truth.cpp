@@ -1,11 +1,23 @@
 #include "checks/furnace_truth.hpp"
 
+#include "checks/integrate.hpp"
+
 #include "numeric/hemisphere_quadrature.hpp"
 #include "reference/brdf.hpp"
+#include "runtime/program_cache.hpp"
+#include "runtime/provenance.hpp"
+#include "util/error.hpp"
 #include "util/parallel.hpp"
+
+#include <fmt/format.h>
+#include <gnu/libc-version.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <string>
@@ -140,6 +152,72 @@ std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& s
 
 namespace {
 
+// The running executable's SHA-256 ("" where /proc/self/exe cannot be read).
+const std::string& executable_digest() {
+  static const std::string digest = [] {
+    std::ifstream in("/proc/self/exe", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return in.bad() || bytes.empty() ? std::string() : sha256_hex(bytes);
+  }();
+  return digest;
+}
+
+std::string rule_text(const ProductRule& r) {
+  return fmt::format("{} {} {} {:a}", r.order, r.per_decade, r.phi_panels, r.t_min);
+}
+
+static_assert(sizeof(KnownValue) == 2 * sizeof(double), "KnownValue: stored as its bytes");
+
+}  // namespace
+
+std::string truth_cache_key(const std::vector<IntegralSpec>& specs) {
+  // a test's plant (plant_reference_term) changes the values but not the executable
+  if (executable_digest().empty() || reference_planted()) return "";
+  const RuleSet& r = furnace_rules();
+  std::string bytes;
+  for (IntegralSpec s : specs) {
+    s.stream = s.stream_hi = 0;  // the stream draws samples; the truth does not read it
+    bytes.append(reinterpret_cast<const char*>(&s), sizeof s);
+  }
+  // Length-prefixed fields, so no two different keys concatenate alike (as ProgramCache::key).
+  std::string k;
+  for (const std::string& f :
+       {std::string("mfv-furnace-truth-1"), executable_digest(), std::string(gnu_get_libc_version()), rule_text(r.fine),
+        rule_text(r.coarse), rule_text(r.coarser), bytes})
+    k += std::to_string(f.size()) + ":" + f + ";";
+  return sha256_hex(k);
+}
+
+std::string truth_cache_dir() {
+  const char* v = std::getenv("MFV_TRUTH_CACHE");
+  const std::string on = v ? v : "";
+  if (!on.empty() && on != "0" && on != "1")
+    throw Error(fmt::format("MFV_TRUTH_CACHE={}: expected 0 (off) or 1 (on, the default)", on));
+  const std::string folder = ProgramCache::cache_folder();
+  return on == "0" || folder.empty() ? "" : folder + "/furnace-truth";
+}
+
+std::vector<KnownValue> stored_albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads,
+                                                     const std::string& dir) {
+  const ProgramCache disk(dir);
+  const std::string key = disk.enabled() && !specs.empty() ? truth_cache_key(specs) : "";
+  const size_t size = specs.size() * sizeof(KnownValue);
+  if (!key.empty())
+    if (const auto bytes = disk.load(key); bytes && bytes->size() == size) {
+      std::vector<KnownValue> out(specs.size());
+      std::memcpy(out.data(), bytes->data(), size);
+      return out;
+    }
+  std::vector<KnownValue> out = albedos_by_quadrature(specs, threads);
+  if (!key.empty()) {
+    const auto* p = reinterpret_cast<const unsigned char*>(out.data());
+    disk.store(key, std::vector<unsigned char>(p, p + size));
+  }
+  return out;
+}
+
+namespace {
+
 // The quadratures of a process, by the spec's bytes less its stream: a
 // process that runs the suite under many seeds (the tests) computes each once.
 std::mutex cache_lock;
@@ -176,7 +254,8 @@ void attach_furnace_truth(Plan& plan) {
         if (!cache.count(cache_key(plan.specs[i]))) missing.push_back(i), specs.push_back(plan.specs[i]);
       }
   }
-  const std::vector<KnownValue> computed = albedos_by_quadrature(specs, host_threads());
+  // across runs from disk: the default run's 15151 integrals take ~10 s of one core (docs/performance.md)
+  const std::vector<KnownValue> computed = stored_albedos_by_quadrature(specs, host_threads(), truth_cache_dir());
   std::lock_guard<std::mutex> g(cache_lock);
   for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(plan.specs[missing[k]]), computed[k]);
   for (size_t i : todo) {

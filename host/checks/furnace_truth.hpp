@@ -7,6 +7,7 @@
 #include "checks/suite.hpp"
 #include "numeric/hemisphere_quadrature.hpp"
 
+#include <string>
 #include <vector>
 
 namespace mfv {
@@ -31,6 +32,21 @@ const RuleSet& furnace_rules();
 // rule's nodes, the shading at them and each term's values (furnace_truth.cpp);
 // the views split over `threads` threads, each writing its own slots.
 std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads);
+// albedos_by_quadrature's values (the same bits), kept on disk across runs:
+// an entry of ProgramCache's format in `dir` under truth_cache_key(specs),
+// loaded where one checks out (its size and SHA-256 match), else computed and
+// stored. A truncated or corrupt entry is recomputed and replaced, never
+// trusted; `dir` "" or a key of "" (the executable unreadable) computes alone.
+std::vector<KnownValue> stored_albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads,
+                                                     const std::string& dir);
+// SHA-256 over all the values depend on: the running executable's bytes (the
+// reference code, the catalog, the rules and how they were compiled), the C
+// library's version (libm), the rules and the specs less their streams.
+std::string truth_cache_key(const std::vector<IntegralSpec>& specs);
+// The truths' folder: furnace-truth/ in mfv's cache folder
+// (ProgramCache::cache_folder()); "" where MFV_TRUTH_CACHE=0 (on where unset
+// or 1, any other value an error) or no folder can be named.
+std::string truth_cache_dir();
 // albedo_by_quadrature, remembered for the process (by the spec less its stream).
 KnownValue cached_albedo_by_quadrature(const IntegralSpec& s);
 

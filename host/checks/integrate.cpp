@@ -54,6 +54,8 @@ const Term* reference_term(int32_t index) {
 }
 }  // namespace
 
+bool reference_planted() { return !planted_terms().empty(); }
+
 void plant_reference_term(const Term* original, const Term* planted) {
   if (planted)
     planted_terms()[original] = planted;

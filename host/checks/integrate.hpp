@@ -38,6 +38,7 @@ ref::IntegralRef reference_of(const IntegralSpec& s);
 // it): while set, reference_of() takes `planted` wherever an integral has the
 // catalog term `original`; nullptr removes the plant. Unset in every run of mfv.
 void plant_reference_term(const Term* original, const Term* planted);
+bool reference_planted();  // any plant set (the furnace truth then stays off disk)
 
 // The float kernel and the double reference on the identical n samples of
 // each integral (spread over the strata of a stratified one): where no fp64

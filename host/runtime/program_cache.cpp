@@ -32,6 +32,10 @@ std::string ProgramCache::default_dir() {
   if (!on.empty() && on != "0" && on != "1")
     throw Error(fmt::format("MFV_PROGRAM_CACHE={}: expected 0 (off) or 1 (on)", on));
   if (on != "1") return "";  // off unless asked for (see program_cache.hpp)
+  return cache_folder();
+}
+
+std::string ProgramCache::cache_folder() {
   if (std::string d = env("MFV_CACHE_DIR"); !d.empty()) return d;
   if (std::string x = env("XDG_CACHE_HOME"); !x.empty()) return x + "/mfv";
   if (std::string h = env("HOME"); !h.empty()) return h + "/.cache/mfv";

@@ -32,6 +32,9 @@ class ProgramCache {
   // The folder from the environment (see above); "" where the cache is off or
   // no folder can be named (no HOME).
   static std::string default_dir();
+  // mfv's cache folder whether or not this cache is on (see above; "" where
+  // none can be named): checks/furnace_truth.cpp keeps its truths under it.
+  static std::string cache_folder();
 
   explicit ProgramCache(std::string dir) : dir_(std::move(dir)) {}
   bool enabled() const { return !dir_.empty(); }
