@@ -1,6 +1,7 @@
 #include "checks/furnace_truth.hpp"
 
 #include "checks/integrate.hpp"
+#include "checks/registry.hpp"
 
 #include "numeric/hemisphere_quadrature.hpp"
 #include "reference/brdf.hpp"
@@ -19,7 +20,14 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <atomic>
+#include <condition_variable>
+#include <exception>
+#include <memory>
 #include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
 #include <string>
 #include <tuple>
 
@@ -125,29 +133,54 @@ const RuleSet& furnace_rules() {
 
 KnownValue albedo_by_quadrature(const IntegralSpec& s) { return albedo_by_rules(s, furnace_rules()); }
 
-std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads) {
-  std::vector<KnownValue> out(specs.size());
-  // the work: one unit per view (sharing its nodes), one per other spec
-  std::map<double, std::vector<size_t>> by_view;
-  std::vector<size_t> alone;
-  for (size_t i = 0; i < specs.size(); ++i) {
-    const ref::IntegralRef r = reference_of(specs[i]);
-    if (shares_nodes(r))
-      by_view[r.cos_o].push_back(i);
-    else
-      alone.push_back(i);
+namespace {
+
+// The work of albedos_by_quadrature: one unit per view (sharing its nodes),
+// one per other spec; each unit writes its own slots of `out`, so the values
+// do not depend on which thread runs which unit.
+struct Quadratures {
+  explicit Quadratures(const std::vector<IntegralSpec>& s) : specs(s), out(s.size()) {
+    std::map<double, std::vector<size_t>> by_view;
+    std::vector<size_t> alone;
+    for (size_t i = 0; i < specs.size(); ++i) {
+      const ref::IntegralRef r = reference_of(specs[i]);
+      if (shares_nodes(r))
+        by_view[r.cos_o].push_back(i);
+      else
+        alone.push_back(i);
+    }
+    for (auto& [cos_o, which] : by_view) units.push_back(which);
+    for (size_t i : alone) units.push_back({i});
   }
-  std::vector<std::vector<size_t>> units;
-  for (auto& [cos_o, which] : by_view) units.push_back(which);
-  for (size_t i : alone) units.push_back({i});
-  // each unit writes its own slots: the values do not depend on the thread count
-  parallel_for(units.size(), threads, [&](size_t u) {
+  void run(size_t u) {
     if (units[u].size() == 1 && !shares_nodes(reference_of(specs[units[u][0]])))
       out[units[u][0]] = albedo_by_quadrature(specs[units[u][0]]);
     else
       albedos_at_view(specs, units[u], out);
-  });
-  return out;
+  }
+  // Runs the units no one has taken, until none is left or `stop` is set;
+  // true where this call ran the last one to end.
+  bool take_until(const std::atomic<bool>& stop) {
+    bool last = false;
+    for (size_t u; !stop && (u = next++) < units.size();) {
+      run(u);
+      last = ++done == units.size();
+    }
+    return last;
+  }
+
+  const std::vector<IntegralSpec> specs;
+  std::vector<std::vector<size_t>> units;
+  std::vector<KnownValue> out;
+  std::atomic<size_t> next{0}, done{0};
+};
+
+}  // namespace
+
+std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads) {
+  Quadratures q(specs);
+  parallel_for(q.units.size(), threads, [&](size_t u) { q.run(u); });
+  return std::move(q.out);
 }
 
 namespace {
@@ -197,10 +230,14 @@ std::string truth_cache_dir() {
   return on == "0" || folder.empty() ? "" : folder + "/furnace-truth";
 }
 
-std::vector<KnownValue> stored_albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads,
-                                                     const std::string& dir) {
+namespace {
+
+// The truths of `specs` from `dir` where its entry checks out ("": none);
+// `key` is set to the entry's key ("" where none is kept).
+std::optional<std::vector<KnownValue>> load_truths(const std::vector<IntegralSpec>& specs, const std::string& dir,
+                                                   std::string& key) {
   const ProgramCache disk(dir);
-  const std::string key = disk.enabled() && !specs.empty() ? truth_cache_key(specs) : "";
+  key = disk.enabled() && !specs.empty() ? truth_cache_key(specs) : "";
   const size_t size = specs.size() * sizeof(KnownValue);
   if (!key.empty())
     if (const auto bytes = disk.load(key); bytes && bytes->size() == size) {
@@ -208,11 +245,23 @@ std::vector<KnownValue> stored_albedos_by_quadrature(const std::vector<IntegralS
       std::memcpy(out.data(), bytes->data(), size);
       return out;
     }
+  return std::nullopt;
+}
+
+void store_truths(const std::vector<KnownValue>& values, const std::string& dir, const std::string& key) {
+  if (key.empty()) return;
+  const auto* p = reinterpret_cast<const unsigned char*>(values.data());
+  ProgramCache(dir).store(key, std::vector<unsigned char>(p, p + values.size() * sizeof(KnownValue)));
+}
+
+}  // namespace
+
+std::vector<KnownValue> stored_albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads,
+                                                     const std::string& dir) {
+  std::string key;
+  if (auto loaded = load_truths(specs, dir, key)) return std::move(*loaded);
   std::vector<KnownValue> out = albedos_by_quadrature(specs, threads);
-  if (!key.empty()) {
-    const auto* p = reinterpret_cast<const unsigned char*>(out.data());
-    disk.store(key, std::vector<unsigned char>(p, p + size));
-  }
+  store_truths(out, dir, key);
   return out;
 }
 
@@ -241,26 +290,182 @@ KnownValue cached_albedo_by_quadrature(const IntegralSpec& s) {
   return cache.emplace(cache_key(s), v).first->second;
 }
 
-void attach_furnace_truth(Plan& plan) {
-  constexpr double kMaxTruthError = 1e-3;
-  // Every isotropic point that must hold, less those the process knows.
-  std::vector<size_t> todo, missing;
-  std::vector<IntegralSpec> specs;
+namespace {
+
+// The points attach_furnace_truth gives a truth: isotropic, that must hold.
+bool takes_truth(const PointResult& p, const IntegralSpec& s) {
+  return p.expect == Expect::Hold && !(s.pd2 > 0) && s.phi_o == 0;
+}
+
+// The specs of `n` points that take a truth the process does not know yet,
+// nor `also_known` (cache_lock held): as attach_furnace_truth has always
+// listed them, so that the disk key (truth_cache_key) is the same.
+std::vector<IntegralSpec> unknown_specs(const IntegralSpec* specs, const PointResult* points, size_t n,
+                                        const std::set<std::string>& also_known = {}) {
+  std::vector<IntegralSpec> out;
+  for (size_t i = 0; i < n; ++i)
+    if (takes_truth(points[i], specs[i]) && !cache.count(cache_key(specs[i])) && !also_known.count(cache_key(specs[i])))
+      out.push_back(specs[i]);
+  return out;
+}
+
+// FurnaceTruthAhead's computation: one at a time in a process. The thread
+// loads or computes the plans' truths in order; a plan's quadratures are
+// published in `job` while they run, so that attach_furnace_truth, arriving
+// before they end, takes the units left beside the thread.
+struct Background {
+  std::vector<std::vector<IntegralSpec>> specs;  // per truth plan, in plan order
+  std::vector<std::vector<KnownValue>> values;
+  std::string dir;
+  std::mutex lock;
+  std::condition_variable changed;  // job or finished set, a job's last unit done, stop set
+  std::shared_ptr<Quadratures> job;
+  bool finished = false;
+  std::atomic<bool> stop{false};
+  std::exception_ptr error;
+  std::thread thread;
+
+  void notify() {
+    std::lock_guard<std::mutex> g(lock);
+    changed.notify_all();
+  }
+  // The thread's work.
+  void compute() {
+    try {
+      for (const std::vector<IntegralSpec>& s : specs) {
+        std::string key;
+        if (auto loaded = load_truths(s, dir, key)) {
+          values.push_back(std::move(*loaded));
+          continue;
+        }
+        auto q = std::make_shared<Quadratures>(s);
+        {
+          std::lock_guard<std::mutex> g(lock);
+          job = q;
+          changed.notify_all();
+        }
+        if (q->take_until(stop)) notify();
+        {
+          std::unique_lock<std::mutex> g(lock);
+          changed.wait(g, [&] { return stop || q->done == q->units.size(); });
+          job.reset();
+        }
+        if (stop) return finish();
+        store_truths(q->out, dir, key);
+        values.push_back(std::move(q->out));
+      }
+    } catch (...) {
+      error = std::current_exception();
+      stop = true;  // a helping attach_furnace_truth stops too
+    }
+    finish();
+  }
+  void finish() {
+    std::lock_guard<std::mutex> g(lock);
+    finished = true;
+    changed.notify_all();
+  }
+  // attach_furnace_truth's part: the units left, until the thread finishes.
+  void help() {
+    for (;;) {
+      std::shared_ptr<Quadratures> q;
+      {
+        std::unique_lock<std::mutex> g(lock);
+        changed.wait(g, [&] { return finished || (job && job->next < job->units.size()); });
+        if (finished) return;
+        q = job;
+      }
+      try {
+        if (q->take_until(stop)) notify();
+      } catch (...) {
+        stop = true;
+        notify();
+        throw;
+      }
+    }
+  }
+};
+std::mutex background_lock;
+std::unique_ptr<Background> background;  // guarded by background_lock
+
+// Waits for the background computation, if any (helping it), and puts its
+// values in the process's cache; rethrows its error.
+void join_background() {
+  std::unique_ptr<Background> b;
+  {
+    std::lock_guard<std::mutex> g(background_lock);
+    b = std::move(background);
+  }
+  if (!b) return;
+  try {
+    b->help();
+  } catch (...) {
+    b->thread.join();
+    throw;
+  }
+  b->thread.join();
+  if (b->error) std::rethrow_exception(b->error);
+  std::lock_guard<std::mutex> g(cache_lock);
+  for (size_t k = 0; k < b->specs.size(); ++k)
+    for (size_t i = 0; i < b->specs[k].size(); ++i) cache.emplace(cache_key(b->specs[k][i]), b->values[k][i]);
+}
+
+}  // namespace
+
+FurnaceTruthAhead::FurnaceTruthAhead(const std::vector<Plan>& plans) {
+  auto b = std::make_unique<Background>();
+  bool any = false;
   {
     std::lock_guard<std::mutex> g(cache_lock);
-    for (size_t i = 0; i < plan.points.size(); ++i)
-      if (plan.points[i].expect == Expect::Hold && !(plan.specs[i].pd2 > 0) && plan.specs[i].phi_o == 0) {
-        todo.push_back(i);
-        if (!cache.count(cache_key(plan.specs[i]))) missing.push_back(i), specs.push_back(plan.specs[i]);
+    std::set<std::string> earlier;  // attach_furnace_truth finds an earlier plan's in the cache
+    for (const Plan& p : plans)
+      if (check_kind(p.check).truth && !p.specs.empty()) {
+        any = true;
+        b->specs.push_back(unknown_specs(p.specs.data(), p.points.data(), p.specs.size(), earlier));
+        for (const IntegralSpec& s : b->specs.back()) earlier.insert(cache_key(s));
       }
   }
+  if (!any) return;
+  b->dir = truth_cache_dir();  // its error (MFV_TRUTH_CACHE) here, before the thread
+  std::lock_guard<std::mutex> g(background_lock);
+  if (background) return;  // another's, which attach_furnace_truth joins
+  // one thread: the device's (PoCL's) threads need the other cores
+  Background* w = b.get();
+  w->thread = std::thread([w] { w->compute(); });
+  background = std::move(b);
+  started_ = true;
+}
+
+FurnaceTruthAhead::~FurnaceTruthAhead() {
+  if (!started_) return;
+  std::unique_ptr<Background> b;
+  {
+    std::lock_guard<std::mutex> g(background_lock);
+    b = std::move(background);  // null where attach_furnace_truth joined it
+  }
+  if (!b) return;
+  b->stop = true;  // at the next view: a run that ends early waits no longer than one
+  b->notify();
+  b->thread.join();
+}
+
+void attach_furnace_truth(const std::vector<IntegralSpec>& specs, PointResult* points) {
+  join_background();
+  constexpr double kMaxTruthError = 1e-3;
+  // Every isotropic point that must hold, less those the process knows.
+  std::vector<IntegralSpec> missing;
+  {
+    std::lock_guard<std::mutex> g(cache_lock);
+    missing = unknown_specs(specs.data(), points, specs.size());
+  }
   // across runs from disk: the default run's 15151 integrals take ~10 s of one core (docs/performance.md)
-  const std::vector<KnownValue> computed = stored_albedos_by_quadrature(specs, host_threads(), truth_cache_dir());
+  const std::vector<KnownValue> computed = stored_albedos_by_quadrature(missing, host_threads(), truth_cache_dir());
   std::lock_guard<std::mutex> g(cache_lock);
-  for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(plan.specs[missing[k]]), computed[k]);
-  for (size_t i : todo) {
-    const KnownValue& v = cache.at(cache_key(plan.specs[i]));
-    PointResult& p = plan.points[i];
+  for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(missing[k]), computed[k]);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (!takes_truth(points[i], specs[i])) continue;
+    const KnownValue& v = cache.at(cache_key(specs[i]));
+    PointResult& p = points[i];
     // A value known to worse than kMaxTruthError adds more bias bound to
     // the pool than information (an integral's SE is ~1.7e-2 at default
     // samples): such points stay out of it (none in the catalog today:
@@ -270,5 +475,7 @@ void attach_furnace_truth(Plan& plan) {
     p.known_error = v.error;
   }
 }
+
+void attach_furnace_truth(Plan& plan) { attach_furnace_truth(plan.specs, plan.points.data()); }
 
 }  // namespace mfv

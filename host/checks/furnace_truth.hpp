@@ -50,7 +50,32 @@ std::string truth_cache_dir();
 // albedo_by_quadrature, remembered for the process (by the spec less its stream).
 KnownValue cached_albedo_by_quadrature(const IntegralSpec& s);
 
-// Sets PointResult::known on the furnace plan's points that must hold.
+// Sets PointResult::known on the furnace plan's points that must hold
+// (`points`: the plan's points in the order of its specs, wherever they are
+// kept), first joining a FurnaceTruthAhead's computation (its error rethrown).
 void attach_furnace_truth(Plan& plan);
+void attach_furnace_truth(const std::vector<IntegralSpec>& specs, PointResult* points);
+
+// The truths attach_furnace_truth will need for `plans` (the check kinds
+// that take one), computed beside the run (issue 30: on a cold run PoCL
+// compiles on one core, the other mostly idle): constructed before the run
+// builds its programs, it starts one thread that loads or computes them as
+// attach_furnace_truth would, plan by plan, by the same disk keys; the first
+// attach_furnace_truth joins it, taking the views left beside the thread
+// (a short run, --check furnace, keeps two cores on it), and rethrows its
+// error. The values are the same bits (threads do not change them). The destructor
+// stops a thread not joined (at its next view) and joins it, on every path:
+// none outlives the run. Nothing starts where another is running (a nested
+// run) or no plan takes a truth; MFV_TRUTH_CACHE's error is thrown here.
+class FurnaceTruthAhead {
+ public:
+  explicit FurnaceTruthAhead(const std::vector<Plan>& plans);
+  ~FurnaceTruthAhead();
+  FurnaceTruthAhead(const FurnaceTruthAhead&) = delete;
+  FurnaceTruthAhead& operator=(const FurnaceTruthAhead&) = delete;
+
+ private:
+  bool started_ = false;
+};
 
 }  // namespace mfv

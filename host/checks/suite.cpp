@@ -245,8 +245,20 @@ TermSelection suite_terms(SuitePlans& sp) {
   return terms;
 }
 
-void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
-                     const std::vector<Runtime*>& more) {
+namespace {
+
+// Where a plan that takes the furnace truth left its points in rep.points,
+// and its specs as they were before run_plan (which stratifies them): those
+// FurnaceTruthAhead computes the truths of.
+struct TruthPoints {
+  std::vector<IntegralSpec> specs;
+  size_t first = 0;
+};
+
+// run_suite_plans less the truths: it lists where they go.
+std::vector<TruthPoints> run_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
+                                   const std::vector<Runtime*>& more) {
+  std::vector<TruthPoints> truth_at;
   std::vector<Plan>& plans = sp.plans;
   Plan& rp = sp.reciprocity;
   const TermSelection terms = suite_terms(sp);
@@ -262,14 +274,32 @@ void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, Suite
   rep.build_seconds += rt.build_stats().seconds - b0;
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);
-    if (check_kind(plans[i].check).truth) attach_furnace_truth(plans[i]);  // its pooled test is two-sided
+    // its pooled test is two-sided, against the truth attach_truths sets on its points (the last recorded)
+    const bool truth = check_kind(plans[i].check).truth && !plans[i].specs.empty();
+    std::vector<IntegralSpec> specs = truth ? plans[i].specs : std::vector<IntegralSpec>();
     run_plan(in, plans[i], opt, rep, other, twin ? &*twin : nullptr);
+    if (truth) truth_at.push_back({std::move(specs), rep.points.size() - plans[i].points.size()});
   }
   if (!rp.specs.empty()) {
     progress::Task task("reciprocity", 0);
     record_reciprocity(in, rp.specs, rp.points, kReciprocityBound, opt.scale, opt.seed,
                        std::chrono::steady_clock::now(), rep, rp.streams_set);
   }
+  return truth_at;
+}
+
+// The furnace truths (checks/furnace_truth.hpp) on the points run_plans recorded.
+void attach_truths(SuiteReport& rep, const std::vector<TruthPoints>& truth_at) {
+  for (const TruthPoints& t : truth_at) attach_furnace_truth(t.specs, &rep.points[t.first]);
+}
+
+}  // namespace
+
+void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
+                     const std::vector<Runtime*>& more) {
+  const FurnaceTruthAhead truth(sp.plans);  // beside the builds and the integration; joined by attach_truths
+  const std::vector<TruthPoints> truth_at = run_plans(rt, sp, opt, rep, more);
+  attach_truths(rep, truth_at);
 }
 
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Runtime*>& more) {
@@ -279,9 +309,12 @@ SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, const std::vector<Ru
 
 SuiteReport run_suite(Runtime& rt, const SuiteOptions& opt, SuitePlans sp, const std::vector<Runtime*>& more) {
   SuiteReport rep;
-  run_suite_plans(rt, sp, opt, rep, more);
+  // the furnace truths beside the whole run (issue 30): joined where the verdicts need them
+  const FurnaceTruthAhead truth(sp.plans);
+  const std::vector<TruthPoints> truth_at = run_plans(rt, sp, opt, rep, more);
   // the pointwise kinds (agree, stability) run whole, never in a shard (docs/scale.md)
   run_pointwise_kinds(rt, opt, rep);
+  attach_truths(rep, truth_at);
   if (rep.points.empty()) throw Error("no model matches the --model filter");
   judge(rep, opt);
   return rep;
