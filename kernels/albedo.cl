@@ -200,8 +200,19 @@ static inline uint4 mis_shift(__global const IntegralSpec* s, ulong seed, uint r
 // Point k of n of a replicate with seeds `shift`, by components and with
 // selects (no branch, no float3: albedo_mis_values vectorizes, see
 // albedo_values); the three candidates share one (u_phi, u_r).
-static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
-                                         real co, uint4 shift, uint k, uint n) {
+// In three parts, so that albedo_mis_values is three kernels
+// (kernels/integrate.cl), and the cold run compiles one kernel per D and one
+// per G where it compiled one per (D, G) pair (docs/performance.md, "Cold
+// start"): albedo_mis_geometry_c, which evaluates no D and no G (one kernel),
+// gives i·n = iz (<= 0: below the horizon, value 0), the half vector's
+// NoH = hz and |n×h|² = hs2, o·h = oh, the mixture density q of i and F;
+// D F is then one D's part (albedo_mis_df_c), and albedo_mis_weight_g the
+// point's value from D F and one G. Each part rounds as brdf_above_c's
+// D F G in one expression does ((D F) G), so the floats are those of the
+// one-piece estimator.
+static inline MFV_ALWAYS_INLINE void albedo_mis_geometry_c(int f, real f0, real f1, real w, real co, uint4 shift, uint k,
+                                                           uint n, real* iz_out, real* hz_out, real* hs2_out,
+                                                           real* oh_out, real* q_out, real* f_out) {
   uint n_def = n / 10u, n_vis = 8u * n_def;
   bool vis = k < n_vis, cosine = k >= n_vis + n_def;
   uint j = vis ? k : cosine ? k - n_vis - n_def : k - n_vis;
@@ -216,16 +227,44 @@ static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, 
   real cx, cy, cz;
   cosine_direction(u_phi, u_r, &cx, &cy, &cz);
   real ix = cosine ? cx : om2 * mx - ox, iy = cosine ? cy : om2 * my, iz = cosine ? cz : om2 * mz - oz;
-  if (iz <= R(0.0)) return R(0.0);
   real hx, hy, hz;
   real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);  // as brdf_eval_c forms it
   real hs2 = hx * hx + hy * hy;
   // the pdfs of i under each proposal: (a) vis_pdf_i; (b) the slope density
   // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
-  real q = ALB_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + ALB_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
+  *q_out = ALB_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + ALB_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
            ALB_C_COS * iz * MFV_INV_PI;
+  *iz_out = iz;
+  *hz_out = hz;
+  *hs2_out = hs2;
+  *oh_out = oh;
+  *f_out = eval_F(f, min(oh, R(1.0)), f0, f1);  // brdf_above_h's VoH
+}
+
+static inline MFV_ALWAYS_INLINE real albedo_mis_df_c(int d, real pd, real hz, real hs2, real fv) {
+  return eval_D(d, hz, hs2, pd) * fv;
+}
+
+static inline MFV_ALWAYS_INLINE real albedo_mis_weight_g(int g, real pg, real kd, real co, uint k, uint n, real iz,
+                                                         real hz, real oh, real q, real df) {
+  uint n_def = n / 10u, n_vis = 8u * n_def;
+  bool vis = k < n_vis, cosine = k >= n_vis + n_def;
   real share = vis ? ALB_SHARE_VIS : cosine ? ALB_SHARE_COS : ALB_SHARE_SLOPE;
-  return share * brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / q;
+  // brdf_eval_c at (i, o), as brdf_above_h forms it from the half vector
+  real spec = df * eval_G(g, iz, co, hz, min(oh, R(1.0)), pg);
+  real fv = co <= R(0.0) ? R(0.0) : brdf_of_spec(spec, iz, co, kd);
+  real v = share * fv * iz / q;
+  // below the horizon: 0, as a select (a branch leaves the loads of the
+  // planes conditional, and haswell's (AVX2) cost model then keeps this
+  // kernel scalar: the AVX2 column of scripts/pocl-vectorization.sh)
+  return iz <= R(0.0) ? R(0.0) : v;
+}
+
+static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                         real co, uint4 shift, uint k, uint n) {
+  real iz, hz, hs2, oh, q, fv;
+  albedo_mis_geometry_c(f, f0, f1, w, co, shift, k, n, &iz, &hz, &hs2, &oh, &q, &fv);
+  return albedo_mis_weight_g(g, pg, kd, co, k, n, iz, hz, oh, q, albedo_mis_df_c(d, pd, hz, hs2, fv));
 }
 
 // The same estimator for every other albedo integral of mfv run (anisotropic

@@ -11,6 +11,24 @@
 // (`fmin(lz, vz) <= 0 ? 0 : brdf_above_c(...)`, the same floats as
 // brdf_eval_c) keep every load of the BRDF's parameters unconditional, which
 // PoCL's haswell (AVX2) target needs to vectorize them (docs/performance.md).
+
+// The BRDF from its microfacet numerator spec = D F G.
+static inline MFV_ALWAYS_INLINE real brdf_of_spec(real spec, real NoL, real NoV, real kd) {
+  // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
+  // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
+  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+}
+
+// brdf_above_c from the half vector h: NoH, sin2H = |n×h|² and half_len =
+// |l + v| / 2 (v·h before its clamp), as brdf_above_c forms them
+// (albedo_mis_microfacet, kernels/albedo.cl, takes them from its geometry).
+static inline MFV_ALWAYS_INLINE real brdf_above_h(int d, int g, int f, real NoL, real NoV, real NoH, real sin2H,
+                                                  real half_len, real pd, real pg, real f0, real f1, real kd) {
+  real VoH = min(half_len, R(1.0));
+  real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
+  return brdf_of_spec(spec, NoL, NoV, kd);
+}
+
 static inline MFV_ALWAYS_INLINE real brdf_above_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy,
                                                   real vz, real pd, real pg, real f0, real f1, real kd) {
   real NoL = lz;
@@ -21,12 +39,8 @@ static inline MFV_ALWAYS_INLINE real brdf_above_c(int d, int g, int f, real lx, 
   // when l and v are nearly opposite and v·h -> 0.
   real hx, hy, NoH;
   real len = normalize_sum(lx + vx, ly + vy, lz + vz, &hx, &hy, &NoH);
-  real VoH = min(R(0.5) * len, R(1.0));
   real sin2H = hx * hx + hy * hy;  // |n×h|², exact where 1 - NoH is not
-  real spec = eval_D(d, NoH, sin2H, pd) * eval_F(f, VoH, f0, f1) * eval_G(g, NoL, NoV, NoH, VoH, pg);
-  // Divided one cosine at a time: (n·l)(n·v) underflows to 0 for directions
-  // within ~1e-19 of the horizon (float), where spec / 0 would give 0/0 = NaN.
-  return kd * MFV_INV_PI + spec / (R(4.0) * NoL) / NoV;
+  return brdf_above_h(d, g, f, NoL, NoV, NoH, sin2H, R(0.5) * len, pd, pg, f0, f1, kd);
 }
 
 static inline MFV_ALWAYS_INLINE real brdf_eval_c(int d, int g, int f, real lx, real ly, real lz, real vx, real vy,

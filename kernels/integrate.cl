@@ -192,21 +192,59 @@ MFV_SAMPLE_VALUES(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd
 #ifndef MFV_USER_BRDF
 // mfv run's albedo (MFV_CHECK_ALBEDO_MIS) with one point per work-item, as
 // albedo_values: row `row0 + get_global_id(1)` is replicate (row % replicates)
-// of integral (row / replicates); work-item k takes point k of it. The
+// of integral (row / replicates); work-item k takes point k of it. Three
+// kernels, kernels/albedo.cl albedo_mis_microfacet's three parts, one after
+// the other on the same rows: albedo_mis_geometry (no D, no G) stores each
+// point's iz, hz, hs2, oh and q in five planes of `rows x points` reals
+// (planes, not 5-tuples, as albedo_rqmc_values' E and B), and F in one more
+// buffer, `df`; albedo_mis_df (MFV_ALBEDO_MIS_DF(name, D)) turns F into D F
+// there, in place (a buffer of its own, so that its loads and stores cannot
+// alias the planes it reads and PoCL vectorizes it); albedo_mis_values
+// (MFV_ALBEDO_MIS_VALUES(name, G)) stores the point's value. The last two are
+// specialized per D and per G (runtime/specialize.cpp), so a run compiles
+// one kernel per D and one per G instead of one per pair (docs/performance.md,
+// "Cold start"); a stored real is exact, so the floats are those of
+// albedo_mis_microfacet in one piece. sum_values then reduces each row. The
 // replicate's shift depends on the row only, so it is computed once per
-// work-group loop, not per point. sum_values then reduces each row.
-// MFV_ALBEDO_MIS_VALUES(name, D, G): as MFV_MASKING_VALUES (F stays a
-// select: its terms cost little beside the G chain).
-#define MFV_ALBEDO_MIS_VALUES(NAME, D, G)                                                                         \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,         \
-                     __global float* restrict values) {                                                          \
-    size_t k = get_global_id(0), row = row0 + get_global_id(1);                                                  \
-    __global const IntegralSpec* s = specs + row / replicates;                                                   \
-    uint4 shift = mis_shift(s, seed, (uint)(row % replicates));                                                  \
-    values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_microfacet(                            \
-        D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift, (uint)k, s->points);              \
+// work-group loop, not per point.
+#define MIS_AT (get_global_id(1) * get_global_size(0) + get_global_id(0))
+#define MIS_PLANE(i) geometry[(i) * (get_global_size(0) * get_global_size(1)) + MIS_AT]
+__kernel void albedo_mis_geometry(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,
+                                  __global real* restrict geometry, __global real* restrict df) {
+  size_t k = get_global_id(0), row = row0 + get_global_id(1);
+  __global const IntegralSpec* s = specs + row / replicates;
+  uint4 shift = mis_shift(s, seed, (uint)(row % replicates));
+  real iz, hz, hs2, oh, q, fv;
+  albedo_mis_geometry_c(s->f, s->f0, s->f1, s->width, s->cos_o, shift, (uint)k, s->points, &iz, &hz, &hs2, &oh, &q,
+                        &fv);
+  MIS_PLANE(0) = iz;
+  MIS_PLANE(1) = hz;
+  MIS_PLANE(2) = hs2;
+  MIS_PLANE(3) = oh;
+  MIS_PLANE(4) = q;
+  df[MIS_AT] = fv;
+}
+
+#define MFV_ALBEDO_MIS_DF(NAME, D)                                                                                \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, uint replicates, uint row0,                     \
+                     __global const real* restrict geometry, __global real* restrict df) {                       \
+    __global const IntegralSpec* s = specs + (row0 + get_global_id(1)) / replicates;                             \
+    df[MIS_AT] = albedo_mis_df_c(D, s->pd, MIS_PLANE(1), MIS_PLANE(2), df[MIS_AT]);                              \
   }
-MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->d, s->g)
+MFV_ALBEDO_MIS_DF(albedo_mis_df, s->d)
+
+// MFV_ALBEDO_MIS_VALUES(name, G): as MFV_MASKING_VALUES, by G only.
+#define MFV_ALBEDO_MIS_VALUES(NAME, G)                                                                            \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, uint replicates, uint row0,                     \
+                     __global const real* restrict geometry, __global const real* restrict df,                   \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0);                                                                                 \
+    __global const IntegralSpec* s = specs + (row0 + get_global_id(1)) / replicates;                             \
+    values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_weight_g(                              \
+        G, s->pg, s->kd, s->cos_o, (uint)k, s->points, MIS_PLANE(0), MIS_PLANE(1), MIS_PLANE(3), MIS_PLANE(4),   \
+        df[MIS_AT]);                                                                                             \
+  }
+MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->g)
 #endif
 
 // MFV_MIS_ROWS(name, FN): a replicate kernel laid out as albedo_mis_values,

@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <tuple>
 
 using namespace mfv;
 
@@ -75,13 +76,13 @@ TEST_CASE("kernels specialized per term pair give the generic kernels' estimates
   const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
   const int beckmann = term_index(find_term("beckmann"));
   const auto& launched = specialized.launched_kernels();
-  for (auto name :
-       {fmt::format("albedo_mis_values__d{}_g{}", ggx, corr), fmt::format("masking_values__d{}_g{}", ggx, corr),
-        fmt::format("albedo_rqmc_values__d{}_g{}", ggx, corr), fmt::format("d_norm_values__d{}", beckmann)}) {
+  for (auto name : {fmt::format("albedo_mis_values__g{}", corr), fmt::format("albedo_mis_df__d{}", ggx),
+                    fmt::format("masking_values__d{}_g{}", ggx, corr), fmt::format("albedo_rqmc_values__d{}_g{}", ggx, corr),
+                    fmt::format("d_norm_values__d{}", beckmann)}) {
     INFO(name);
     CHECK(launched.count(name) == 1);
   }
-  for (auto base : {"albedo_mis_values", "masking_values", "albedo_rqmc_values", "d_norm_values"}) {
+  for (auto base : {"albedo_mis_values", "albedo_mis_df", "masking_values", "albedo_rqmc_values", "d_norm_values"}) {
     INFO(base);
     CHECK(launched.count(base) == 0);
   }
@@ -97,19 +98,30 @@ TEST_CASE("a specialized kernel that evaluates another G than its pair's is caug
   Integrator generic(*rt, three_of_each());
   const auto a = run(generic, specs);
   const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
-  const int separable = term_index(find_term("smith_beckmann"));
-  for (auto macro : {"MFV_ALBEDO_MIS_VALUES(albedo_mis_values", "MFV_MASKING_VALUES(masking_values",
-                     "MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values"}) {
-    INFO(macro);
+  const int separable = term_index(find_term("smith_beckmann")), beckmann = term_index(find_term("beckmann"));
+  // (the kernel as generated, as planted, the integrals it serves in mixed_specs): a kernel
+  // per pair serves one integral; albedo_mis_values__g<corr> the one AlbedoMis integral with
+  // that G; albedo_mis_df__d<ggx> the two AlbedoMis integrals with D ggx
+  const std::tuple<std::string, std::string, size_t> plants[] = {
+      {fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values__g{}, {})", corr, corr),
+       fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values__g{}, {})", corr, separable), 1},
+      {fmt::format("MFV_ALBEDO_MIS_DF(albedo_mis_df__d{}, {})", ggx, ggx),
+       fmt::format("MFV_ALBEDO_MIS_DF(albedo_mis_df__d{}, {})", ggx, beckmann), 2},
+      {fmt::format("MFV_MASKING_VALUES(masking_values__d{}_g{}, {}, {})", ggx, corr, ggx, corr),
+       fmt::format("MFV_MASKING_VALUES(masking_values__d{}_g{}, {}, {})", ggx, corr, ggx, separable), 1},
+      {fmt::format("MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values__d{}_g{}, {}, {})", ggx, corr, ggx, corr),
+       fmt::format("MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values__d{}_g{}, {}, {})", ggx, corr, ggx, separable), 1},
+  };
+  for (const auto& [right, wrong, served] : plants) {
+    INFO(wrong);
     std::string text = generate_specializations(sel.specialized);
-    const std::string right = fmt::format("{}__d{}_g{}, {}, {})", macro, ggx, corr, ggx, corr);
     const size_t at = text.find(right);
     REQUIRE(at != std::string::npos);
-    text.replace(at, right.size(), fmt::format("{}__d{}_g{}, {}, {})", macro, ggx, corr, ggx, separable));
+    text.replace(at, right.size(), wrong);
     Integrator planted(*rt, build_integrate_program(*rt, sel, text), true);
     const auto b = run(planted, specs);
     size_t differ = 0;
     for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
-    CHECK(differ == 1);  // the one integral of that pair and check
+    CHECK(differ == served);  // the integrals of that kernel
   }
 }

@@ -166,7 +166,10 @@ class Integrator {
   // AlbedoMis: the sums of each replicate (kMisReplicates per integral, integral-major),
   // through one kernel per term pair where the program specializes it
   std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed);
-  std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, const std::string& kernel, uint64_t seed);
+  // `kernel` the values kernel; `df_kernel` albedo_mis_df (generic or by D) where `kernel` is an
+  // albedo_mis_values, which then runs after albedo_mis_geometry and it (kernels/integrate.cl)
+  std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, const std::string& kernel,
+                             const std::string& df_kernel, uint64_t seed);
   // `base` specialized to s's term pair where the program has that kernel, else `base`
   std::string kernel_for(const std::string& base, const IntegralSpec& s) const;
   cl::Kernel launched(const std::string& kernel);  // the kernel, noted in launched_

@@ -8,22 +8,42 @@ namespace mfv {
 
 namespace {
 
-// The kernels of kernels/integrate.cl defined by a MFV_*_VALUES macro, and
-// whether the G id is part of their specialization.
+// The kernels of kernels/integrate.cl defined by a MFV_*_VALUES macro (or
+// MFV_ALBEDO_MIS_DF), what their specialization takes (the D id, the G id or
+// both), and whether they serve d_norm's (D, kNoG) pairs or the others.
+enum class By { D, G, Pair };
 struct Specializable {
   const char* base;
   const char* macro;
-  bool by_g;
+  By by;
+  bool d_norm;
 };
 constexpr Specializable kSpecializable[] = {
-    {"d_norm_values", "MFV_D_NORM_VALUES", false},
-    {"masking_values", "MFV_MASKING_VALUES", true},
-    {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", true},
-    {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", true},
+    {"d_norm_values", "MFV_D_NORM_VALUES", By::D, true},
+    {"masking_values", "MFV_MASKING_VALUES", By::Pair, false},
+    // AlbedoMis in three kernels (kernels/integrate.cl): one per D and one per G, not per pair
+    {"albedo_mis_df", "MFV_ALBEDO_MIS_DF", By::D, false},
+    {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", By::G, false},
+    {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", By::Pair, false},
 };
 
-std::string name_of(const std::string& base, int d, int g, bool by_g) {
-  return by_g ? fmt::format("{}__d{}_g{}", base, d, g) : fmt::format("{}__d{}", base, d);
+std::string name_of(const std::string& base, int d, int g, By by) {
+  switch (by) {
+    case By::D: return fmt::format("{}__d{}", base, d);
+    case By::G: return fmt::format("{}__g{}", base, g);
+    case By::Pair: return fmt::format("{}__d{}_g{}", base, d, g);
+  }
+  return base;
+}
+
+// The macro's arguments after the name: the ids it is specialized to.
+std::string ids_of(int d, int g, By by) {
+  switch (by) {
+    case By::D: return fmt::format("{}", d);
+    case By::G: return fmt::format("{}", g);
+    case By::Pair: return fmt::format("{}, {}", d, g);
+  }
+  return "";
 }
 
 // kernels/model_values.cl, specialized per model
@@ -53,11 +73,13 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
 
 std::string generate_specializations(const std::vector<TermPair>& pairs) {
   std::string out;
+  std::set<std::string> defined;  // a kernel by D or by G serves several pairs: defined once
   for (const auto& p : pairs)
     for (const auto& k : kSpecializable)
-      if (k.by_g == (p.g != kNoG))
-        out += k.by_g ? fmt::format("{}({}, {}, {})\n", k.macro, name_of(k.base, p.d, p.g, true), p.d, p.g)
-                      : fmt::format("{}({}, {})\n", k.macro, name_of(k.base, p.d, p.g, false), p.d);
+      if (k.d_norm == (p.g == kNoG)) {
+        const std::string name = name_of(k.base, p.d, p.g, k.by);
+        if (defined.insert(name).second) out += fmt::format("{}({}, {})\n", k.macro, name, ids_of(p.d, p.g, k.by));
+      }
   return out;
 }
 
@@ -74,7 +96,7 @@ std::string generate_model_specializations(const std::vector<const Model*>& mode
 std::string specialized_name(const std::string& base, const IntegralSpec& s) {
   if (base == kModelAlbedo || base == kModelReciprocity) return model_kernel_name(int(s.model), base.c_str());
   const Specializable* k = find(base);
-  return k ? name_of(base, s.d, s.g, k->by_g) : base;
+  return k ? name_of(base, s.d, s.g, k->by) : base;
 }
 
 }  // namespace mfv

@@ -22,8 +22,9 @@ constexpr int kNoG = -1;
 std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 
 // OpenCL C that defines the specialized kernels of `pairs` (after
-// kernels/integrate.cl): d_norm_values for (D, kNoG), masking_values,
-// albedo_mis_values and albedo_rqmc_values for the other pairs.
+// kernels/integrate.cl): d_norm_values for (D, kNoG); masking_values and
+// albedo_rqmc_values for the other pairs, and AlbedoMis's albedo_mis_df per
+// D and albedo_mis_values per G of those pairs (each once).
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
 // OpenCL C that defines model_albedo_values (kernels/model_values.cl) and
@@ -32,7 +33,8 @@ std::string generate_specializations(const std::vector<TermPair>& pairs);
 std::string generate_model_specializations(const std::vector<const Model*>& models);
 
 // The name of the kernel `base` specialized to the terms of `s`
-// (d_norm_values: D only; model_albedo_values, model_reciprocity_values: s's model).
+// (d_norm_values, albedo_mis_df: D only; albedo_mis_values: G only;
+// model_albedo_values, model_reciprocity_values: s's model).
 std::string specialized_name(const std::string& base, const IntegralSpec& s);
 
 }  // namespace mfv
