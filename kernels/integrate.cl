@@ -33,14 +33,29 @@ static inline MFV_ALWAYS_INLINE real d_norm_value_c(int d, real pd, real w, uint
   return eval_D(d, c, s2, pd) * c / pdf_mix(c, pdf_slope(c, s2, w));  // pdf_m at w > 0, without its loop
 }
 
+// masking in two parts (masking_values below runs them as three kernels):
+// the D- and G-free geometry of a sample (microfacet normal cos θ = c,
+// sin²θ = s2, o·m = om, and the proposal density times cos_o, den) and its
+// weight from G and D; v = ((G D) om) / den, the rounding of one piece.
+static inline MFV_ALWAYS_INLINE void masking_geometry_c(real w, real co, real u_pick, real u_phi, real u_r, real* c,
+                                                        real* s2, real* om, real* den) {
+  real ox = sqrt(sin2_from_cos(co));  // spec_view at phi_o = 0
+  real mx, my;
+  sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, c, s2);
+  *om = ox * mx + co * *c;
+  *den = pdf_mix(*c, pdf_slope(*c, *s2, w)) * co;
+}
+
+static inline MFV_ALWAYS_INLINE real masking_weight_g(int g, real pg, real co, real c, real om, real den, real dv) {
+  real v = eval_G(g, R(1.0), co, c, om, pg) * dv * om / den;
+  return om <= R(0.0) ? R(0.0) : v;  // select form: see terms_d.cl
+}
+
 static inline MFV_ALWAYS_INLINE real masking_value_c(int d, int g, real pd, real pg, real w, real co, real u_pick, real u_phi,
                                    real u_r) {
-  real ox = sqrt(sin2_from_cos(co));  // spec_view at phi_o = 0
-  real mx, my, c, s2;
-  sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
-  real om = ox * mx + co * c;
-  real v = eval_G(g, R(1.0), co, c, om, pg) * eval_D(d, c, s2, pd) * om / (pdf_mix(c, pdf_slope(c, s2, w)) * co);
-  return om <= R(0.0) ? R(0.0) : v;  // select form: see terms_d.cl
+  real c, s2, om, den;
+  masking_geometry_c(w, co, u_pick, u_phi, u_r, &c, &s2, &om, &den);
+  return masking_weight_g(g, pg, co, c, om, den, eval_D(d, c, s2, pd));
 }
 
 // One sample of d_norm, masking or the iid albedo (MFV_CHECK_D_NORM,
@@ -268,19 +283,52 @@ MFV_MIS_ROWS(bsdf_flux_mis_values, bsdf_flux_mis)
 // (spec_is_microfacet) with one sample per work-item, as albedo_values:
 // work-item (k, j) takes sample first + k of integral j, the sample
 // `integrate` takes there. sum_pairs / sum_values reduce.
-// MFV_D_NORM_VALUES(name, D) and MFV_MASKING_VALUES(name, D, G) define
-// these kernels with the term ids D and G: s->d and s->g here, constants in
-// the kernels specialized per term pair (runtime/specialize.cpp), where the
-// select chains of eval_D and eval_G fold to the one term.
+// MFV_D_NORM_VALUES(name, D) defines d_norm_values with the term id D: s->d
+// here, a constant in the kernels specialized per D (runtime/specialize.cpp),
+// where the select chain of eval_D folds to the one term.
 #define MFV_D_NORM_VALUES(NAME, D)                                                                                \
   MFV_SAMPLE_VALUES(NAME,                                                                                         \
                     d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w)))
 MFV_D_NORM_VALUES(d_norm_values, s->d)
 
-#define MFV_MASKING_VALUES(NAME, D, G)                                                                            \
-  MFV_SAMPLE_VALUES(NAME, masking_value_c(D, G, s->pd, s->pg, s->width, s->cos_o, u01_open(r.y), u01_open(r.z),    \
-                                          u01_open(r.w)))
-MFV_MASKING_VALUES(masking_values, s->d, s->g)
+// masking in three kernels, as AlbedoMis (albedo_mis_geometry above), one
+// after the other on the same samples: masking_geometry (no D, no G) stores
+// masking_geometry_c's c, s2, om and den in four planes of `integrals x
+// samples` reals; masking_d (MFV_MASKING_D(name, D)) stores D(c, s2) in a
+// buffer of its own, `dv`; masking_values (MFV_MASKING_VALUES(name, G)) the
+// sample's value masking_weight_g. The last two are specialized per D and
+// per G (runtime/specialize.cpp), so a run compiles one kernel per D and one
+// per G instead of one per pair; a stored real is exact, so the floats are
+// masking_value_c's, `integrate`'s.
+__kernel void masking_geometry(__global const IntegralSpec* restrict specs, ulong seed, ulong first,
+                               __global real* restrict geometry) {
+  size_t k = get_global_id(0), j = get_global_id(1);
+  __global const IntegralSpec* s = specs + j;
+  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);
+  real c, s2, om, den;
+  masking_geometry_c(s->width, s->cos_o, u01_open(r.y), u01_open(r.z), u01_open(r.w), &c, &s2, &om, &den);
+  MIS_PLANE(0) = c;
+  MIS_PLANE(1) = s2;
+  MIS_PLANE(2) = om;
+  MIS_PLANE(3) = den;
+}
+
+#define MFV_MASKING_D(NAME, D)                                                                                    \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, __global const real* restrict geometry,         \
+                     __global real* restrict dv) {                                                               \
+    __global const IntegralSpec* s = specs + get_global_id(1);                                                   \
+    dv[MIS_AT] = eval_D(D, MIS_PLANE(0), MIS_PLANE(1), s->pd);                                                   \
+  }
+MFV_MASKING_D(masking_d, s->d)
+
+#define MFV_MASKING_VALUES(NAME, G)                                                                               \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, __global const real* restrict geometry,         \
+                     __global const real* restrict dv, __global float* restrict values) {                        \
+    __global const IntegralSpec* s = specs + get_global_id(1);                                                   \
+    values[MIS_AT] = (float)masking_weight_g(G, s->pg, s->cos_o, MIS_PLANE(0), MIS_PLANE(2), MIS_PLANE(3),       \
+                                             dv[MIS_AT]);                                                        \
+  }
+MFV_MASKING_VALUES(masking_values, s->g)
 #endif
 
 #ifndef MFV_USER_BRDF

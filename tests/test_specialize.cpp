@@ -77,12 +77,13 @@ TEST_CASE("kernels specialized per term pair give the generic kernels' estimates
   const int beckmann = term_index(find_term("beckmann"));
   const auto& launched = specialized.launched_kernels();
   for (auto name : {fmt::format("albedo_mis_values__g{}", corr), fmt::format("albedo_mis_df__d{}", ggx),
-                    fmt::format("masking_values__d{}_g{}", ggx, corr), fmt::format("albedo_rqmc_values__d{}_g{}", ggx, corr),
+                    fmt::format("masking_values__g{}", corr), fmt::format("masking_d__d{}", ggx),
+                    fmt::format("albedo_rqmc_values__d{}_g{}", ggx, corr),
                     fmt::format("d_norm_values__d{}", beckmann)}) {
     INFO(name);
     CHECK(launched.count(name) == 1);
   }
-  for (auto base : {"albedo_mis_values", "albedo_mis_df", "masking_values", "albedo_rqmc_values", "d_norm_values"}) {
+  for (auto base : {"albedo_mis_values", "albedo_mis_df", "masking_values", "masking_d", "albedo_rqmc_values", "d_norm_values"}) {
     INFO(base);
     CHECK(launched.count(base) == 0);
   }
@@ -100,15 +101,18 @@ TEST_CASE("a specialized kernel that evaluates another G than its pair's is caug
   const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
   const int separable = term_index(find_term("smith_beckmann")), beckmann = term_index(find_term("beckmann"));
   // (the kernel as generated, as planted, the integrals it serves in mixed_specs): a kernel
-  // per pair serves one integral; albedo_mis_values__g<corr> the one AlbedoMis integral with
-  // that G; albedo_mis_df__d<ggx> the two AlbedoMis integrals with D ggx
+  // per pair serves one integral; albedo_mis_values__g<corr> and masking_values__g<corr> the
+  // one AlbedoMis or masking integral with that G; albedo_mis_df__d<ggx> and masking_d__d<ggx>
+  // the two AlbedoMis or masking integrals with D ggx
   const std::tuple<std::string, std::string, size_t> plants[] = {
       {fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values__g{}, {})", corr, corr),
        fmt::format("MFV_ALBEDO_MIS_VALUES(albedo_mis_values__g{}, {})", corr, separable), 1},
       {fmt::format("MFV_ALBEDO_MIS_DF(albedo_mis_df__d{}, {})", ggx, ggx),
        fmt::format("MFV_ALBEDO_MIS_DF(albedo_mis_df__d{}, {})", ggx, beckmann), 2},
-      {fmt::format("MFV_MASKING_VALUES(masking_values__d{}_g{}, {}, {})", ggx, corr, ggx, corr),
-       fmt::format("MFV_MASKING_VALUES(masking_values__d{}_g{}, {}, {})", ggx, corr, ggx, separable), 1},
+      {fmt::format("MFV_MASKING_VALUES(masking_values__g{}, {})", corr, corr),
+       fmt::format("MFV_MASKING_VALUES(masking_values__g{}, {})", corr, separable), 1},
+      {fmt::format("MFV_MASKING_D(masking_d__d{}, {})", ggx, ggx),
+       fmt::format("MFV_MASKING_D(masking_d__d{}, {})", ggx, beckmann), 2},
       {fmt::format("MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values__d{}_g{}, {}, {})", ggx, corr, ggx, corr),
        fmt::format("MFV_ALBEDO_RQMC_VALUES(albedo_rqmc_values__d{}_g{}, {}, {})", ggx, corr, ggx, separable), 1},
   };

@@ -30,9 +30,9 @@ struct Widths {
 const char* const kBench =
     "bench --integrand d_norm --repeats 1 --integrals 1 --samples 64 --ref-samples 1 --threads 1";
 // The energy program of every D with smith_ggx_correlated (G id 12): its
-// kernels specialized per pair, masking_values__dN_g12 and
-// albedo_rqmc_values__dN_g12 for the five isotropic Ds, and per G,
-// albedo_mis_values__g12 (with albedo_mis_df__dN per D); a 2x2 table.
+// kernels specialized per pair, albedo_rqmc_values__dN_g12 for the five
+// isotropic Ds, and per G, albedo_mis_values__g12 and masking_values__g12
+// (with albedo_mis_df__dN and masking_d__dN per D); a 2x2 table.
 const char* const kEnergyG12 =
     "energy --models /smith_ggx_correlated --grid 2x2 --max-points 1024 --replicates 2";
 // The program of ggx/smith_ggx_correlated alone (d2_g12), where the paired
@@ -95,8 +95,8 @@ TEST_CASE("Every fast-path kernel that vectorizes for AVX-512 also vectorizes fo
     mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
     return;
   }
-  for (const char* k : {"d_norm_values", "albedo_values", "masking_values", "albedo_mis_values", "albedo_rqmc_values",
-                        "reciprocity_values_microfacet"}) {
+  for (const char* k : {"d_norm_values", "albedo_values", "masking_geometry", "masking_d", "masking_values",
+                        "albedo_mis_values", "albedo_rqmc_values", "reciprocity_values_microfacet"}) {
     INFO(k);
     REQUIRE(w.count(k));
     CHECK(w.at(k).avx2 != "scalar");
@@ -141,8 +141,8 @@ std::map<std::string, Widths> pair_kernels(const std::map<std::string, Widths>& 
 TEST_CASE("The energy kernels of every D with smith_ggx_correlated vectorize on AVX2 and on AVX-512",
           "[vectorize][device]") {
   const mfv::test::PlantedKernelDir kernels;
-  // masking and albedo_rqmc: for d0..d4, and for d2 alone; albedo_mis_values__g12 once
-  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG12, 11}, {kEnergyGgxG12, 3}}) {
+  // albedo_rqmc: for d0..d4, and for d2 alone; albedo_mis_values__g12 and masking_values__g12 once
+  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG12, 7}, {kEnergyGgxG12, 3}}) {
     INFO(command);
     const auto w = vectorization(kernels.path(), command);
     if (!have_remarks(w)) {
@@ -184,8 +184,9 @@ TEST_CASE("The kernels of every D with kelemen, and of ggx with every G, vectori
           "of those programs differs between them",
           "[vectorize][device]") {
   const mfv::test::PlantedKernelDir kernels;
-  // masking and albedo_rqmc for d0..d4, and for d2 beside every other G; albedo_mis_values__g6 once
-  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG6, 11}, {kEnergyGgxAllG, 3}}) {
+  // albedo_rqmc for d0..d4, and for d2 beside every other G; albedo_mis_values__g6 and
+  // masking_values__g6 once
+  for (const auto& [command, n] : {std::pair<const char*, size_t>{kEnergyG6, 7}, {kEnergyGgxAllG, 3}}) {
     INFO(command);
     const auto w = vectorization(kernels.path(), command);
     if (!have_remarks(w)) {

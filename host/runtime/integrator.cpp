@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
 
 namespace mfv {
 
@@ -210,12 +211,19 @@ std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<Integ
 // sample per work-item, stored) and sum_values (the per-slice sums of
 // `integrate`): the samples of `integrate`, reduced in the same slices.
 std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<IntegralSpec>& specs, const std::string& base,
-                                                      const std::string& kernel, uint32_t per_item, uint32_t slices,
+                                                      const std::string& kernel, const std::string& d_kernel,
+                                                      uint32_t per_item, uint32_t slices,
                                                       uint64_t seed, uint64_t first_index) {
   std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
   const uint64_t per_slice = uint64_t(local_size_) * per_item;  // a multiple of 4 (run())
-  const uint64_t kMaxValues = uint64_t(1) << 22;                // 16 MiB of samples a launch
+  // masking_values (generic or by G) reads the samples' geometry and D from masking_geometry and
+  // masking_d (kernels/integrate.cl): four planes of reals and one of D (sized as doubles,
+  // whatever the program's real)
+  const bool three_kernels = !d_kernel.empty();
+  constexpr uint64_t kPlanes = 5;
+  // 16 MiB of samples a launch, or of planes where there are some (the sums do not depend on it)
+  const uint64_t kMaxValues = three_kernels ? (uint64_t(1) << 21) / kPlanes : uint64_t(1) << 22;
   // A launch takes `count` integrals over slices [s0, s0 + nslices).
   // and at most kMaxCountedGrid work-groups, one work-item each in the reduction (runtime/work_group.hpp)
   const uint32_t nslices =
@@ -230,6 +238,14 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   cl::Kernel values_k = launched(kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
+  cl::Kernel geometry_k, d_k;
+  cl::Buffer planes, dv;
+  if (three_kernels) {
+    geometry_k = launched("masking_geometry");
+    d_k = launched(d_kernel);
+    planes = nan_buffer(CL_MEM_READ_WRITE, (kPlanes - 1) * capacity * sizeof(double));
+    dv = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(double));
+  }
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
   for (size_t first = 0; first < specs.size() && !(compile_ahead_ && first > 0); first += per_launch) {
     const size_t count = std::min(per_launch, specs.size() - first);
@@ -240,11 +256,30 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
       const size_t m = size_t(ns) * per_slice, groups = count * ns;
       // the largest power of two up to 1024 that divides m and that the device and kernel allow
       size_t local = fit_local_size(values_k, rt_.device().device, 1024);
+      if (three_kernels)
+        local = std::min({local, fit_local_size(geometry_k, rt_.device().device, 1024),
+                          fit_local_size(d_k, rt_.device().device, 1024)});
       while (m % local != 0) local /= 2;
-      values_k.setArg(0, spec_buf);
-      values_k.setArg(1, static_cast<cl_ulong>(seed));
-      values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
-      values_k.setArg(3, values);
+      if (three_kernels) {
+        geometry_k.setArg(0, spec_buf);
+        geometry_k.setArg(1, static_cast<cl_ulong>(seed));
+        geometry_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
+        geometry_k.setArg(3, planes);
+        rt_.queue().enqueueNDRangeKernel(geometry_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
+        d_k.setArg(0, spec_buf);
+        d_k.setArg(1, planes);
+        d_k.setArg(2, dv);
+        rt_.queue().enqueueNDRangeKernel(d_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
+        values_k.setArg(0, spec_buf);
+        values_k.setArg(1, planes);
+        values_k.setArg(2, dv);
+        values_k.setArg(3, values);
+      } else {
+        values_k.setArg(0, spec_buf);
+        values_k.setArg(1, static_cast<cl_ulong>(seed));
+        values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
+        values_k.setArg(3, values);
+      }
       rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
       const size_t padded = counted_grid(sum_k, rt_.device().device, groups);  // a sum per launched work-item
       cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, padded * MFV_SUM_SLOTS * acc);
@@ -336,7 +371,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   // isotropic microfacet integrals take the vectorizable fast paths
   std::vector<IntegralSpec> general, mis;
   std::vector<size_t> general_at, mis_at;
-  std::map<std::pair<std::string, std::string>, std::vector<size_t>> fast_at;  // by values kernel, specialized
+  // by (base, values kernel, masking_d kernel), specialized where the program has them
+  std::map<std::tuple<std::string, std::string, std::string>, std::vector<size_t>> fast_at;
   for (size_t j = 0; j < specs.size(); ++j) {
     if (sampling_of(specs[j].check) == Sampling::Replicates) {
       if (!(specs[j].width > 0) || specs[j].estimator != 0)
@@ -352,7 +388,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     // their specialized kernels: kernels/model_values.cl)
     if (fast && !kernel_names_.count(kernel)) fast = nullptr;
     if (fast) {
-      fast_at[{fast, kernel}].push_back(j);
+      const bool masking = std::string(fast) == "masking_values";  // and masking_d (kernels/integrate.cl)
+      fast_at[{fast, kernel, masking ? kernel_for("masking_d", specs[j]) : ""}].push_back(j);
     } else {
       general.push_back(specs[j]);
       general_at.push_back(j);
@@ -366,14 +403,16 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     sums_mis(mis, seed);
     sums_integrate(general, per_item, slices, seed, first_index);
     for (auto g = fast_at.rbegin(); g != fast_at.rend(); ++g)
-      sums_values({specs[g->second.front()]}, g->first.first, g->first.second, per_item, slices, seed, first_index);
+      sums_values({specs[g->second.front()]}, std::get<0>(g->first), std::get<1>(g->first), std::get<2>(g->first),
+                  per_item, slices, seed, first_index);
     task_ = nullptr;
     return std::vector<Estimate>(specs.size());
   }
   for (const auto& [kernel, at] : fast_at) {
     std::vector<IntegralSpec> fast;
     for (size_t j : at) fast.push_back(specs[j]);
-    const auto fs = sums_values(fast, kernel.first, kernel.second, per_item, slices, seed, first_index);
+    const auto fs = sums_values(fast, std::get<0>(kernel), std::get<1>(kernel), std::get<2>(kernel), per_item, slices,
+                                seed, first_index);
     for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
   }
   const auto gs = sums_integrate(general, per_item, slices, seed, first_index);

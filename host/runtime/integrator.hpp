@@ -159,10 +159,12 @@ class Integrator {
   // sum_pairs; albedo_mis_values for AlbedoMis (kernels/integrate.cl)
   std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
                                    uint64_t seed, uint64_t first_index);
-  // `kernel`: `base` or its specialization to the specs' term pair
+  // `kernel`: `base` or its specialization to the specs' term pair (or G); `d_kernel`:
+  // masking_d (generic or by D) where `kernel` is a masking_values, which then runs after
+  // masking_geometry and it (kernels/integrate.cl), else empty
   std::vector<Sums> sums_values(const std::vector<IntegralSpec>& specs, const std::string& base,
-                                const std::string& kernel, uint32_t per_item, uint32_t slices, uint64_t seed,
-                                uint64_t first_index);
+                                const std::string& kernel, const std::string& d_kernel, uint32_t per_item,
+                                uint32_t slices, uint64_t seed, uint64_t first_index);
   // AlbedoMis: the sums of each replicate (kMisReplicates per integral, integral-major),
   // through one kernel per term pair where the program specializes it
   std::vector<Sums> sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed);

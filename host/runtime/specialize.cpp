@@ -20,8 +20,9 @@ struct Specializable {
 };
 constexpr Specializable kSpecializable[] = {
     {"d_norm_values", "MFV_D_NORM_VALUES", By::D, true},
-    {"masking_values", "MFV_MASKING_VALUES", By::Pair, false},
-    // AlbedoMis in three kernels (kernels/integrate.cl): one per D and one per G, not per pair
+    // masking and AlbedoMis in three kernels (kernels/integrate.cl): one per D and one per G, not per pair
+    {"masking_d", "MFV_MASKING_D", By::D, false},
+    {"masking_values", "MFV_MASKING_VALUES", By::G, false},
     {"albedo_mis_df", "MFV_ALBEDO_MIS_DF", By::D, false},
     {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", By::G, false},
     {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", By::Pair, false},

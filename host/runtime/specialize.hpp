@@ -22,9 +22,10 @@ constexpr int kNoG = -1;
 std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 
 // OpenCL C that defines the specialized kernels of `pairs` (after
-// kernels/integrate.cl): d_norm_values for (D, kNoG); masking_values and
-// albedo_rqmc_values for the other pairs, and AlbedoMis's albedo_mis_df per
-// D and albedo_mis_values per G of those pairs (each once).
+// kernels/integrate.cl): d_norm_values for (D, kNoG); albedo_rqmc_values
+// for the other pairs, and masking's masking_d and AlbedoMis's albedo_mis_df
+// per D and masking_values and albedo_mis_values per G of those pairs (each
+// once).
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
 // OpenCL C that defines model_albedo_values (kernels/model_values.cl) and
