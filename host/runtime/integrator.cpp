@@ -261,24 +261,15 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
                           fit_local_size(d_k, rt_.device().device, 1024)});
       while (m % local != 0) local /= 2;
       if (three_kernels) {
-        geometry_k.setArg(0, spec_buf);
-        geometry_k.setArg(1, static_cast<cl_ulong>(seed));
-        geometry_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
-        geometry_k.setArg(3, planes);
+        set_args(geometry_k, spec_buf, static_cast<cl_ulong>(seed),
+                 static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice), planes);
         rt_.queue().enqueueNDRangeKernel(geometry_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
-        d_k.setArg(0, spec_buf);
-        d_k.setArg(1, planes);
-        d_k.setArg(2, dv);
+        set_args(d_k, spec_buf, planes, dv);
         rt_.queue().enqueueNDRangeKernel(d_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
-        values_k.setArg(0, spec_buf);
-        values_k.setArg(1, planes);
-        values_k.setArg(2, dv);
-        values_k.setArg(3, values);
+        set_args(values_k, spec_buf, planes, dv, values);
       } else {
-        values_k.setArg(0, spec_buf);
-        values_k.setArg(1, static_cast<cl_ulong>(seed));
-        values_k.setArg(2, static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice));
-        values_k.setArg(3, values);
+        set_args(values_k, spec_buf, static_cast<cl_ulong>(seed),
+                 static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice), values);
       }
       rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
       const size_t padded = counted_grid(sum_k, rt_.device().device, groups);  // a sum per launched work-item

@@ -95,31 +95,15 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   for (size_t row0 = 0; row0 < rows && !(compile_ahead_ && row0 > 0); row0 += per_launch) {
     const size_t count = std::min(per_launch, rows - row0);
     if (three_kernels) {
-      geometry_k.setArg(0, spec_buf);
-      geometry_k.setArg(1, static_cast<cl_ulong>(seed));
-      geometry_k.setArg(2, static_cast<cl_uint>(mis_replicates_));
-      geometry_k.setArg(3, static_cast<cl_uint>(row0));
-      geometry_k.setArg(4, planes);
-      geometry_k.setArg(5, df);
+      const auto reps = static_cast<cl_uint>(mis_replicates_), first_row = static_cast<cl_uint>(row0);
+      set_args(geometry_k, spec_buf, static_cast<cl_ulong>(seed), reps, first_row, planes, df);
       enqueue(geometry_k, count);
-      df_k.setArg(0, spec_buf);
-      df_k.setArg(1, static_cast<cl_uint>(mis_replicates_));
-      df_k.setArg(2, static_cast<cl_uint>(row0));
-      df_k.setArg(3, planes);
-      df_k.setArg(4, df);
+      set_args(df_k, spec_buf, reps, first_row, planes, df);
       enqueue(df_k, count);
-      k.setArg(0, spec_buf);
-      k.setArg(1, static_cast<cl_uint>(mis_replicates_));
-      k.setArg(2, static_cast<cl_uint>(row0));
-      k.setArg(3, planes);
-      k.setArg(4, df);
-      k.setArg(5, values);
+      set_args(k, spec_buf, reps, first_row, planes, df, values);
     } else {
-      k.setArg(0, spec_buf);
-      k.setArg(1, static_cast<cl_ulong>(seed));
-      k.setArg(2, static_cast<cl_uint>(mis_replicates_));
-      k.setArg(3, static_cast<cl_uint>(row0));
-      k.setArg(4, values);
+      set_args(k, spec_buf, static_cast<cl_ulong>(seed), static_cast<cl_uint>(mis_replicates_),
+               static_cast<cl_uint>(row0), values);
     }
     enqueue(k, count);
     sum_rows(values, count, n, out.data() + row0);

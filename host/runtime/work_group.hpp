@@ -35,6 +35,13 @@ size_t counted_local_size(const cl::Kernel& kernel, const cl::Device& device);
 // whole work-groups (buffers a kernel writes per work-item are this long).
 size_t counted_grid(const cl::Kernel& kernel, const cl::Device& device, size_t count);
 void enqueue_counted(cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::Device& device, size_t count);
+// Sets a kernel's arguments 0, 1, ... in order (one line a launch where
+// several kernels take their arguments in turn).
+template <class... Args>
+void set_args(cl::Kernel& kernel, const Args&... args) {
+  cl_uint i = 0;
+  (kernel.setArg(i++, args), ...);
+}
 
 // The work-group size of a replicate kernel (albedo_mis_values and the
 // other MFV_*_ROWS kernels) over rows of n points. Short
