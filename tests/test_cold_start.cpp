@@ -6,6 +6,7 @@
 // one double-twin program for the run. They also check that the counted
 // launches (runtime/work_group.hpp) give the values of whole launches.
 #include "albedo_spec.hpp"
+#include "checks/compile_ahead.hpp"
 #include "device_fixture.hpp"
 #include "run_mfv.hpp"
 #include "runtime/integrator.hpp"
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -187,8 +189,10 @@ TEST_CASE("A compile-ahead child that fails or never ends leaves the run's resul
     const nlohmann::json j = nlohmann::json::parse(test::slurp(scratch.dir / name / "out" / "results.json"));
     return std::make_pair(j.at("results"), j.at("groups"));
   };
-  const auto without = results("off", "");  // off by default
+  const auto without = results("off", "MFV_COMPILE_AHEAD=0");
   CHECK(!fs::exists(scratch.dir / "off" / "child.log"));
+  // auto (the default) starts a child or not by the load; the results are the same either way
+  CHECK(results("auto", "MFV_COMPILE_AHEAD=auto") == without);
   for (const char* failure : {"abort", "hang"}) {
     CAPTURE(failure);
     CHECK(results(failure, std::string("MFV_COMPILE_AHEAD=1 MFV_COMPILE_AHEAD_TEST=") + failure) == without);
@@ -201,4 +205,13 @@ TEST_CASE("A compile-ahead child that fails or never ends leaves the run's resul
   const test::Run bad = test::run_mfv(args + (scratch.dir / "bad").string(), "MFV_COMPILE_AHEAD=yes");
   CHECK(bad.code == 2);
   CHECK(bad.out.find("MFV_COMPILE_AHEAD=yes") != std::string::npos);
+}
+
+TEST_CASE("Compile-ahead's default takes a free core and never a busy machine", "[cold]") {
+  CHECK(compile_ahead_pays(2, 0.0));
+  CHECK(compile_ahead_pays(2, 1.0));   // one other task: the second core is free
+  CHECK(!compile_ahead_pays(2, 1.3));  // more than one: the child would compete with the run
+  CHECK(!compile_ahead_pays(1, 0.0));  // one core: the run's own compiles hold it
+  CHECK(compile_ahead_pays(16, 14.5));
+  CHECK(!compile_ahead_pays(16, std::numeric_limits<double>::infinity()));  // load unknown
 }

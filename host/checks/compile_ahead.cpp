@@ -10,6 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
+#include <limits>
+#include <thread>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -45,12 +48,38 @@ constexpr double kWarmCpuSeconds = 0.05;
 
 }  // namespace
 
+bool compile_ahead_pays(unsigned cores, double others_running) {
+  return cores >= 2 && others_running <= double(cores) - 1.0;
+}
+
+static double others_running_now() {
+  // /proc/loadavg's fourth field, "running/total", counts the tasks runnable
+  // at this instant, this one included; ten readings 5 ms apart
+  double sum = 0;
+  int readings = 0;
+  for (int k = 0; k < 10; ++k) {
+    if (k > 0) ::usleep(5000);
+    std::ifstream in("/proc/loadavg");
+    double l1, l5, l15;
+    int running = 0;
+    char slash;
+    if (in >> l1 >> l5 >> l15 >> running >> slash && running > 0) sum += running - 1, ++readings;
+  }
+  return readings > 0 ? sum / readings : std::numeric_limits<double>::infinity();  // unknown: busy
+}
+
 CompileAhead::CompileAhead(const SuitePlans& sp, const SuiteOptions& opt, const std::string& device_selector,
                            const std::string& kernel_dir) {
   const std::string on = env("MFV_COMPILE_AHEAD");
-  if (!on.empty() && on != "0" && on != "1" && on != "only")
-    throw Error(fmt::format("MFV_COMPILE_AHEAD={}: expected 0 (off), 1 (on where the device is PoCL) or only", on));
-  if (on.empty() || on == "0" || env("POCL_KERNEL_CACHE") == "0") return;  // off by default: docs/ci.md
+  if (!on.empty() && on != "auto" && on != "0" && on != "1" && on != "only")
+    throw Error(fmt::format(
+        "MFV_COMPILE_AHEAD={}: expected auto (the default: on where a core is free), 0 (off), 1 (on) or only", on));
+  if (on == "0" || env("POCL_KERNEL_CACHE") == "0") return;
+  // auto: the child takes the core the run's compiles leave (PoCL compiles one
+  // kernel at a time a process); where no core is free it only competes with
+  // the run (docs/ci.md, "Compiling ahead in a second process")
+  if ((on.empty() || on == "auto") && !compile_ahead_pays(std::thread::hardware_concurrency(), others_running_now()))
+    return;
   only_ = on == "only";
   const std::string log = env("MFV_COMPILE_AHEAD_LOG");
   const std::string sink = log.empty() ? "/dev/null" : log;

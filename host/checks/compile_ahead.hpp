@@ -17,10 +17,13 @@
 // the child does. Where the cache is warm (the child's first launches, the
 // reciprocity kernels, compile nothing), the child stops there.
 //
-// Off by default: on this project's shared 2-core machine (load 7-8) the
-// cold run took longer with the child than without (docs/ci.md, "Cold
-// start"). MFV_COMPILE_AHEAD=1 turns it on where the device is PoCL with
-// its kernel cache on (POCL_KERNEL_CACHE not 0), and MFV_COMPILE_AHEAD=only
+// On by default where it pays (MFV_COMPILE_AHEAD unset or auto): the machine
+// has two or more cores and one is free when the run starts (the tasks
+// running besides mfv, read from /proc/loadavg, leave one); on this
+// project's shared 2-core machine at load 7-8 the child made the cold run
+// longer, on the idle one 1.2-1.5x shorter (docs/ci.md, "Cold start").
+// MFV_COMPILE_AHEAD=1 turns it on and 0 off, on a device that is PoCL with
+// its kernel cache on (POCL_KERNEL_CACHE not 0); MFV_COMPILE_AHEAD=only
 // runs the child alone (the run waits for it and then runs nothing: a cache
 // filled as the child fills it, for tests and CI).
 #pragma once
@@ -37,8 +40,8 @@ namespace mfv {
 class CompileAhead {
  public:
   // Forks the child for run_suite over `sp` on the device `device_selector`
-  // (as Runtime takes it) where MFV_COMPILE_AHEAD is 1 or only and
-  // POCL_KERNEL_CACHE is not 0;
+  // (as Runtime takes it) where MFV_COMPILE_AHEAD is 1 or only, or unset or
+  // auto and compile_ahead_pays, and POCL_KERNEL_CACHE is not 0;
   // the child ends at once where the device is not PoCL. Call it before this
   // process's first OpenCL call. Throws mfv::Error for a bad
   // MFV_COMPILE_AHEAD; a child that cannot start is no error.
@@ -56,6 +59,10 @@ class CompileAhead {
   pid_t pid_ = -1;
   bool only_ = false;
 };
+
+// auto's rule: at least two cores, and the other tasks running (their mean
+// count over a few readings) leave one of them free.
+bool compile_ahead_pays(unsigned cores, double others_running);
 
 // The child's work, on its own Runtime: returns its exit status.
 // MFV_COMPILE_AHEAD_TEST=abort or =hang makes it fail at once or never end

@@ -104,9 +104,9 @@ struct RunCommand : SharedValues {
     prepare_out();
     if (is_device_set(g.device)) return run_on_devices(g, opt, compare);
     SuitePlans plans = make_suite_plans(opt);
-    // MFV_COMPILE_AHEAD=1: a child process compiles the run's kernels from its
-    // end meanwhile (checks/compile_ahead.hpp), forked before this process's
-    // first OpenCL call
+    // where a core is free (MFV_COMPILE_AHEAD unset or auto) or MFV_COMPILE_AHEAD=1:
+    // a child process compiles the run's kernels from its end meanwhile
+    // (checks/compile_ahead.hpp), forked before this process's first OpenCL call
     CompileAhead ahead(plans, opt, g.device, g.kernel_dir);
     if (ahead.only()) return ahead.wait() == 0 ? 0 : 1;
     Runtime rt(g.device, g.kernel_dir);
