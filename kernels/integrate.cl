@@ -260,6 +260,24 @@ MFV_ALBEDO_MIS_DF(albedo_mis_df, s->d)
         df[MIS_AT]);                                                                                             \
   }
 MFV_ALBEDO_MIS_VALUES(albedo_mis_values, s->g)
+
+// MFV_ALBEDO_MIS_PAIR(name, D, G): the three kernels above in one,
+// albedo_mis_microfacet in one piece with the pair's ids as constants, laid
+// out as albedo_mis_values (no planes: one launch, no stores between the
+// parts). Defined only for a program that specializes one (D, G) pair
+// (runtime/specialize.cpp: `mfv bench --case`, a one-model run or energy
+// table), where it replaces the three kernels' launches, fills and planes
+// (docs/performance.md, "One kernel for one pair"); the floats are the three
+// kernels', as theirs are the one-piece estimator's.
+#define MFV_ALBEDO_MIS_PAIR(NAME, D, G)                                                                           \
+  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, uint replicates, uint row0,         \
+                     __global float* restrict values) {                                                          \
+    size_t k = get_global_id(0), row = row0 + get_global_id(1);                                                  \
+    __global const IntegralSpec* s = specs + row / replicates;                                                   \
+    uint4 shift = mis_shift(s, seed, (uint)(row % replicates));                                                  \
+    values[get_global_id(1) * get_global_size(0) + k] = (float)albedo_mis_microfacet(                            \
+        D, G, s->f, s->pd, s->pg, s->f0, s->f1, s->kd, s->width, s->cos_o, shift, (uint)k, s->points);           \
+  }
 #endif
 
 // MFV_MIS_ROWS(name, FN): a replicate kernel laid out as albedo_mis_values,

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <tuple>
 
@@ -127,5 +128,81 @@ TEST_CASE("a specialized kernel that evaluates another G than its pair's is caug
     size_t differ = 0;
     for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
     CHECK(differ == served);  // the integrals of that kernel
+  }
+}
+
+namespace {
+
+// AlbedoMis integrals of ggx/smith_ggx_correlated (grazing and normal views, a near-mirror
+// width, F and a diffuse part) and one of another pair, which the one-pair kernel must not take.
+std::vector<IntegralSpec> one_pair_specs() {
+  using test::albedo_spec;
+  constexpr auto kind = IntegralKind::AlbedoMis;
+  return {albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.3, 0.7, 0.04, 0.0, 0, kind),
+          albedo_spec("ggx", "smith_ggx_correlated", "none", 1e-3, 1e-3, 1.0, 0.0, 1, kind),
+          albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.9, 1.0, 0.5, 0.3, 2, kind),
+          albedo_spec("beckmann", "smith_beckmann", "none", 0.5, 0.5, 1.0, 0.0, 3, kind)};
+}
+
+TermSelection one_pair_selection() {
+  TermSelection sel = three_of_each();
+  sel.specialized = {{term_index(find_term("ggx")), term_index(find_term("smith_ggx_correlated"))}};
+  return sel;
+}
+
+}  // namespace
+
+TEST_CASE("a program of one term pair runs AlbedoMis in one kernel, with the three kernels' estimates to the bit",
+          "[integrate][device]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  const std::vector<IntegralSpec> specs = one_pair_specs();
+  Integrator generic(*rt, three_of_each()), one_pair(*rt, one_pair_selection());
+  const auto a = run(generic, specs), b = run(one_pair, specs);
+  REQUIRE(a.size() == b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    INFO("integral " << i << ": three kernels " << a[i].mean << " +- " << a[i].stderr_ << ", one pair " << b[i].mean
+                     << " +- " << b[i].stderr_);
+    CHECK(std::isfinite(a[i].mean));
+    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
+    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
+  }
+  if (!test::is_pocl(*rt)) return;  // other drivers build no specializations
+  const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
+  const auto& launched = one_pair.launched_kernels();
+  CHECK(launched.count(fmt::format("albedo_mis_pair__d{}_g{}", ggx, corr)) == 1);
+  CHECK(launched.count(fmt::format("albedo_mis_df__d{}", ggx)) == 0);   // the pair's integrals took one kernel
+  CHECK(launched.count("albedo_mis_values") == 1);                      // the other pair's, the three generic ones
+  // a program of several pairs (the full suite) has no one-pair kernel: its cold compile stays one per D and G
+  TermSelection two = one_pair_selection();
+  two.specialized.push_back({term_index(find_term("beckmann")), term_index(find_term("smith_beckmann"))});
+  CHECK(generate_specializations(two.specialized).find("MFV_ALBEDO_MIS_PAIR") == std::string::npos);
+  CHECK(generate_specializations(one_pair_selection().specialized).find("MFV_ALBEDO_MIS_PAIR") != std::string::npos);
+}
+
+TEST_CASE("a one-pair AlbedoMis kernel that evaluates another D or G than its pair's is caught (planted)",
+          "[integrate][device][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt || !test::is_pocl(*rt)) return;  // other drivers build no specializations
+  const std::vector<IntegralSpec> specs = one_pair_specs();
+  const TermSelection sel = one_pair_selection();
+  Integrator right_program(*rt, sel);
+  const auto a = run(right_program, specs);
+  const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
+  const int separable = term_index(find_term("smith_beckmann")), beckmann = term_index(find_term("beckmann"));
+  const std::string right = fmt::format("MFV_ALBEDO_MIS_PAIR(albedo_mis_pair__d{}_g{}, {}, {})", ggx, corr, ggx, corr);
+  for (const std::string& wrong :
+       {fmt::format("MFV_ALBEDO_MIS_PAIR(albedo_mis_pair__d{}_g{}, {}, {})", ggx, corr, beckmann, corr),
+        fmt::format("MFV_ALBEDO_MIS_PAIR(albedo_mis_pair__d{}_g{}, {}, {})", ggx, corr, ggx, separable)}) {
+    INFO(wrong);
+    std::string text = generate_specializations(sel.specialized);
+    const size_t at = text.find(right);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, right.size(), wrong);
+    Integrator planted(*rt, build_integrate_program(*rt, sel, text), true);
+    const auto b = run(planted, specs);
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
+    CHECK(differ == 3);  // the pair's three integrals, not the other pair's
   }
 }

@@ -1,5 +1,6 @@
 // Integrator's AlbedoMis launches (kernels/integrate.cl albedo_mis_geometry,
-// albedo_mis_df and albedo_mis_values, or one replicate kernel), one row per
+// albedo_mis_df and albedo_mis_values; in a program of one pair
+// albedo_mis_pair, the three in one; or one replicate kernel), one row per
 // replicate, and sum_values over each row.
 #include "runtime/integrator.hpp"
 #include "runtime/specialize.hpp"
@@ -13,6 +14,10 @@
 
 namespace mfv {
 
+// AlbedoMis in one kernel specialized to a pair (kernels/integrate.cl MFV_ALBEDO_MIS_PAIR), in a
+// program of one pair only (runtime/specialize.cpp): its name without the pair's ids.
+constexpr const char* kMisPair = "albedo_mis_pair";
+
 // AlbedoMis integrals through albedo_mis_values (one point per work-item,
 // one row per replicate) and sum_values (one sum per row).
 std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpec>& specs, uint64_t seed) {
@@ -25,7 +30,10 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
     const IntegralSpec& s = specs[i];
     const bool iso = s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && fast_albedo_available_;
     const bool flux = s.check == static_cast<int32_t>(IntegralKind::BsdfFlux);  // kernels/transmission.cl
-    by_kernel[flux  ? std::pair<std::string, std::string>("bsdf_flux_mis_values", "")
+    // one kernel for the pair where the program has it (a program of one pair), else three
+    const std::string pair = iso ? kernel_for(kMisPair, s) : "";
+    by_kernel[flux                   ? std::pair<std::string, std::string>("bsdf_flux_mis_values", "")
+              : iso && pair != kMisPair ? std::pair<std::string, std::string>(pair, "")
               : iso ? std::pair(kernel_for("albedo_mis_values", s), kernel_for("albedo_mis_df", s))
                     : std::pair<std::string, std::string>("albedo_mis_general_values", "")]
         .push_back(i);
@@ -69,8 +77,10 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   // PoCL's cost per work-group: rows of 80 points take 8-point work-groups (row_local_size), so
   // their work-groups take up to 8 rows (kMisRowsPerGroup), a count fixed by the replicates (a
   // launch takes whole integrals), so that PoCL compiles one work-group size per kernel.
+  // The one-pair kernel takes as many rows a work-group (bench --case, 640 points: 85 us a launch
+  // against 160 us with one row, docs/performance.md "One kernel for one pair").
   size_t rows_local = 1;
-  if (three_kernels) {
+  if (three_kernels || kernel.rfind(kMisPair, 0) == 0) {
     if (per_launch >= mis_replicates_) per_launch -= per_launch % mis_replicates_;
     for (rows_local = kMisRowsPerGroup; mis_replicates_ % rows_local != 0;) rows_local /= 2;
   }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <set>
 
 namespace mfv {
@@ -9,14 +10,16 @@ namespace mfv {
 namespace {
 
 // The kernels of kernels/integrate.cl defined by a MFV_*_VALUES macro (or
-// MFV_ALBEDO_MIS_DF), what their specialization takes (the D id, the G id or
-// both), and whether they serve d_norm's (D, kNoG) pairs or the others.
+// MFV_ALBEDO_MIS_DF, MFV_ALBEDO_MIS_PAIR), what their specialization takes
+// (the D id, the G id or both), whether they serve d_norm's (D, kNoG) pairs
+// or the others, and whether only a program of one such pair gets them.
 enum class By { D, G, Pair };
 struct Specializable {
   const char* base;
   const char* macro;
   By by;
   bool d_norm;
+  bool one_pair = false;
 };
 constexpr Specializable kSpecializable[] = {
     {"d_norm_values", "MFV_D_NORM_VALUES", By::D, true},
@@ -26,6 +29,9 @@ constexpr Specializable kSpecializable[] = {
     {"albedo_mis_df", "MFV_ALBEDO_MIS_DF", By::D, false},
     {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", By::G, false},
     {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", By::Pair, false},
+    // AlbedoMis in one kernel, for a program of one pair only (bench --case, one model): one
+    // launch instead of three; many pairs keep the three kernels' compiles (one per D, one per G)
+    {"albedo_mis_pair", "MFV_ALBEDO_MIS_PAIR", By::Pair, false, true},
 };
 
 std::string name_of(const std::string& base, int d, int g, By by) {
@@ -75,9 +81,10 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
 std::string generate_specializations(const std::vector<TermPair>& pairs) {
   std::string out;
   std::set<std::string> defined;  // a kernel by D or by G serves several pairs: defined once
+  const auto others = std::count_if(pairs.begin(), pairs.end(), [](const TermPair& p) { return p.g != kNoG; });
   for (const auto& p : pairs)
     for (const auto& k : kSpecializable)
-      if (k.d_norm == (p.g == kNoG)) {
+      if (k.d_norm == (p.g == kNoG) && (!k.one_pair || others == 1)) {
         const std::string name = name_of(k.base, p.d, p.g, k.by);
         if (defined.insert(name).second) out += fmt::format("{}({}, {})\n", k.macro, name, ids_of(p.d, p.g, k.by));
       }

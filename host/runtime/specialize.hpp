@@ -25,7 +25,8 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 // kernels/integrate.cl): d_norm_values for (D, kNoG); albedo_rqmc_values
 // for the other pairs, and masking's masking_d and AlbedoMis's albedo_mis_df
 // per D and masking_values and albedo_mis_values per G of those pairs (each
-// once).
+// once); where there is one such pair (not counting d_norm's), also
+// albedo_mis_pair, AlbedoMis's three kernels in one for that pair.
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
 // OpenCL C that defines model_albedo_values (kernels/model_values.cl) and
