@@ -243,8 +243,10 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   if (three_kernels) {
     geometry_k = launched("masking_geometry");
     d_k = launched(d_kernel);
-    planes = nan_buffer(CL_MEM_READ_WRITE, (kPlanes - 1) * capacity * sizeof(double));
-    dv = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(double));
+    // no NaN fill: masking_geometry writes every plane value the next two read, on the same grid
+    // (as AlbedoMis's planes, runtime/integrator_mis.cpp); `values` keeps its fill
+    planes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, (kPlanes - 1) * capacity * sizeof(double));
+    dv = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, capacity * sizeof(double));
   }
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
   for (size_t first = 0; first < specs.size() && !(compile_ahead_ && first > 0); first += per_launch) {

@@ -2,7 +2,9 @@
 // it owns the program, the kernel file list, the launches (work-group sizes
 // from the device's and kernel's limits, runtime/work_group.hpp) and the
 // buffers, which start filled with NaN so that a result no kernel wrote
-// cannot pass. The integrals themselves are described by IntegralSpec
+// cannot pass (all but the planes between the parts of a kernel split in
+// three, which the first part writes in full before the others read them).
+// The integrals themselves are described by IntegralSpec
 // (kernels/abi/integral.h); checks/integrate.hpp builds them from the catalog.
 #pragma once
 

@@ -93,8 +93,11 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   if (three_kernels) {
     geometry_k = launched("albedo_mis_geometry");
     df_k = launched(df_kernel);
-    planes = nan_buffer(CL_MEM_READ_WRITE, (kPlanes - 1) * std::min(per_launch, rows) * n * sizeof(double));
-    df = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(double));
+    // no NaN fill: albedo_mis_geometry writes every plane value the next two read, on the same
+    // grid (the fill cost as much as the geometry kernel: docs/performance.md, "One kernel for one
+    // pair"); `values`, which the sums read, keeps its fill
+    planes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, (kPlanes - 1) * std::min(per_launch, rows) * n * sizeof(double));
+    df = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(double));
   }
   auto enqueue = [&](cl::Kernel& kk, size_t count) {
     const size_t local = row_local_size(kk, rt_.device().device, n);
