@@ -1,5 +1,6 @@
 #include "checks/furnace_truth.hpp"
 
+#include "checks/furnace_views.hpp"
 #include "checks/integrate.hpp"
 #include "checks/registry.hpp"
 
@@ -29,7 +30,6 @@
 #include <set>
 #include <string>
 #include <thread>
-#include <tuple>
 
 namespace mfv {
 namespace {
@@ -55,51 +55,6 @@ KnownValue known_from(double fine, double coarse, double coarser) {
   return {fine, std::max(std::fabs(fine - coarse), std::fabs(fine - coarser))};
 }
 
-// One rule at one view: its nodes and the BRDF's shading at them, which every
-// isotropic D x G x F at that view shares (ref::brdf forms the same Shading
-// from the same i and o), and the terms' values at the nodes by (term, params).
-class ViewRule {
- public:
-  ViewRule(const glm::dvec3& o, const ProductRule& rule) : nodes_(reflected_nodes(o, rule)) {
-    shading_.resize(nodes_.i.size());
-    for (size_t k = 0; k < shading_.size(); ++k)
-      if (nodes_.live[k]) shading_[k] = ref::shading_from(nodes_.i[k], o);
-  }
-
-  // ∫ f(i, o) (n·i) di by the rule: the same bits as integrate_reflected of
-  // ref::brdf(s, i, o) * i.z (brdf.hpp: brdf_of_terms is brdf's own assembly).
-  double albedo(const ref::BrdfSpec& s) {
-    const std::vector<double>& D =
-        values(d_, {s.d, s.pd, 0}, [&](const ref::Shading& c) { return ref::eval_d_iso(s, c); });
-    const std::vector<double>& G =
-        values(g_, {s.g, s.pg, 0}, [&](const ref::Shading& c) { return ref::eval_g_iso(s, c); });
-    const std::vector<double>& F =
-        values(f_, {s.f, s.f0, s.f1}, [&](const ref::Shading& c) { return s.f->ref_f(c.VoH, s.f0, s.f1); });
-    std::vector<double> f(shading_.size(), 0.0);
-    for (size_t k = 0; k < f.size(); ++k)
-      if (nodes_.live[k]) f[k] = ref::brdf_of_terms(s, shading_[k], D[k], F[k], G[k]) * nodes_.i[k].z;
-    return sum_reflected(nodes_, f);
-  }
-
- private:
-  using Key = std::tuple<const ref::TermTwins*, double, double>;
-  using Cache = std::map<Key, std::vector<double>>;
-
-  template <class Term>
-  const std::vector<double>& values(Cache& cache, const Key& key, const Term& term) {
-    auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-    std::vector<double> v(shading_.size(), 0.0);
-    for (size_t k = 0; k < v.size(); ++k)
-      if (nodes_.live[k]) v[k] = term(shading_[k]);
-    return cache.emplace(key, std::move(v)).first->second;
-  }
-
-  ReflectedNodes nodes_;
-  std::vector<ref::Shading> shading_;
-  Cache d_, g_, f_;
-};
-
 // The specs the shared-node path takes: isotropic D x G x F, the view above the horizon.
 bool shares_nodes(const ref::IntegralRef& r) {
   return !r.brdf.model && !r.brdf.aniso() && r.brdf.d && r.brdf.g && r.brdf.f && r.cos_o > 0 && r.phi_o == 0;
@@ -109,11 +64,11 @@ bool shares_nodes(const ref::IntegralRef& r) {
 void albedos_at_view(const std::vector<IntegralSpec>& specs, const std::vector<size_t>& which,
                      std::vector<KnownValue>& out) {
   const glm::dvec3 o = view_of(reference_of(specs[which.front()]).cos_o);
-  ViewRule fine(o, kFine), coarse(o, kCoarse), coarser(o, kCoarser);
-  for (size_t i : which) {
-    const ref::IntegralRef r = reference_of(specs[i]);
-    out[i] = known_from(fine.albedo(r.brdf), coarse.albedo(r.brdf), coarser.albedo(r.brdf));
-  }
+  std::vector<ref::BrdfSpec> brdfs;
+  for (size_t i : which) brdfs.push_back(reference_of(specs[i]).brdf);
+  const std::vector<double> fine = albedos_at_view(o, kFine, brdfs), coarse = albedos_at_view(o, kCoarse, brdfs),
+                            coarser = albedos_at_view(o, kCoarser, brdfs);
+  for (size_t q = 0; q < which.size(); ++q) out[which[q]] = known_from(fine[q], coarse[q], coarser[q]);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ struct RuleSet {
 KnownValue albedo_by_rules(const IntegralSpec& s, const RuleSet& rules);
 const RuleSet& furnace_rules();
 // The same for many integrals, the same bits: those at one view share the
-// rule's nodes, the shading at them and each term's values (furnace_truth.cpp);
+// rule's nodes, the shading at them and each term's values (furnace_views.hpp);
 // the views split over `threads` threads, each writing its own slots.
 std::vector<KnownValue> albedos_by_quadrature(const std::vector<IntegralSpec>& specs, unsigned threads);
 // albedos_by_quadrature's values (the same bits), kept on disk across runs:
