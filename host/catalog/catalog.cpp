@@ -89,6 +89,7 @@ std::vector<Term> build_catalog() {
     t->g1_kernel_fn = std::move(g1_fn);
     t->ulp_budget = 16;  // G1(l) G1(v): two factors of 8 ulps each
     t->ref_g1 = g1;
+    t->g_separable = true;
     return t;
   };
   // A separable Smith G with a Beckmann G1: it fits Beckmann within `tol`

@@ -57,7 +57,7 @@ class ViewRule {
     for (size_t q = 0; q < n; ++q) {
       const ref::BrdfSpec& s = specs[q];
       df[q] = d_times_f(s).data();
-      g[q] = values(g_, {s.g, s.pg, 0}, [&](const ref::Shading& c) { return ref::eval_g_iso(s, c); }).data();
+      g[q] = g_values(s).data();
       kd_pi[q] = s.kd / M_PI;
     }
     std::fill(out, out + n, 0.0);
@@ -92,6 +92,18 @@ class ViewRule {
     std::vector<double> v(shading_.size());
     for (size_t k = 0; k < v.size(); ++k) v[k] = term(shading_[k]);
     return cache.emplace(key, std::move(v)).first->second;
+  }
+  // G at the nodes; a separable one (TermTwins::g_separable) as G1(n·l) G1(n·v),
+  // G1(n·v) taken once: n·v is the view's (the same bits at every node).
+  const std::vector<double>& g_values(const ref::BrdfSpec& s) {
+    const ref::TermTwins& t = *s.g;
+    if (!t.g_separable) return values(g_, {s.g, s.pg, 0}, [&](const ref::Shading& c) { return ref::eval_g_iso(s, c); });
+    double nov = NAN, g1_v = NAN;
+    return values(g_, {s.g, s.pg, 0}, [&](const ref::Shading& c) {
+      if (!(c.NoL > 0.0 && c.NoV > 0.0 && c.VoH > 0.0)) return 0.0;
+      if (!(c.NoV == nov)) nov = c.NoV, g1_v = t.ref_g1(c.NoV, s.pg);
+      return t.ref_g1(c.NoL, s.pg) * g1_v;
+    });
   }
   // D·F at the nodes (brdf_of_terms's D * F * G is (D * F) * G), by (D's key, F's key).
   const std::vector<double>& d_times_f(const ref::BrdfSpec& s) {

@@ -32,6 +32,11 @@ struct TermTwins {
   RefF ref_f = nullptr;
   // Smith G terms: the G1 they are built from, used by the masking check.
   RefG1 ref_g1 = nullptr;
+  // A separable Smith G: ref_g(NoL, NoV, NoH, VoH, p) is ref_g1(NoL, p) *
+  // ref_g1(NoV, p) where NoL, NoV and VoH > 0, else 0, bit for bit
+  // (tests/test_g_separable.cpp), so a caller at one view takes G1(NoV)
+  // once (the furnace truth, checks/furnace_views.cpp).
+  bool g_separable = false;
 
   // Anisotropic D and Smith G: params are (alpha_x, alpha_y) in the tangent
   // frame t = +x, b = +y, n = +z. ref_d/ref_g/ref_g1 above are their
