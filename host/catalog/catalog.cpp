@@ -141,6 +141,7 @@ std::vector<Term> build_catalog() {
                 "1/(1 + Lambda(l) + Lambda(v))", p_alpha(), Roughness::Alpha, ref_::G_smith_ggx_correlated);
     t->g1_kernel_fn = "G1_smith_ggx";
     t->ref_g1 = ref_::G1_smith_ggx;
+    t->g_correlated_lambda = ref_::Lambda_ggx;
     t->smith_for = {{"ggx", 0.0, 1e300, "Walter et al. 2007 eq. 34 (exact)"}};
   }
   G("hammon_002", "G_hammon_002", "seed 002 `geometry` (Hammon 2017 visibility)",
@@ -235,6 +236,7 @@ std::vector<Term> build_catalog() {
                 Roughness::Alpha, ref_::G_charlie_sheen);
     t->g1_kernel_fn = "G1_charlie";
     t->ref_g1 = ref_::G1_charlie;
+    t->g_correlated_lambda = ref_::Lambda_charlie;
     // Λ(1) = exp(2 L(0.5) − L(0)) with L(0) = a + e: the fit is no Smith Λ
     // at normal incidence (Estevez and Kulla 2017 §3)
     t->g1_not_one_at_normal = "the fitted Lambda(1) = exp(2 L(0.5) - L(0)) is not 0";

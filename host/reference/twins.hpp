@@ -37,6 +37,10 @@ struct TermTwins {
   // (tests/test_g_separable.cpp), so a caller at one view takes G1(NoV)
   // once (the furnace truth, checks/furnace_views.cpp).
   bool g_separable = false;
+  // A height-correlated Smith G: ref_g(NoL, NoV, NoH, VoH, p) is 1 / (1 +
+  // Λ(NoL, p) + Λ(NoV, p)) with Λ this, where NoL, NoV and VoH > 0, else 0,
+  // bit for bit (the same test, the same use).
+  RefG1 g_correlated_lambda = nullptr;
 
   // Anisotropic D and Smith G: params are (alpha_x, alpha_y) in the tangent
   // frame t = +x, b = +y, n = +z. ref_d/ref_g/ref_g1 above are their
