@@ -3,6 +3,7 @@
 #include "checks/furnace_views.hpp"
 
 #include "reference/brdf.hpp"
+#include "reference/d_log_cos.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,13 +118,29 @@ class ViewRule {
       });
     return values(g_, key, [&](const ref::Shading& c) { return ref::eval_g_iso(s, c); });
   }
+  // D at the nodes; one of Phong's forms (ref::d_of_log_cos) from log cos θ_h,
+  // taken once a node for every width, as eval_d_iso takes its _cs form.
+  const std::vector<double>& d_values(const ref::BrdfSpec& s, const Key& key) {
+    const ref::RefDlc lc = s.d->ref_d_cs ? ref::d_of_log_cos(s.d->ref_d_cs) : nullptr;
+    if (!lc) return values(d_, key, [&](const ref::Shading& c) { return ref::eval_d_iso(s, c); });
+    if (log_cos_.empty())
+      for (const ref::Shading& c : shading_) {
+        const double cos2 = c.NoH * c.NoH;
+        log_cos_.push_back(cos2 > 0.0 ? ref::log_cos_cs(std::min(cos2, 1.0), c.sin2H) : 0.0);
+      }
+    size_t k = 0;
+    return values(d_, key, [&](const ref::Shading& c) {
+      const double log_cos = log_cos_[k++];
+      if (!(c.sin2H >= 0.0 && c.NoH > 0.0)) return ref::eval_d_iso(s, c);  // not the _cs form
+      return c.NoH * c.NoH > 0.0 ? lc(log_cos, s.pd) : 0.0;                // D_*_cs's χ+
+    });
+  }
   // D·F at the nodes (brdf_of_terms's D * F * G is (D * F) * G), by (D's key, F's key).
   const std::vector<double>& d_times_f(const ref::BrdfSpec& s) {
     const Key dk{s.d, s.pd, 0}, fk{s.f, s.f0, s.f1};
     auto it = df_.find({dk, fk});
     if (it != df_.end()) return it->second;
-    const std::vector<double>& D =
-        values(d_, dk, [&](const ref::Shading& c) { return ref::eval_d_iso(s, c); });
+    const std::vector<double>& D = d_values(s, dk);
     const std::vector<double>& F =
         values(f_, fk, [&](const ref::Shading& c) { return s.f->ref_f(c.VoH, s.f0, s.f1); });
     std::vector<double> v;
@@ -134,6 +151,7 @@ class ViewRule {
 
   std::vector<ref::Shading> shading_;
   std::vector<double> weight_, oh_, iz_, den_;  // per node that adds
+  std::vector<double> log_cos_;                 // log cos θ_h per node, where a D takes it
   std::vector<size_t> group_end_;               // per φ node: the end of its t nodes
   std::vector<double> phi_weight_;
   Cache d_, g_, f_;

@@ -9,6 +9,7 @@
 // the catalog boundary, not here; the reference evaluates the formula as the
 // source writes it.
 #include "reference/reference.hpp"
+#include "reference/d_log_cos.hpp"
 
 #include <cmath>
 
@@ -91,24 +92,38 @@ double D_beckmann_ct82_cs(double cos2, double sin2, double m) {
   return e / ((4.0 * (m * m)) * (cos2 * cos2));
 }
 
-namespace {
 // log cos θ from cos² and sin²: ½ log1p(−sin²) near the normal, where 1 − cos
 // has lost the small angle (pow(c, e) there carries a relative error e·u),
 // ½ log(cos²) elsewhere.
 double log_cos_cs(double cos2, double sin2) { return sin2 < 0.5 ? 0.5 * std::log1p(-sin2) : 0.5 * std::log(cos2); }
-}  // namespace
+
+double D_phong_lc(double log_cos, double alpha_p) {
+  // seed 000, "Phong", as D_phong with (N·H)^alpha_p = exp(alpha_p log cos θ)
+  return (alpha_p + 2.0) / (2.0 * kPi) * std::exp(alpha_p * log_cos);
+}
 
 double D_phong_cs(double cos2, double sin2, double alpha_p) {
-  // seed 000, "Phong", as D_phong with (N·H)^alpha_p = exp(alpha_p log cos θ)
+  // seed 000, "Phong": D_phong_lc at log cos θ from cos²θ and sin²θ
   if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
-  return (alpha_p + 2.0) / (2.0 * kPi) * std::exp(alpha_p * log_cos_cs(std::min(cos2, 1.0), sin2));
+  return D_phong_lc(log_cos_cs(std::min(cos2, 1.0), sin2), alpha_p);
+}
+
+double D_blinn_rho_lc(double log_cos, double rho) {
+  // seed 004 "blinn version", as D_blinn_rho with (h·n)^e = exp(e log cos θ)
+  const double exponent = 2.0 / (rho * rho) - 2.0;
+  return std::exp(exponent * log_cos) / (kPi * (rho * rho));
 }
 
 double D_blinn_rho_cs(double cos2, double sin2, double rho) {
-  // seed 004 "blinn version", as D_blinn_rho with (h·n)^e = exp(e log cos θ)
+  // seed 004 "blinn version": D_blinn_rho_lc at log cos θ from cos²θ and sin²θ
   if (!(cos2 > 0.0)) return 0.0;  // χ+(m·n)
-  const double exponent = 2.0 / (rho * rho) - 2.0;
-  return std::exp(exponent * log_cos_cs(std::min(cos2, 1.0), sin2)) / (kPi * (rho * rho));
+  return D_blinn_rho_lc(log_cos_cs(std::min(cos2, 1.0), sin2), rho);
+}
+
+RefDlc d_of_log_cos(RefDcs cs) {
+  if (cs == D_phong_cs) return D_phong_lc;
+  if (cs == D_blinn_rho_cs) return D_blinn_rho_lc;
+  return nullptr;
 }
 
 double D_blinn_rho(double NoH, double rho) {
