@@ -133,7 +133,7 @@ TEST_CASE("The furnace truth's background error comes out of attach_furnace_trut
     const std::vector<Plan> plans = furnace_plans("");
     size_t n = 0;
     for (const Plan& p : plans) n += truth_specs(p).size();
-    REQUIRE(n > 15000);  // ~3.5 s of one core
+    REQUIRE(n > 15000);  // ~3.1 s of one core
     const auto t0 = std::chrono::steady_clock::now();
     {
       const FurnaceTruthAhead ahead(plans);

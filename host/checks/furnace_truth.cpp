@@ -413,7 +413,7 @@ void attach_furnace_truth(const std::vector<IntegralSpec>& specs, PointResult* p
     std::lock_guard<std::mutex> g(cache_lock);
     missing = unknown_specs(specs.data(), points, specs.size());
   }
-  // across runs from disk: the default run's 15151 integrals take ~3.5 s of one core (docs/performance.md)
+  // across runs from disk: the default run's 15151 integrals take ~3.1 s of one core (docs/performance.md)
   const std::vector<KnownValue> computed = stored_albedos_by_quadrature(missing, host_threads(), truth_cache_dir());
   std::lock_guard<std::mutex> g(cache_lock);
   for (size_t k = 0; k < missing.size(); ++k) cache.emplace(cache_key(missing[k]), computed[k]);
