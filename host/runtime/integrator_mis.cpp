@@ -78,12 +78,15 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   // their work-groups take up to 8 rows (kMisRowsPerGroup), a count fixed by the replicates (a
   // launch takes whole integrals), so that PoCL compiles one work-group size per kernel.
   // The one-pair kernel takes as many rows a work-group (bench --case, 640 points: 85 us a launch
-  // against 160 us with one row, docs/performance.md "One kernel for one pair").
-  size_t rows_local = 1;
-  if (three_kernels || kernel.rfind(kMisPair, 0) == 0) {
-    if (per_launch >= mis_replicates_) per_launch -= per_launch % mis_replicates_;
-    for (rows_local = kMisRowsPerGroup; mis_replicates_ % rows_local != 0;) rows_local /= 2;
-  }
+  // against 160 us with one row, docs/performance.md "One kernel for one pair"). The one-kernel
+  // replicate kernels (albedo_mis_general_values, bsdf_flux_mis_values: scalar,
+  // MFV_NO_IMPLICIT_VECTORIZE) take one SIMD width of points and rows as these whatever n is
+  // (scalar_row_local_size), so that the furnace's n = 80 and the anisotropic check's n = 160
+  // share one compile (docs/performance.md, "Cold start").
+  const bool vectorized = three_kernels || kernel.rfind(kMisPair, 0) == 0;
+  if (per_launch >= mis_replicates_) per_launch -= per_launch % mis_replicates_;
+  size_t rows_local = kMisRowsPerGroup;
+  while (mis_replicates_ % rows_local != 0) rows_local /= 2;
   cl::Kernel k = launched(kernel);
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
@@ -100,7 +103,8 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
     df = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(double));
   }
   auto enqueue = [&](cl::Kernel& kk, size_t count) {
-    const size_t local = row_local_size(kk, rt_.device().device, n);
+    const size_t local = vectorized ? row_local_size(kk, rt_.device().device, n)
+                                    : scalar_row_local_size(kk, rt_.device().device, n);
     size_t ly = rows_local;
     while (count % ly != 0 || local * ly > fit_local_size(kk, rt_.device().device, 1024)) ly /= 2;
     rt_.queue().enqueueNDRangeKernel(kk, cl::NullRange, cl::NDRange(n, count), cl::NDRange(local, ly));

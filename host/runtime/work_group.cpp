@@ -59,4 +59,10 @@ size_t row_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n)
   return local;
 }
 
+size_t scalar_row_local_size(const cl::Kernel& k, const cl::Device& device, uint32_t n) {
+  const size_t simd = k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device);
+  const size_t local = row_local_size(k, device, n);  // a power of two that divides n
+  return simd > 0 ? std::min(local, fit_local_size(k, device, simd)) : local;
+}
+
 }  // namespace mfv

@@ -57,6 +57,12 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
 // against 0.41 ms with 256; with 64 against up to 1024, 1.5-1.7 ms against
 // 1.0-1.4 ms).
 size_t row_local_size(const cl::Kernel& kernel, const cl::Device& device, uint32_t n);
+// The work-group size of a scalar replicate kernel (MFV_MIS_ROWS, not
+// vectorized) over rows of n points: one SIMD width where it divides n, for
+// every n (row_local_size's larger sizes for long rows pay off where PoCL
+// vectorizes across work-items), so that rows of 80 and 160 points share
+// one compile.
+size_t scalar_row_local_size(const cl::Kernel& kernel, const cl::Device& device, uint32_t n);
 
 // MFV_MAX_LOCAL_SIZE as a number, 0 when unset. Throws mfv::Error when it is
 // set to anything but a positive integer.
