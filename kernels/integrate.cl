@@ -138,6 +138,26 @@ static inline real sample_value(__global const IntegralSpec* s, ulong seed, ulon
   }
 }
 
+// The work-group's two sums (sum, sumsq: each work-item's) into its slots
+// of `sums`, through local memory: `integrate`'s and MFV_INTEGRATE_IID's.
+#define MFV_INTEGRATE_REDUCE                                                                                      \
+  __local acc_t* ssum = scratch;                                                                                 \
+  __local acc_t* ssq = scratch + lsize;                                                                          \
+  ssum[lid] = sum;                                                                                               \
+  ssq[lid] = sumsq;                                                                                              \
+  barrier(CLK_LOCAL_MEM_FENCE);                                                                                  \
+  for (size_t step = lsize / 2; step > 0; step >>= 1) {                                                          \
+    if (lid < step) {                                                                                            \
+      ssum[lid] += ssum[lid + step];                                                                             \
+      ssq[lid] += ssq[lid + step];                                                                               \
+    }                                                                                                            \
+    barrier(CLK_LOCAL_MEM_FENCE);                                                                                \
+  }                                                                                                              \
+  if (lid == 0) {                                                                                                \
+    sums[MFV_SUM_SLOTS * group + MFV_SLOT_SUM] = ssum[0];                                                        \
+    sums[MFV_SUM_SLOTS * group + MFV_SLOT_SECOND] = ssq[0];                                                      \
+  }
+
 // Work-group g integrates slice (g % slices) of integral (g / slices): each
 // work-item takes per_item consecutive sample indices, counted from `first`
 // (a later pass extends an iid or Kronecker point set; 0 for stratified ones).
@@ -171,23 +191,30 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* s
       sumsq += v * v;
     }
   }
-  __local acc_t* ssum = scratch;
-  __local acc_t* ssq = scratch + lsize;
-  ssum[lid] = sum;
-  ssq[lid] = sumsq;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (size_t step = lsize / 2; step > 0; step >>= 1) {
-    if (lid < step) {
-      ssum[lid] += ssum[lid + step];
-      ssq[lid] += ssq[lid + step];
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid == 0) {
-    sums[MFV_SUM_SLOTS * group + MFV_SLOT_SUM] = ssum[0];
-    sums[MFV_SUM_SLOTS * group + MFV_SLOT_SECOND] = ssq[0];
-  }
+  MFV_INTEGRATE_REDUCE
 }
+
+// MFV_INTEGRATE_IID(name, FN): `integrate` for the iid integrals (strata 0,
+// estimator 0) of one check, whose sample_value case is FN(s, seed, index):
+// the same loop and reduction, so the same sums to the bit, without the other
+// checks' code, which makes the generic kernel PoCL's costliest compile
+// (docs/performance.md, "Cold start"). Defined where the host asks
+// (runtime/specialize.cpp generate_check_kernels: the transmission checks).
+#define MFV_INTEGRATE_IID(NAME, FN)                                                                               \
+  __kernel MFV_NO_IMPLICIT_VECTORIZE void NAME(__global const IntegralSpec* specs, uint slices, uint per_item,     \
+                                               ulong seed, __global acc_t* sums, __local acc_t* scratch,         \
+                                               ulong first) {                                                    \
+    size_t group = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);                            \
+    __global const IntegralSpec* s = specs + group / slices;                                                     \
+    ulong base = first + ((ulong)(group % slices) * lsize + lid) * per_item;                                     \
+    acc_t sum = 0, sumsq = 0;                                                                                    \
+    for (uint k = 0; k < per_item; ++k) {                                                                        \
+      acc_t v = (acc_t)FN(s, seed, base + k);                                                                    \
+      sum += v;                                                                                                  \
+      sumsq += v * v;                                                                                            \
+    }                                                                                                            \
+    MFV_INTEGRATE_REDUCE                                                                                         \
+  }
 
 #ifndef MFV_USER_BRDF
 // The fast path of `integrate` for isotropic microfacet albedo integrals

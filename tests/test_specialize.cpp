@@ -1,8 +1,10 @@
 // The kernels specialized per (D, G) pair (runtime/specialize.hpp) take the
 // samples of the generic fast paths and give their estimates to the bit, and
 // Integrator::run launches them where the program has them. A planted
-// specialization that evaluates another G than its name says is caught.
+// specialization that evaluates another G than its name says is caught. The
+// transmission checks' own `integrate` kernels give the generic one's sums.
 #include "albedo_spec.hpp"
+#include "catalog/bsdfs.hpp"
 #include "catalog/catalog.hpp"
 #include "catalog/roughness.hpp"
 #include "checks/integrate.hpp"
@@ -128,6 +130,86 @@ TEST_CASE("a specialized kernel that evaluates another G than its pair's is caug
     size_t differ = 0;
     for (size_t i = 0; i < a.size(); ++i) differ += a[i].mean != b[i].mean;
     CHECK(differ == served);  // the integrals of that kernel
+  }
+}
+
+namespace {
+
+// The transmission checks' iid integrals (masking_t and bsdf_avg) of the rough dielectric `bsdf`.
+IntegralSpec bsdf_spec(IntegralKind kind, const char* bsdf, double alpha, double eta, double mu, uint32_t stream) {
+  const Bsdf* b = try_find_bsdf(bsdf);
+  REQUIRE(b);
+  MicrofacetIntegral mi;
+  mi.kind = kind;
+  mi.d = b->d, mi.g = b->g;
+  mi.pd = native_from_alpha(b->d->roughness, alpha), mi.pg = native_from_alpha(b->g->roughness, alpha);
+  mi.width = alpha;
+  mi.cos_o = mu;
+  IntegralSpec s = spec_of(mi);
+  s.eta = float(eta);
+  s.bsdf = b->code();
+  s.stream = stream;
+  return s;
+}
+
+std::vector<IntegralSpec> bsdf_specs() {
+  std::vector<IntegralSpec> s;
+  uint32_t stream = 0;
+  for (const char* b : {"walter_ggx_correlated", "walter_beckmann_separable"})
+    for (double alpha : {0.05, 0.5}) {
+      s.push_back(bsdf_spec(IntegralKind::MaskingT, b, alpha, 1.5, 0.3, stream++));
+      s.push_back(bsdf_spec(IntegralKind::MaskingT, b, alpha, 1.5, 0.95, stream++));
+      s.push_back(bsdf_spec(IntegralKind::BsdfAvg, b, alpha, 1.33, 1.0, stream++));
+    }
+  return s;
+}
+
+TermSelection bsdf_selection() {
+  TermSelection sel;
+  for (const char* b : {"walter_ggx_correlated", "walter_beckmann_separable"}) {
+    sel.d.push_back(try_find_bsdf(b)->d);
+    sel.g.push_back(try_find_bsdf(b)->g);
+  }
+  sel.f = {&find_term("none")};
+  sel.g1 = true;
+  return sel;
+}
+
+}  // namespace
+
+TEST_CASE("the transmission checks' own integrate kernels give the generic integrate's sums, to the bit",
+          "[integrate][device][transmission]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  const std::vector<IntegralSpec> specs = bsdf_specs();
+  Integrator in(*rt, bsdf_selection());
+  in.set_albedo_fast_path(false);  // `integrate` alone
+  const auto a = run(in, specs);
+  in.set_albedo_fast_path(true);
+  const auto b = run(in, specs);
+  for (size_t i = 0; i < a.size(); ++i) {
+    INFO("integral " << i << ": generic " << a[i].mean << " +- " << a[i].stderr_ << ", the check's own " << b[i].mean
+                     << " +- " << b[i].stderr_);
+    CHECK(std::isfinite(a[i].mean));
+    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
+    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
+  }
+  if (!test::is_pocl(*rt)) return;  // other drivers build no specializations
+  for (auto name : {"integrate_masking_t", "integrate_bsdf_avg"}) {
+    INFO(name);
+    CHECK(in.launched_kernels().count(name) == 1);
+  }
+  // Planted: masking_t's kernel on bsdf_avg's case moves the masking_t integrals, and only them.
+  std::string text = generate_check_kernels();
+  const std::string right = "MFV_INTEGRATE_IID(integrate_masking_t, masking_t_value)";
+  const size_t at = text.find(right);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, right.size(), "MFV_INTEGRATE_IID(integrate_masking_t, bsdf_avg_value)");
+  Integrator planted(*rt, build_integrate_program(*rt, bsdf_selection(), text), true);
+  const auto c = run(planted, specs);
+  for (size_t i = 0; i < a.size(); ++i) {
+    INFO("integral " << i);
+    CHECK((a[i].mean != c[i].mean) == (specs[i].check == MFV_CHECK_MASKING_T));
   }
 }
 

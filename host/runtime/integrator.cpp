@@ -35,8 +35,9 @@ const std::vector<std::string>& integrate_sources() {
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
-  return build_integrate_program(
-      rt, terms, generate_specializations(terms.specialized) + generate_model_specializations(terms.models));
+  return build_integrate_program(rt, terms,
+                                 generate_specializations(terms.specialized) +
+                                     generate_model_specializations(terms.models) + generate_check_kernels());
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms, const std::string& specializations) {
@@ -178,11 +179,21 @@ static const char* values_kernel(const IntegralSpec& s) {
   return nullptr;
 }
 
-std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item,
+std::string Integrator::integrate_kernel_for(const IntegralSpec& s) const {
+  // the check's own `integrate` (runtime/specialize.hpp) where the program has it and it takes
+  // `integrate`'s work-group size (the same slices, so the same sums)
+  const std::string name = fast_albedo_ ? check_kernel_name(s) : "";
+  if (name.empty() || !kernel_names_.count(name)) return "integrate";
+  const cl::Kernel k(program_, name.c_str());
+  return fit_local_size(k, rt_.device().device, 64) == local_size_ ? name : "integrate";
+}
+
+std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs,
+                                                         const std::string& kernel, uint32_t per_item,
                                                          uint32_t slices, uint64_t seed, uint64_t first_index) {
   std::vector<Sums> out(specs.size());
   if (specs.empty()) return out;
-  cl::Kernel k(program_, "integrate");
+  cl::Kernel k = kernel == "integrate" ? cl::Kernel(program_, "integrate") : launched(kernel);
   const size_t acc = acc_double_ ? sizeof(double) : sizeof(float);
   // Batches of at most ~2^15 work-groups keep buffers small and launches
   // short, and at least 16 of them let progress (util/progress.hpp) advance
@@ -362,8 +373,10 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
     for (auto& s : specs)
       if (s.strata > 0) throw Error("internal: a stratified integral cannot be extended (first_index > 0)");
   // isotropic microfacet integrals take the vectorizable fast paths
-  std::vector<IntegralSpec> general, mis;
-  std::vector<size_t> general_at, mis_at;
+  std::vector<IntegralSpec> mis;
+  std::vector<size_t> mis_at;
+  // the integrals `integrate` takes, by kernel (the generic one or a check's own)
+  std::map<std::string, std::vector<size_t>> general_at;
   // by (base, values kernel, masking_d kernel), specialized where the program has them
   std::map<std::tuple<std::string, std::string, std::string>, std::vector<size_t>> fast_at;
   for (size_t j = 0; j < specs.size(); ++j) {
@@ -384,8 +397,7 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
       const bool masking = std::string(fast) == "masking_values";  // and masking_d (kernels/integrate.cl)
       fast_at[{fast, kernel, masking ? kernel_for("masking_d", specs[j]) : ""}].push_back(j);
     } else {
-      general.push_back(specs[j]);
-      general_at.push_back(j);
+      general_at[integrate_kernel_for(specs[j])].push_back(j);
     }
   }
   std::vector<Sums> sums(specs.size());
@@ -394,7 +406,8 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
   group_samples_ = uint64_t(local_size_) * per_item;
   if (compile_ahead_) {  // each kernel's first launch, on one integral of each specialized group, the last first
     sums_mis(mis, seed);
-    sums_integrate(general, per_item, slices, seed, first_index);
+    for (const auto& [kernel, at] : general_at)
+      sums_integrate({specs[at.front()]}, kernel, per_item, slices, seed, first_index);
     for (auto g = fast_at.rbegin(); g != fast_at.rend(); ++g)
       sums_values({specs[g->second.front()]}, std::get<0>(g->first), std::get<1>(g->first), std::get<2>(g->first),
                   per_item, slices, seed, first_index);
@@ -408,9 +421,13 @@ std::vector<Estimate> Integrator::run(const std::vector<IntegralSpec>& specs_in,
                                 seed, first_index);
     for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = fs[j];
   }
-  const auto gs = sums_integrate(general, per_item, slices, seed, first_index);
+  for (const auto& [kernel, at] : general_at) {
+    std::vector<IntegralSpec> general;
+    for (size_t j : at) general.push_back(specs[j]);
+    const auto gs = sums_integrate(general, kernel, per_item, slices, seed, first_index);
+    for (size_t j = 0; j < at.size(); ++j) sums[at[j]] = gs[j];
+  }
   task_ = nullptr;
-  for (size_t j = 0; j < general.size(); ++j) sums[general_at[j]] = gs[j];
   std::vector<Estimate> out(specs.size());
   const auto ms = sums_mis(mis, seed);
   for (size_t j = 0; j < mis.size(); ++j) {

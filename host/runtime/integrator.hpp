@@ -159,8 +159,12 @@ class Integrator {
   // run()'s paths: the `integrate` kernel; for isotropic microfacet integrals
   // albedo_values, masking_values or d_norm_values with sum_values or
   // sum_pairs; albedo_mis_values for AlbedoMis (kernels/integrate.cl)
-  std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, uint32_t per_item, uint32_t slices,
-                                   uint64_t seed, uint64_t first_index);
+  // `kernel`: `integrate` or a check's own (integrate_kernel_for)
+  std::vector<Sums> sums_integrate(const std::vector<IntegralSpec>& specs, const std::string& kernel,
+                                   uint32_t per_item, uint32_t slices, uint64_t seed, uint64_t first_index);
+  // `integrate`, or the kernel of s's check (runtime/specialize.hpp check_kernel_name) where the
+  // program has it and the fast paths are on
+  std::string integrate_kernel_for(const IntegralSpec& s) const;
   // `kernel`: `base` or its specialization to the specs' term pair (or G); `d_kernel`:
   // masking_d (generic or by D) where `kernel` is a masking_values, which then runs after
   // masking_geometry and it (kernels/integrate.cl), else empty

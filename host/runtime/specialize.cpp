@@ -101,6 +101,33 @@ std::string generate_model_specializations(const std::vector<const Model*>& mode
   return out;
 }
 
+namespace {
+// kernels/integrate.cl MFV_INTEGRATE_IID: `integrate` for the iid integrals of one check, by the
+// check's case of sample_value
+struct CheckKernel {
+  int32_t check;
+  const char* name;
+  const char* fn;
+};
+constexpr CheckKernel kCheckKernels[] = {
+    {MFV_CHECK_MASKING_T, "integrate_masking_t", "masking_t_value"},
+    {MFV_CHECK_BSDF_AVG, "integrate_bsdf_avg", "bsdf_avg_value"},
+};
+}  // namespace
+
+std::string generate_check_kernels() {
+  std::string out;
+  for (const auto& k : kCheckKernels) out += fmt::format("MFV_INTEGRATE_IID({}, {})\n", k.name, k.fn);
+  return out;
+}
+
+std::string check_kernel_name(const IntegralSpec& s) {
+  if (s.estimator != 0 || s.strata != 0) return "";
+  for (const auto& k : kCheckKernels)
+    if (s.check == k.check) return k.name;
+  return "";
+}
+
 std::string specialized_name(const std::string& base, const IntegralSpec& s) {
   if (base == kModelAlbedo || base == kModelReciprocity) return model_kernel_name(int(s.model), base.c_str());
   const Specializable* k = find(base);

@@ -34,6 +34,15 @@ std::string generate_specializations(const std::vector<TermPair>& pairs);
 // that eval_model's switch folds to the one model).
 std::string generate_model_specializations(const std::vector<const Model*>& models);
 
+// OpenCL C that defines `integrate` for the iid integrals of one check
+// (kernels/integrate.cl MFV_INTEGRATE_IID) for the checks that have one
+// (the transmission checks' masking_t and bsdf_avg): the generic kernel's
+// loop and reduction on the check's case of sample_value alone, the same sums
+// to the bit, a fraction of its compile (docs/performance.md, "Cold start").
+std::string generate_check_kernels();
+// That kernel's name for `s` (iid: strata 0, estimator 0), or "" where none.
+std::string check_kernel_name(const IntegralSpec& s);
+
 // The name of the kernel `base` specialized to the terms of `s`
 // (d_norm_values, albedo_mis_df: D only; albedo_mis_values: G only;
 // model_albedo_values, model_reciprocity_values: s's model).
