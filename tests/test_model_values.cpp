@@ -90,7 +90,7 @@ TEST_CASE("a model kernel that evaluates another model than its name says is cau
   Integrator generic(*rt, sel);
   const auto a = run(generic, specs);
   const uint32_t lambert = try_find_model("lambert")->number(), eon = try_find_model("eon")->number();
-  std::string text = generate_model_specializations(sel.models);
+  std::string text = generate_model_specializations(sel.models, false);
   const std::string right = fmt::format("MFV_MODEL_ALBEDO_VALUES(model_albedo_values__m{0}, {0})", eon);
   const size_t at = text.find(right);
   REQUIRE(at != std::string::npos);
@@ -118,6 +118,7 @@ TEST_CASE("whole models' reciprocity kernels give the generic kernel's asymmetri
   for (size_t i = 0; i < specs.size(); ++i) specs[i].stream = uint32_t(i);
   REQUIRE(sel.models.size() >= 10);
   Integrator generic(*rt, build_integrate_program(*rt, sel, ""), true);
+  sel.reciprocity_per_model = true;  // as a run whose pairs pay for them (model_reciprocity_per_model_pays)
   Integrator specialized(*rt, sel);
   const WorstPairs a = generic.reciprocity(specs, 4096, 7), b = specialized.reciprocity(specs, 4096, 7);
   CHECK(generic.launched_kernels().empty());

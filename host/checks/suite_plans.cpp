@@ -10,6 +10,7 @@
 #include "checks/registry.hpp"
 #include "checks/integrate.hpp"
 #include "checks/profile.hpp"
+#include "runtime/specialize.hpp"
 #include "util/error.hpp"
 
 #include <fmt/format.h>
@@ -254,6 +255,8 @@ Plan model_reciprocity(const CheckKind& k, const SuiteOptions& opt) {
     }
     if (used) plan.terms.models.push_back(&m);
   }
+  plan.terms.reciprocity_per_model =
+      model_reciprocity_per_model_pays(uint64_t(specs.size()) * reciprocity_pairs(opt.scale), plan.terms.models.size());
   return plan;
 }
 

@@ -27,6 +27,7 @@ void TermSelection::add(const TermSelection& o) {
   append(f, o.f);
   append(models, o.models);
   g1 = g1 || o.g1;
+  reciprocity_per_model = reciprocity_per_model || o.reciprocity_per_model;
   std::set<TermPair> pairs(specialized.begin(), specialized.end());
   pairs.insert(o.specialized.begin(), o.specialized.end());
   specialized.assign(pairs.begin(), pairs.end());

@@ -25,6 +25,10 @@ struct TermSelection {
   // (D, G) pairs whose fast-path kernels the integration program specializes
   // (runtime/specialize.hpp; PoCL only): the pairs a run integrates.
   std::vector<TermPair> specialized;
+  // Whole models' reciprocity kernels per model (model_reciprocity_values__mN, runtime/specialize.hpp;
+  // PoCL only): where the run's pairs pay their compile (model_reciprocity_per_model_pays);
+  // otherwise the generic reciprocity_values takes the whole models, the same floats.
+  bool reciprocity_per_model = false;
   static TermSelection all();        // every term and every model
   void add(const TermSelection& o);  // o's terms, models and pairs not yet here, appended
 };

@@ -37,7 +37,7 @@ const std::vector<std::string>& integrate_sources() {
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms) {
   return build_integrate_program(rt, terms,
                                  generate_specializations(terms.specialized) +
-                                     generate_model_specializations(terms.models) + generate_check_kernels());
+                                     generate_model_specializations(terms.models, terms.reciprocity_per_model) + generate_check_kernels());
 }
 
 cl::Program build_integrate_program(Runtime& rt, const TermSelection& terms, const std::string& specializations) {

@@ -91,14 +91,19 @@ std::string generate_specializations(const std::vector<TermPair>& pairs) {
   return out;
 }
 
-std::string generate_model_specializations(const std::vector<const Model*>& models) {
+std::string generate_model_specializations(const std::vector<const Model*>& models, bool reciprocity) {
   std::string out;
   for (const Model* m : models) {
     out += fmt::format("MFV_MODEL_ALBEDO_VALUES({}, {})\n", model_kernel_name(m->number()), m->number());
-    out += fmt::format("MFV_MODEL_RECIPROCITY_VALUES({}, {})\n", model_kernel_name(m->number(), kModelReciprocity),
-                       m->number());
+    if (reciprocity)
+      out += fmt::format("MFV_MODEL_RECIPROCITY_VALUES({}, {})\n", model_kernel_name(m->number(), kModelReciprocity),
+                         m->number());
   }
   return out;
+}
+
+bool model_reciprocity_per_model_pays(uint64_t pairs, size_t models) {
+  return models > 0 && double(pairs) >= kModelReciprocityPairsPerKernel * double(models);
 }
 
 namespace {

@@ -29,10 +29,22 @@ std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 // albedo_mis_pair, AlbedoMis's three kernels in one for that pair.
 std::string generate_specializations(const std::vector<TermPair>& pairs);
 
-// OpenCL C that defines model_albedo_values (kernels/model_values.cl) and
-// model_reciprocity_values (kernels/reciprocity.cl) specialized to each model of `models` (its Model::number() a constant, so
+// OpenCL C that defines model_albedo_values (kernels/model_values.cl) and,
+// with `reciprocity`, model_reciprocity_values (kernels/reciprocity.cl)
+// specialized to each model of `models` (its Model::number() a constant, so
 // that eval_model's switch folds to the one model).
-std::string generate_model_specializations(const std::vector<const Model*>& models);
+std::string generate_model_specializations(const std::vector<const Model*>& models, bool reciprocity);
+
+// Whether a run's whole-model reciprocity (`pairs` pair evaluations over all
+// its integrals, of `models` models) pays for the kernels per model: each
+// costs a compile on a cold run (0.12-0.3 s of CPU on Zen 4, PoCL 3.1
+// skylake-avx512), and saves about 15 ms of CPU a million pairs warm over the
+// generic reciprocity_values (mfv run --check reciprocity --model [ --scale 16,
+// 6.4e6 pairs: 0.42-0.43 s against 0.51-0.52 s); so from 1e7 pairs a model
+// (--scale of about 500; the default run has 4e5 in all; docs/performance.md,
+// "Cold start").
+constexpr double kModelReciprocityPairsPerKernel = 1e7;
+bool model_reciprocity_per_model_pays(uint64_t pairs, size_t models);
 
 // OpenCL C that defines `integrate` for the iid integrals of one check
 // (kernels/integrate.cl MFV_INTEGRATE_IID) for the checks that have one
