@@ -53,6 +53,19 @@ std::vector<Estimate> run(Integrator& in, std::vector<IntegralSpec> specs) {
   return in.run(specs, 16384, 11);
 }
 
+// Every estimate and standard error of `b` equal to `a`'s to the bit, and finite.
+void check_same_bits(const std::vector<Estimate>& a, const char* a_name, const std::vector<Estimate>& b,
+                     const char* b_name) {
+  REQUIRE(a.size() == b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    INFO("integral " << i << ": " << a_name << " " << a[i].mean << " +- " << a[i].stderr_ << ", " << b_name << " "
+                     << b[i].mean << " +- " << b[i].stderr_);
+    CHECK(std::isfinite(a[i].mean));
+    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
+    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("kernels specialized per term pair give the generic kernels' estimates, to the bit", "[integrate][device]") {
@@ -187,13 +200,7 @@ TEST_CASE("the transmission checks' own integrate kernels give the generic integ
   const auto a = run(in, specs);
   in.set_albedo_fast_path(true);
   const auto b = run(in, specs);
-  for (size_t i = 0; i < a.size(); ++i) {
-    INFO("integral " << i << ": generic " << a[i].mean << " +- " << a[i].stderr_ << ", the check's own " << b[i].mean
-                     << " +- " << b[i].stderr_);
-    CHECK(std::isfinite(a[i].mean));
-    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
-    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
-  }
+  check_same_bits(a, "generic", b, "the check's own");
   if (!test::is_pocl(*rt)) return;  // other drivers build no specializations
   for (auto name : {"integrate_masking_t", "integrate_bsdf_avg"}) {
     INFO(name);
@@ -241,14 +248,7 @@ TEST_CASE("a program of one term pair runs AlbedoMis in one kernel, with the thr
   const std::vector<IntegralSpec> specs = one_pair_specs();
   Integrator generic(*rt, three_of_each()), one_pair(*rt, one_pair_selection());
   const auto a = run(generic, specs), b = run(one_pair, specs);
-  REQUIRE(a.size() == b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    INFO("integral " << i << ": three kernels " << a[i].mean << " +- " << a[i].stderr_ << ", one pair " << b[i].mean
-                     << " +- " << b[i].stderr_);
-    CHECK(std::isfinite(a[i].mean));
-    CHECK(std::memcmp(&a[i].mean, &b[i].mean, sizeof(double)) == 0);
-    CHECK(std::memcmp(&a[i].stderr_, &b[i].stderr_, sizeof(double)) == 0);
-  }
+  check_same_bits(a, "three kernels", b, "one pair");
   if (!test::is_pocl(*rt)) return;  // other drivers build no specializations
   const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
   const auto& launched = one_pair.launched_kernels();
