@@ -70,6 +70,12 @@ Integrator::Integrator(Runtime& rt, cl::Program program, bool catalog)
     kernel_names_.insert(names.substr(at, end - at));
     at = end + 1;
   }
+  // the checks' own `integrate` kernels the program has, where they take `integrate`'s
+  // work-group size (the same slices, so the same sums): asked once, not per integral
+  for (const std::string& name : check_kernel_names())
+    if (kernel_names_.count(name) &&
+        fit_local_size(cl::Kernel(program_, name.c_str()), rt.device().device, 64) == local_size_)
+      check_kernels_.insert(name);
 }
 
 std::string Integrator::kernel_for(const std::string& base, const IntegralSpec& s) const {
@@ -180,12 +186,10 @@ static const char* values_kernel(const IntegralSpec& s) {
 }
 
 std::string Integrator::integrate_kernel_for(const IntegralSpec& s) const {
-  // the check's own `integrate` (runtime/specialize.hpp) where the program has it and it takes
-  // `integrate`'s work-group size (the same slices, so the same sums)
+  // the check's own `integrate` (runtime/specialize.hpp) where the program has one that takes
+  // `integrate`'s work-group size (check_kernels_)
   const std::string name = fast_albedo_ ? check_kernel_name(s) : "";
-  if (name.empty() || !kernel_names_.count(name)) return "integrate";
-  const cl::Kernel k(program_, name.c_str());
-  return fit_local_size(k, rt_.device().device, 64) == local_size_ ? name : "integrate";
+  return !name.empty() && check_kernels_.count(name) ? name : "integrate";
 }
 
 std::vector<Integrator::Sums> Integrator::sums_integrate(const std::vector<IntegralSpec>& specs,

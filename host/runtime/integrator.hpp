@@ -193,6 +193,9 @@ class Integrator {
   bool acc_double_;
   bool fast_albedo_ = false, fast_albedo_available_ = false;
   std::set<std::string> kernel_names_, launched_;
+  // the checks' own `integrate` kernels (runtime/specialize.hpp) of the program that take
+  // `integrate`'s work-group size, local_size_
+  std::set<std::string> check_kernels_;
   bool compile_ahead_ = false;
   uint32_t mis_replicates_ = kMisReplicates;
   size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less

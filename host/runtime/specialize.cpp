@@ -126,6 +126,12 @@ std::string generate_check_kernels() {
   return out;
 }
 
+std::vector<std::string> check_kernel_names() {
+  std::vector<std::string> out;
+  for (const auto& k : kCheckKernels) out.push_back(k.name);
+  return out;
+}
+
 std::string check_kernel_name(const IntegralSpec& s) {
   if (s.estimator != 0 || s.strata != 0) return "";
   for (const auto& k : kCheckKernels)

@@ -54,6 +54,8 @@ bool model_reciprocity_per_model_pays(uint64_t pairs, size_t models);
 std::string generate_check_kernels();
 // That kernel's name for `s` (iid: strata 0, estimator 0), or "" where none.
 std::string check_kernel_name(const IntegralSpec& s);
+// The names of all those kernels.
+std::vector<std::string> check_kernel_names();
 
 // The name of the kernel `base` specialized to the terms of `s`
 // (d_norm_values, albedo_mis_df: D only; albedo_mis_values: G only;
