@@ -6,7 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -15,6 +18,7 @@
 #include <thread>
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -40,6 +44,17 @@ void note(std::chrono::steady_clock::time_point t0, const std::string& what) {
 }
 
 double cpu_now() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The child's report that it has built `what` (CompileAhead::await reads it).
+void report(int fd, HandOver what) {
+  const char c = static_cast<char>(what);
+  if (fd >= 0 && ::write(fd, &c, 1) != 1) {
+  }  // a run that stopped waiting has closed its end: nothing to tell
+}
 
 // A launch that compiles nothing (a kernel already in PoCL's cache, dlopen'd
 // and run on one integral) takes milliseconds; the smallest compile, tenths
@@ -84,12 +99,22 @@ CompileAhead::CompileAhead(const SuitePlans& sp, const SuiteOptions& opt, const 
   const std::string log = env("MFV_COMPILE_AHEAD_LOG");
   const std::string sink = log.empty() ? "/dev/null" : log;
   const pid_t parent = ::getpid();
+  int reports[2] = {-1, -1};  // the child's hand-over reports (await)
+  if (::pipe2(reports, O_CLOEXEC) != 0) reports[0] = reports[1] = -1;
   std::fflush(nullptr);
   const pid_t pid = ::fork();
   if (pid != 0) {
     pid_ = pid;  // -1: no child, and no error
+    forked_ = steady_seconds();
+    if (reports[1] >= 0) ::close(reports[1]);
+    if (pid > 0)
+      reports_ = reports[0];
+    else if (reports[0] >= 0)
+      ::close(reports[0]);
     return;
   }
+  if (reports[0] >= 0) ::close(reports[0]);
+  ::signal(SIGPIPE, SIG_IGN);  // a report the run no longer reads fails, and the child goes on
   // The child: a copy of this process before any OpenCL call. It never
   // returns into the caller: it ends with _exit (no atexit handlers, no
   // static destructors, no flush of buffers it shares with the run).
@@ -102,7 +127,7 @@ CompileAhead::CompileAhead(const SuitePlans& sp, const SuiteOptions& opt, const 
   int rc = 1;
   try {
     Runtime rt(device_selector, kernel_dir);
-    rc = is_pocl(rt.device()) ? compile_ahead(rt, sp, opt) : 0;
+    rc = is_pocl(rt.device()) ? compile_ahead(rt, sp, opt, reports[1]) : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mfv compile-ahead: %s\n", e.what());
   }
@@ -118,7 +143,49 @@ int CompileAhead::wait() {
   return done > 0 && WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
+// The run's line in the child's log (MFV_COMPILE_AHEAD_LOG, where set) on a hand-over.
+static void note_hand_over(HandOver what, const char* outcome, double waited) {
+  const std::string log = env("MFV_COMPILE_AHEAD_LOG");
+  if (log.empty()) return;
+  if (std::FILE* f = std::fopen(log.c_str(), "a")) {
+    std::fprintf(f, "mfv run: %s %s (waited %.2f s)\n",
+                 what == HandOver::IntegrationProgram ? "integration program" : "sample_values", outcome, waited);
+    std::fclose(f);
+  }
+}
+
+bool CompileAhead::await(HandOver what) {
+  const char c = static_cast<char>(what);
+  const double start = steady_seconds();
+  const double deadline = start + std::max(2.0, start - forked_);
+  while (seen_.find(c) == std::string::npos) {
+    if (reports_ < 0) {
+      note_hand_over(what, "not waited for: built here", steady_seconds() - start);
+      return false;
+    }
+    const double left = deadline - steady_seconds();
+    pollfd p{reports_, POLLIN, 0};
+    const int ready = left > 0 ? ::poll(&p, 1, int(std::ceil(left * 1000))) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    char got[16];
+    const ssize_t n = ready > 0 ? ::read(reports_, got, sizeof got) : -1;
+    if (n < 0 && ready > 0 && errno == EINTR) continue;
+    if (n <= 0) {  // late (the deadline), ended (end of file) or an error: no more waiting
+      ::close(reports_);
+      reports_ = -1;
+      note_hand_over(what, ready > 0 ? "not built: the child ended; built here" : "late: built here",
+                     steady_seconds() - start);
+      return false;
+    }
+    seen_.append(got, size_t(n));
+  }
+  note_hand_over(what, "taken from the child", steady_seconds() - start);
+  return true;
+}
+
 void CompileAhead::end() {
+  if (reports_ >= 0) ::close(reports_);
+  reports_ = -1;
   if (pid_ <= 0) return;
   int status = 0;
   if (::waitpid(pid_, &status, WNOHANG) == 0) {
@@ -128,7 +195,7 @@ void CompileAhead::end() {
   pid_ = -1;
 }
 
-int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt) {
+int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt, int reports) {
   const auto t0 = std::chrono::steady_clock::now();
   progress::set_quiet(true);
   note(t0, "started");
@@ -139,6 +206,16 @@ int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt) {
   Integrator in(rt, suite_terms(sp));  // the run's program: the same source, so the same PoCL cache entry
   in.set_compile_ahead(true);
   note(t0, "integration program built");
+  report(reports, HandOver::IntegrationProgram);  // the run, building the double twin meanwhile, takes it from the cache
+  // The reference comparison's float sample_values, which the run reaches
+  // after its first plan (its costliest compile there, ~2 s): the run waits
+  // for it rather than compiling it beside the child
+  if (opt.reference_samples > 0)
+    if (const IntegralSpec* first = first_spec(sp.plans)) {
+      in.sample_values({*first}, 1, opt.seed);
+      note(t0, "sample_values");
+    }
+  report(reports, HandOver::SampleValues);
   // The run's end first. Reciprocity: where its kernels were all in the
   // cache already, the cache is warm (an earlier run's), and the child stops.
   if (!sp.reciprocity.specs.empty()) {

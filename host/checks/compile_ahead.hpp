@@ -54,19 +54,29 @@ class CompileAhead {
   bool only() const { return only_; }  // MFV_COMPILE_AHEAD=only
   int wait();  // waits for the child; its exit status (1 where it did not start or was killed)
   void end();  // ends the child (SIGKILL) if it still runs
+  // The hand-over (Runtime::set_hand_over): true once the child has reported
+  // `what` built; false where it did not start, ended without reporting it,
+  // or is late: it waits at most as long again as the run has run since the
+  // fork, 2 s at least (the child then builds what the run would build in
+  // that time, or is stuck), and after one late report waits no more.
+  bool await(HandOver what);
 
  private:
   pid_t pid_ = -1;
   bool only_ = false;
+  int reports_ = -1;    // the read end of the child's reports (a pipe); -1: none, or no more waiting
+  std::string seen_;    // the reports read
+  double forked_ = 0;   // steady-clock seconds at the fork
 };
 
 // auto's rule: at least two cores, and the other tasks running (their mean
 // count over a few readings) leave one of them free.
 bool compile_ahead_pays(unsigned cores, double others_running);
 
-// The child's work, on its own Runtime: returns its exit status.
+// The child's work, on its own Runtime: returns its exit status. It writes
+// each HandOver it has built to `reports` (a file descriptor; -1: none).
 // MFV_COMPILE_AHEAD_TEST=abort or =hang makes it fail at once or never end
 // (the tests of a failing child).
-int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt);
+int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt, int reports = -1);
 
 }  // namespace mfv

@@ -88,6 +88,19 @@ double lobe_width_of(const IntegralSpec& s) {
 ReferenceTwin::ReferenceTwin(Runtime& rt, const TermSelection& terms)
     : rt_(rt), terms_(terms), available_(rt.device().fp64) {}
 
+void ReferenceTwin::build() {
+  if (!program_())
+    program_ =
+        rt_.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms_), kDispatchBefore);
+}
+
+int ReferenceTwin::build_ahead(const IntegralSpec& spec, uint64_t seed) {
+  if (!available_ || program_()) return 0;
+  build();
+  program_sample_values<double>(rt_, program_, {spec}, 1, seed);
+  return 1;
+}
+
 namespace {
 
 // |a - b| where equal non-finite values agree and any other non-finite pair is infinitely apart.
@@ -102,9 +115,8 @@ std::vector<TwinAgreement> ReferenceTwin::compare(Integrator& in, const std::vec
                                                   uint64_t seed) {
   std::vector<TwinAgreement> out;
   if (n == 0 || specs.empty() || !available_) return out;
-  if (!program_())
-    program_ =
-        rt_.build(integrate_sources(), {"MFV_DOUBLE", "MFV_ACC_DOUBLE"}, generate_dispatch(terms_), kDispatchBefore);
+  build();
+  rt_.await(HandOver::SampleValues);  // a compile-ahead child's compile of the float sample_values
   const std::vector<float> kf = in.sample_values(specs, n, seed);
   const std::vector<double> kd = program_sample_values<double>(rt_, program_, specs, n, seed);
   for (size_t j = 0; j < specs.size(); ++j) {

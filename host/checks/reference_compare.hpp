@@ -45,8 +45,15 @@ class ReferenceTwin {
   // kf from `in` (the float program), kd from the twin, r from the reference;
   // n samples per integral as Integrator::sample_values takes them.
   std::vector<TwinAgreement> compare(Integrator& in, const std::vector<IntegralSpec>& specs, uint32_t n, uint64_t seed);
+  // Builds the twin now, and launches its sample_values once on `spec` (so
+  // PoCL compiles it as compare() launches it): what a run does while a
+  // compile-ahead child builds the float program (checks/compile_ahead.hpp).
+  // Returns the builds it made (0 where there is no twin or it was built).
+  int build_ahead(const IntegralSpec& spec, uint64_t seed);
 
  private:
+  void build();
+
   Runtime& rt_;
   TermSelection terms_;
   cl::Program program_;

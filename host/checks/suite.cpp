@@ -245,6 +245,12 @@ TermSelection suite_terms(SuitePlans& sp) {
   return terms;
 }
 
+const IntegralSpec* first_spec(const std::vector<Plan>& plans) {
+  for (const Plan& p : plans)
+    if (!p.specs.empty()) return &p.specs.front();
+  return nullptr;
+}
+
 namespace {
 
 // Where a plan that takes the furnace truth left its points in rep.points,
@@ -264,13 +270,20 @@ std::vector<TruthPoints> run_plans(Runtime& rt, SuitePlans& sp, const SuiteOptio
   const TermSelection terms = suite_terms(sp);
   const double b0 = rt.build_stats().seconds;
   PendingIntegrators pending = integrators_beside(more, terms);  // the other devices' builds beside this one
+  // One double twin for every plan's reference comparison, as one program integrates them
+  std::optional<ReferenceTwin> twin;
+  if (opt.reference_samples > 0) twin.emplace(rt, terms);
+  // Where a compile-ahead child builds the integration program (checks/compile_ahead.hpp):
+  // the twin meanwhile, then the program from PoCL's cache once the child has built it
+  if (rt.hand_over()) {
+    if (twin)
+      if (const IntegralSpec* first = first_spec(plans)) rep.reference_builds += twin->build_ahead(*first, opt.seed);
+    rt.await(HandOver::IntegrationProgram);
+  }
   Integrator in(rt, terms);
   const std::vector<std::unique_ptr<Integrator>> others = integrators_ready(pending, rt, more, rep.device_shares);
   std::vector<Integrator*> other;
   for (auto& o : others) other.push_back(o.get());
-  // One double twin for every plan's reference comparison, as one program integrates them
-  std::optional<ReferenceTwin> twin;
-  if (opt.reference_samples > 0) twin.emplace(rt, terms);
   rep.build_seconds += rt.build_stats().seconds - b0;
   for (size_t i = 0; i < plans.size(); ++i) {
     progress::Task task(fmt::format("{} ({} of {} plans)", plans[i].check, i + 1, plans.size()), 0);

@@ -195,6 +195,10 @@ SuitePlans make_suite_plans(const SuiteOptions& opt);
 // The one integration program's terms for all of sp's plans (run_suite_plans);
 // sets each plan's specialized pairs.
 TermSelection suite_terms(SuitePlans& sp);
+// The first plan's first integral (nullptr where the plans have none): the
+// one a compile-ahead hand-over launches sample_values on (any integral
+// compiles the same kernel; checks/compile_ahead.hpp).
+const IntegralSpec* first_spec(const std::vector<Plan>& plans);
 void run_suite_plans(Runtime& rt, SuitePlans& sp, const SuiteOptions& opt, SuiteReport& rep,
                      const std::vector<Runtime*>& more = {});
 // Which integrals of a plan the reference compares: every whole-model and

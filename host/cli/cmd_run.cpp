@@ -110,6 +110,8 @@ struct RunCommand : SharedValues {
     CompileAhead ahead(plans, opt, g.device, g.kernel_dir);
     if (ahead.only()) return ahead.wait() == 0 ? 0 : 1;
     Runtime rt(g.device, g.kernel_dir);
+    // the child builds the integration program and the float sample_values; the run waits for them (bounded)
+    if (ahead.started()) rt.set_hand_over([&ahead](HandOver what) { return ahead.await(what); });
     SuiteReport rep = run_suite(rt, opt, std::move(plans));
     ahead.end();  // every kernel of the run has been launched
     print_suite_console(rep, rt, opt);

@@ -3,6 +3,7 @@
 
 #include <CL/opencl.hpp>
 
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -39,6 +40,14 @@ DeviceInfo select_device(const std::string& selector);  // pick_device over list
 // contexts and queues on it). One device where the selector is neither.
 bool is_device_set(const std::string& selector);
 std::vector<DeviceInfo> select_devices(const std::string& selector);
+
+// What a compile-ahead child (checks/compile_ahead.hpp) builds into PoCL's
+// cache for this process, and tells it when done: this process's own build
+// of it then only reads the cache.
+enum class HandOver : char {
+  IntegrationProgram = 'P',  // the suite's integration program (Integrator's)
+  SampleValues = 'S',        // that program's sample_values kernel, as the reference comparison launches it
+};
 
 struct BuildStats {
   int builds = 0;
@@ -78,6 +87,15 @@ class Runtime {
   std::string base_options() const;
   const BuildStats& build_stats() const { return stats_; }
 
+  // The compile-ahead child's hand-over (checks/compile_ahead.hpp): where one
+  // is set, await(what) waits until the child reports `what` built, and
+  // returns true; false at once where none is set, and false where the child
+  // ended or is late (the wait is bounded): the caller then builds it itself,
+  // as without a child. What is built, and so every result, is the same.
+  void set_hand_over(std::function<bool(HandOver)> await) { await_ = std::move(await); }
+  bool hand_over() const { return static_cast<bool>(await_); }
+  bool await(HandOver what) const { return await_ ? await_(what) : false; }
+
  private:
   std::string kernel_text(const std::string& file) const;
   cl::Program build_source(const std::string& source, const std::string& options);
@@ -89,6 +107,7 @@ class Runtime {
   cl::Context context_;
   cl::CommandQueue queue_;
   BuildStats stats_;
+  std::function<bool(HandOver)> await_;
 };
 
 }  // namespace mfv
