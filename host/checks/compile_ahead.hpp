@@ -4,8 +4,12 @@
 // compiles one kernel at a time (a process-wide lock). So while `mfv run`
 // works through its plans from the first, a child process (forked before
 // the run touches OpenCL) builds the same programs and launches each kernel
-// once as the run's first launch of it would, from the run's end backwards:
-// reciprocity, the pointwise kinds, then the plans in reverse
+// once as the run's first launch of it would: first the integration program
+// and the float sample_values, each reported to the run on a pipe when built
+// (the hand-over: the run builds the double twin meanwhile and then waits,
+// bounded, to read them from the cache rather than build them beside the
+// child; Runtime::await), then from the run's end backwards: reciprocity,
+// the pointwise kinds, then the plans in reverse
 // (Integrator::set_compile_ahead). The run then finds those kernels
 // compiled in the cache. PoCL writes each entry to a temporary file and
 // renames it, so neither process sees half an entry.
