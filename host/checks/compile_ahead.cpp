@@ -145,8 +145,10 @@ int CompileAhead::wait() {
 
 // The run's line in the child's log (MFV_COMPILE_AHEAD_LOG, where set) on a hand-over.
 static void note_hand_over(HandOver what, const char* outcome, double waited) {
+  static std::string noted;  // each hand-over's outcome once (the comparison awaits sample_values per plan)
   const std::string log = env("MFV_COMPILE_AHEAD_LOG");
-  if (log.empty()) return;
+  if (log.empty() || noted.find(static_cast<char>(what)) != std::string::npos) return;
+  noted += static_cast<char>(what);
   if (std::FILE* f = std::fopen(log.c_str(), "a")) {
     std::fprintf(f, "mfv run: %s %s (waited %.2f s)\n",
                  what == HandOver::IntegrationProgram ? "integration program" : "sample_values", outcome, waited);
