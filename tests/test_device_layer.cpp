@@ -10,6 +10,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 using namespace mfv;
 
@@ -81,4 +85,35 @@ TEST_CASE("The table of checks gives each D x G x F check its kind, samples and 
   CHECK(plans[0].specs.size() ==
         terms_of(Kind::D).size() * terms_of(Kind::G).size() * size_t(row.n_alpha) * size_t(row.n_view));
   for (const auto& s : plans[0].specs) CHECK(s.check == MFV_CHECK_MASKING);
+}
+
+// PoCL's worker threads pinned one to a core (runtime/opencl.hpp
+// pin_pocl_workers): unpinned, a short launch often ran on one core
+// (docs/performance.md, issue 32). Each CTest entry is its own process, so
+// list_devices() here comes before PoCL starts and its POCL_AFFINITY takes.
+TEST_CASE("PoCL's CPU worker threads are pinned one to a core", "[device][device_layer]") {
+  const char* before = std::getenv("POCL_AFFINITY");
+  if (before) test::skip(std::string("POCL_AFFINITY is set in the environment: ") + before);
+  Runtime* rt = before ? nullptr : test::device_runtime();
+  if (!rt) return;
+  if (!test::is_pocl(*rt) || rt->device().type != "CPU" || rt->device().compute_units < 2) {
+    test::skip("not PoCL's CPU device with two cores or more");
+    return;
+  }
+  const char* set = std::getenv("POCL_AFFINITY");
+  CHECK(std::string(set ? set : "(unset)") == "1");
+  // a launch, so that every worker has started
+  Integrator in(*rt, ggx_selection());
+  in.run({ggx_albedo(0)}, 4096, 3);
+  // threads of this process allowed one CPU only: PoCL's pinned workers
+  size_t pinned = 0;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream status(task.path() / "status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("Cpus_allowed_list:", 0) == 0) {
+        const std::string list = line.substr(line.find(':') + 1);
+        if (list.find_first_of(",-") == std::string::npos) ++pinned;
+      }
+  }
+  CHECK(pinned >= rt->device().compute_units);
 }

@@ -15,6 +15,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -90,7 +91,14 @@ class StderrCapture {
 
 }  // namespace
 
+std::string pin_pocl_workers() {
+  ::setenv("POCL_AFFINITY", "1", 0);  // 0: an explicit value is kept
+  const char* v = std::getenv("POCL_AFFINITY");
+  return v ? v : "";
+}
+
 std::vector<DeviceInfo> list_devices() {
+  pin_pocl_workers();  // before PoCL starts (the first platform query)
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);

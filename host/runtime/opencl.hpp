@@ -27,7 +27,18 @@ struct DeviceInfo {
 };
 
 // Every device of every platform. Throws mfv::Error when no platform exists.
+// Calls pin_pocl_workers() first.
 std::vector<DeviceInfo> list_devices();
+
+// Sets POCL_AFFINITY=1 where the environment does not set it (an explicit
+// POCL_AFFINITY, 0 included, is kept), so that PoCL's CPU device pins its
+// worker threads one to a core; returns the value in force. Read by PoCL once,
+// when it starts at the first platform query (list_devices), so it takes effect
+// only where called before that. Unpinned, the Linux scheduler often woke
+// both workers on one core for a short launch, and a call of 640 points x 32
+// replicates ran on one core: mfv bench --case ... 0.5:0.5, 0.19-0.29 ms
+// unpinned against 0.155-0.165 ms pinned (docs/performance.md, issue 32).
+std::string pin_pocl_workers();
 
 // "" picks the first GPU, else the first device; a number picks by index;
 // anything else is, case-insensitively, first an exact device name, platform
