@@ -3,6 +3,8 @@
 #include "runtime/integrator.hpp"
 #include "runtime/work_group.hpp"
 
+#include <vector>
+
 namespace mfv {
 
 template <class T>
@@ -38,11 +40,23 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
 
 cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
 
+// Buffers up to this size are NaN from the start (CL_MEM_COPY_HOST_PTR, a copy on the host), larger
+// ones by a fill command: on PoCL each command costs a hand-over to its worker threads, and a short
+// launch (mfv bench --case, 640 points x 32: an 80 KiB values buffer and a sums buffer) paid two
+// fills; with copies its fastest of 99 calls took 116-138 us against 135-148 us at alpha 0.01, mu 0.9
+// (docs/performance.md, issue 32). A larger buffer's fill stays with the device (a copy of 16 MiB
+// would cost the host).
+constexpr size_t kNanCopyBytes = size_t(1) << 20;
+
 cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
-  cl::Buffer b(rt.context(), flags, bytes);
   // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
   // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
   const cl_uint pattern = 0x7fffffffu;
+  if (bytes > 0 && bytes <= kNanCopyBytes) {
+    thread_local const std::vector<cl_uint> nan(kNanCopyBytes / sizeof(cl_uint), pattern);
+    return cl::Buffer(rt.context(), flags | CL_MEM_COPY_HOST_PTR, bytes, const_cast<cl_uint*>(nan.data()));
+  }
+  cl::Buffer b(rt.context(), flags, bytes);
   if (bytes > 0) rt.queue().enqueueFillBuffer(b, pattern, 0, bytes / sizeof(pattern) * sizeof(pattern));
   return b;
 }
