@@ -21,6 +21,7 @@
 #include <set>
 #include <sstream>
 
+#include <sched.h>
 #include <unistd.h>
 
 namespace mfv {
@@ -92,7 +93,15 @@ class StderrCapture {
 }  // namespace
 
 std::string pin_pocl_workers() {
-  ::setenv("POCL_AFFINITY", "1", 0);  // 0: an explicit value is kept
+  // PoCL pins worker i to CPU i, and some of its versions abort where that CPU is not the
+  // process's to use (a cpuset, taskset): pinned only where the process may run on every
+  // online CPU
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  const long online = ::sysconf(_SC_NPROCESSORS_ONLN);
+  bool every = online > 0 && online <= CPU_SETSIZE && ::sched_getaffinity(0, sizeof allowed, &allowed) == 0;
+  for (long c = 0; every && c < online; ++c) every = CPU_ISSET(c, &allowed);
+  if (every) ::setenv("POCL_AFFINITY", "1", 0);  // 0: an explicit value is kept
   const char* v = std::getenv("POCL_AFFINITY");
   return v ? v : "";
 }

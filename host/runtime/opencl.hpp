@@ -31,7 +31,8 @@ struct DeviceInfo {
 std::vector<DeviceInfo> list_devices();
 
 // Sets POCL_AFFINITY=1 where the environment does not set it (an explicit
-// POCL_AFFINITY, 0 included, is kept), so that PoCL's CPU device pins its
+// POCL_AFFINITY, 0 included, is kept) and the process may run on every online
+// CPU (PoCL pins worker i to CPU i), so that PoCL's CPU device pins its
 // worker threads one to a core; returns the value in force. Read by PoCL once,
 // when it starts at the first platform query (list_devices), so it takes effect
 // only where called before that. Unpinned, the Linux scheduler often woke
