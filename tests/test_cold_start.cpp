@@ -134,11 +134,12 @@ const char* const kPlanArgs =
 
 // Runs the compile-ahead child alone (MFV_COMPILE_AHEAD=only) on an empty
 // cache, then the run without a child on that cache: the files the run added.
-std::set<std::string> left_to_the_run(const fs::path& dir, const std::string& child_env) {
+std::set<std::string> left_to_the_run(const fs::path& dir, const std::string& child_env,
+                                      const std::string& plan_args = kPlanArgs) {
   const fs::path cache = dir / "pocl";
   fs::create_directories(cache);
   const std::string pocl = "POCL_CACHE_DIR=" + cache.string() + " POCL_KERNEL_CACHE=1";
-  const std::string run = std::string("--quiet run ") + kPlanArgs + " --out " + (dir / "out").string();
+  const std::string run = "--quiet run " + plan_args + " --out " + (dir / "out").string();
   const test::Run child = test::run_mfv(run, pocl + " MFV_COMPILE_AHEAD=only " + child_env);
   INFO(child.out);
   REQUIRE(child.code == 0);
@@ -172,6 +173,11 @@ TEST_CASE("The compile-ahead child compiles the run's kernels as the run launche
   // its kernels to compile again.
   const std::set<std::string> planted = left_to_the_run(scratch.dir / "planted", "MFV_MAX_LOCAL_SIZE=4");
   CHECK(planted.size() > 1);
+  // The pointwise kinds, which the child runs with as little host work as it
+  // can (agree's first case): it leaves the run none of their kernels either
+  const std::set<std::string> pointwise = left_to_the_run(
+      scratch.dir / "pointwise", "", "--check agree --check stability --check bsdf_reciprocity --model ggx/smith_ggx_correlated");
+  CHECK(pointwise.empty());
 }
 
 TEST_CASE("A compile-ahead child that fails or never ends leaves the run's results as without it", "[device][cold]") {

@@ -229,8 +229,7 @@ int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt, int repor
       return 0;
     }
   }
-  SuiteReport scratch;  // the pointwise kinds (their own programs), whole
-  run_pointwise_kinds(rt, opt, scratch);
+  compile_pointwise_kinds(rt, opt);  // the pointwise kinds (their own programs)
   note(t0, "pointwise kinds");
   for (auto p = sp.plans.rbegin(); p != sp.plans.rend(); ++p) {
     if (p->specs.empty()) continue;

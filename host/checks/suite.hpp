@@ -236,6 +236,9 @@ void run_reciprocity(Runtime& rt, Plan& plan, const SuiteOptions& opt, SuiteRepo
 // The pointwise kinds (agree, stability) at mfv run's budget, one bounded
 // point per case, filtered by opt.checks and opt.models (checks/suite_pointwise.cpp).
 void run_pointwise_kinds(Runtime& rt, const SuiteOptions& opt, SuiteReport& rep);
+// What the compile-ahead child (checks/compile_ahead.hpp) runs of them: each
+// kernel launched as the run first launches it, with as little host work.
+void compile_pointwise_kinds(Runtime& rt, const SuiteOptions& opt);
 
 uint32_t reciprocity_pairs(double scale);  // pairs per reciprocity integral at --scale (record_reciprocity)
 // Integrator::reciprocity over `specs`, 64 x per_item pairs each (per_item from the scale): one bounded point per spec
