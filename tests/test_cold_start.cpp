@@ -186,10 +186,12 @@ TEST_CASE("A compile-ahead child that fails or never ends leaves the run's resul
   if (!test::is_pocl(*rt)) return test::skip("compile-ahead runs where the device is PoCL");
   test::Scratch scratch("mfv_ahead_fail");
   const std::string args = "--quiet run --check d_norm --check masking --model ggx/smith_ggx_correlated --out ";
+  // each with PoCL's cache empty (a cold run: the run waits for the child's hand-over only there)
   auto results = [&](const std::string& name, const std::string& env) {
-    fs::create_directories(scratch.dir / name);
+    fs::create_directories(scratch.dir / name / "pocl");
     const test::Run r = test::run_mfv(args + (scratch.dir / name / "out").string() + "/",
-                                      "MFV_COMPILE_AHEAD_LOG=" + (scratch.dir / name / "child.log").string() + " " + env);
+                                      "MFV_COMPILE_AHEAD_LOG=" + (scratch.dir / name / "child.log").string() +
+                                          " POCL_CACHE_DIR=" + (scratch.dir / name / "pocl").string() + " " + env);
     INFO(r.out);
     REQUIRE(r.code == 0);
     const nlohmann::json j = nlohmann::json::parse(test::slurp(scratch.dir / name / "out" / "results.json"));
