@@ -175,8 +175,9 @@ TEST_CASE("The compile-ahead child compiles the run's kernels as the run launche
   CHECK(planted.size() > 1);
   // The pointwise kinds, which the child runs with as little host work as it
   // can (agree's first case): it leaves the run none of their kernels either
-  const std::set<std::string> pointwise = left_to_the_run(
-      scratch.dir / "pointwise", "", "--check agree --check stability --check bsdf_reciprocity --model ggx/smith_ggx_correlated");
+  const std::set<std::string> pointwise =
+      left_to_the_run(scratch.dir / "pointwise", "",
+                      "--check agree --check stability --check bsdf_reciprocity --model ggx/smith_ggx_correlated");
   CHECK(pointwise.empty());
 }
 
@@ -215,9 +216,9 @@ TEST_CASE("A compile-ahead child that fails or never ends leaves the run's resul
     CHECK(log.find("started") != std::string::npos);
     // the run waited for the child's hand-over no longer than the child lived, or than its bound, and built
     // the program itself
-    CHECK(log.find(std::string("mfv run: integration program ") +
-                   (failure == std::string("abort") ? "not built: the child ended; built here"
-                                                    : "late: built here")) != std::string::npos);
+    const std::string outcome =
+        failure == std::string("abort") ? "not built: the child ended; built here" : "late: built here";
+    CHECK(log.find("mfv run: integration program " + outcome) != std::string::npos);
     CHECK(log.find("taken from the child") == std::string::npos);
     // a hung child is ended by the run: none is left with the run's --out in its command line
     const test::Run left = test::run_mfv_shell("pgrep -f '[-]-out " + (scratch.dir / failure).string() + "/'");

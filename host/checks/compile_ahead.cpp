@@ -208,7 +208,8 @@ int compile_ahead(Runtime& rt, SuitePlans sp, const SuiteOptions& opt, int repor
   Integrator in(rt, suite_terms(sp));  // the run's program: the same source, so the same PoCL cache entry
   in.set_compile_ahead(true);
   note(t0, "integration program built");
-  report(reports, HandOver::IntegrationProgram);  // the run, building the double twin meanwhile, takes it from the cache
+  // the run, building the double twin meanwhile, takes it from the cache
+  report(reports, HandOver::IntegrationProgram);
   // The reference comparison's float sample_values, which the run reaches
   // after its first plan (its costliest compile there, ~2 s): the run waits
   // for it rather than compiling it beside the child

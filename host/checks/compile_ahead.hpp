@@ -68,9 +68,9 @@ class CompileAhead {
  private:
   pid_t pid_ = -1;
   bool only_ = false;
-  int reports_ = -1;    // the read end of the child's reports (a pipe); -1: none, or no more waiting
-  std::string seen_;    // the reports read
-  double forked_ = 0;   // steady-clock seconds at the fork
+  int reports_ = -1;   // the read end of the child's reports (a pipe); -1: none, or no more waiting
+  std::string seen_;   // the reports read
+  double forked_ = 0;  // steady-clock seconds at the fork
 };
 
 // auto's rule: at least two cores, and the other tasks running (their mean
