@@ -203,10 +203,17 @@ TEST_CASE("A compile-ahead child that fails or never ends leaves the run's resul
   // auto (the default) starts a child or not by the load; the results are the same either way
   CHECK(results("auto", "MFV_COMPILE_AHEAD=auto") == without);
   // A child that works hands the run the integration program (it built it into PoCL's cache)
-  CHECK(results("on", "MFV_COMPILE_AHEAD=1") == without);
+  // (POCL_AFFINITY unset: this test process's own list_devices set it, and an explicit value is kept)
+  CHECK(results("on", "env -u POCL_AFFINITY MFV_COMPILE_AHEAD=1") == without);
   const std::string on_log = test::slurp(scratch.dir / "on" / "child.log");
   CAPTURE(on_log);
   CHECK(on_log.find("mfv run: integration program taken from the child") != std::string::npos);
+  // beside the child, the run's and the child's PoCL workers are left unpinned (pin_pocl_workers pins
+  // otherwise): two lines, one a process
+  size_t unpinned = 0;
+  for (size_t at = 0; (at = on_log.find("PoCL's workers left unpinned beside the child", at)) != std::string::npos; ++at)
+    ++unpinned;
+  CHECK(unpinned == 2);
   for (const char* failure : {"abort", "hang"}) {
     CAPTURE(failure);
     CHECK(results(failure, std::string("MFV_COMPILE_AHEAD=1 MFV_COMPILE_AHEAD_TEST=") + failure) == without);
