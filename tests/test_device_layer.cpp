@@ -94,23 +94,19 @@ TEST_CASE("The table of checks gives each D x G x F check its kind, samples and 
 // (docs/performance.md, issue 32). Each CTest entry is its own process, so
 // list_devices() here comes before PoCL starts and its POCL_AFFINITY takes.
 TEST_CASE("PoCL's CPU worker threads are pinned one to a core", "[device][device_layer]") {
-  const char* before = std::getenv("POCL_AFFINITY");
-  if (before) test::skip(std::string("POCL_AFFINITY is set in the environment: ") + before);
-  Runtime* rt = before ? nullptr : test::device_runtime();
+  if (const char* before = std::getenv("POCL_AFFINITY"))
+    return test::skip(std::string("POCL_AFFINITY is set in the environment: ") + before);
+  Runtime* rt = test::device_runtime();
   if (!rt) return;
-  if (!test::is_pocl(*rt) || rt->device().type != "CPU" || rt->device().compute_units < 2) {
-    test::skip("not PoCL's CPU device with two cores or more");
-    return;
-  }
+  if (!test::is_pocl(*rt) || rt->device().type != "CPU" || rt->device().compute_units < 2)
+    return test::skip("not PoCL's CPU device with two cores or more");
   // pinned only where this process may run on every online CPU (PoCL pins worker i to CPU i)
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   const long online = ::sysconf(_SC_NPROCESSORS_ONLN);
   REQUIRE(::sched_getaffinity(0, sizeof allowed, &allowed) == 0);
-  if (CPU_COUNT(&allowed) != online) {
-    test::skip("this process may not run on every online CPU: PoCL's workers stay unpinned");
-    return;
-  }
+  if (CPU_COUNT(&allowed) != online)
+    return test::skip("this process may not run on every online CPU: PoCL's workers stay unpinned");
   const char* set = std::getenv("POCL_AFFINITY");
   CHECK(std::string(set ? set : "(unset)") == "1");
   // a launch, so that every worker has started

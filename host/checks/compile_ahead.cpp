@@ -83,6 +83,17 @@ static double others_running_now() {
   return readings > 0 ? sum / readings : std::numeric_limits<double>::infinity();  // unknown: busy
 }
 
+// A line in the compile-ahead log (MFV_COMPILE_AHEAD_LOG), where one is set:
+// the run's own notes beside the child's (the child's stderr is that file).
+static void append_to_log(const std::string& line) {
+  const std::string log = env("MFV_COMPILE_AHEAD_LOG");
+  if (log.empty()) return;
+  if (std::FILE* f = std::fopen(log.c_str(), "a")) {
+    std::fprintf(f, "%s\n", line.c_str());
+    std::fclose(f);
+  }
+}
+
 // Beside a child, the run and the child share the cores: PoCL's workers are
 // left unpinned (runtime/opencl.cpp pin_pocl_workers keeps this explicit 0;
 // a user's own POCL_AFFINITY is kept), so that a worker can move off the core
@@ -91,12 +102,7 @@ static double others_running_now() {
 static void leave_workers_unpinned() {
   if (std::getenv("POCL_AFFINITY")) return;
   ::setenv("POCL_AFFINITY", "0", 1);
-  const std::string log = env("MFV_COMPILE_AHEAD_LOG");
-  if (log.empty()) return;
-  if (std::FILE* f = std::fopen(log.c_str(), "a")) {
-    std::fprintf(f, "mfv run (pid %d): PoCL's workers left unpinned beside the child\n", int(::getpid()));
-    std::fclose(f);
-  }
+  append_to_log(fmt::format("mfv run (pid {}): PoCL's workers left unpinned beside the child", ::getpid()));
 }
 
 CompileAhead::CompileAhead(const SuitePlans& sp, const SuiteOptions& opt, const std::string& device_selector,
@@ -164,14 +170,11 @@ int CompileAhead::wait() {
 // The run's line in the child's log (MFV_COMPILE_AHEAD_LOG, where set) on a hand-over.
 static void note_hand_over(HandOver what, const char* outcome, double waited) {
   static std::string noted;  // each hand-over's outcome once (the comparison awaits sample_values per plan)
-  const std::string log = env("MFV_COMPILE_AHEAD_LOG");
-  if (log.empty() || noted.find(static_cast<char>(what)) != std::string::npos) return;
+  if (noted.find(static_cast<char>(what)) != std::string::npos) return;
   noted += static_cast<char>(what);
-  if (std::FILE* f = std::fopen(log.c_str(), "a")) {
-    std::fprintf(f, "mfv run: %s %s (waited %.2f s)\n",
-                 what == HandOver::IntegrationProgram ? "integration program" : "sample_values", outcome, waited);
-    std::fclose(f);
-  }
+  append_to_log(fmt::format("mfv run: {} {} (waited {:.2f} s)",
+                            what == HandOver::IntegrationProgram ? "integration program" : "sample_values", outcome,
+                            waited));
 }
 
 bool CompileAhead::await(HandOver what) {
