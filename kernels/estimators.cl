@@ -335,14 +335,16 @@ static inline real vis_pdf_i_aniso(real hx, real hy, real hz, real ox, real oy, 
 
 // A visible normal of that shape at o (Dupuy & Benyoub 2023, Listing 3:
 // stretch o by (wx, wy), draw from the spherical cap, unstretch the normal).
-static inline void sample_vis_aniso_c(real vx, real vy, real vz, real u_phi, real u_r, real wx, real wy, real* mx,
+// Takes v_r = 1 - u_r (sample_vis_aniso_c below gives it 1 - u_r; mfv run's
+// albedo, albedo_mis_geometry_c, a v_r formed without that rounding).
+static inline void sample_vis_aniso_v(real vx, real vy, real vz, real u_phi, real v_r, real wx, real wy, real* mx,
                                       real* my, real* mz) {
   real ox = wx * vx, oy = wy * vy, oz = vz;
   real inv = rsqrt(ox * ox + oy * oy + oz * oz);
   ox *= inv;
   oy *= inv;
   oz *= inv;
-  real z = (R(1.0) - u_r) * (R(1.0) + oz) - oz;
+  real z = v_r * (R(1.0) + oz) - oz;
   real st = sqrt(clamp(R(1.0) - z * z, R(0.0), R(1.0)));
   real2 sc = sincos_2pi(u_phi);
   real hx = wx * (st * sc.y + ox), hy = wy * (st * sc.x + oy), hz = z + oz;
@@ -351,6 +353,11 @@ static inline void sample_vis_aniso_c(real vx, real vy, real vz, real u_phi, rea
   *mx = hx * r;
   *my = hy * r;
   *mz = hz * r;
+}
+
+static inline void sample_vis_aniso_c(real vx, real vy, real vz, real u_phi, real u_r, real wx, real wy, real* mx,
+                                      real* my, real* mz) {
+  sample_vis_aniso_v(vx, vy, vz, u_phi, R(1.0) - u_r, wx, wy, mx, my, mz);
 }
 
 // A visible normal of D_w at o by spherical caps (Dupuy & Benyoub 2023,

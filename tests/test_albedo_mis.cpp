@@ -160,11 +160,11 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
   if (!rt) return;
   Integrator in(*rt, selection());
   // E(mu) of GGX + height-correlated Smith G2, F = 1, by quadrature
-  // (the peers' ggx_np.py; 7 digits): (alpha, mu) = (0.5, 0.5), (0.1, 0.1)
+  // (the peers' ggx_np.py; 7 digits): (alpha, mu) = (0.5, 0.5), (0.1, 0.1), (0.01, 0.9)
   struct Case {
     double alpha, mu, truth;
   };
-  const Case cases[] = {{0.5, 0.5, 0.6982507}, {0.1, 0.1, 0.8834550}};
+  const Case cases[] = {{0.5, 0.5, 0.6982507}, {0.1, 0.1, 0.8834550}, {0.01, 0.9, 0.9998865}};
   // t at a two-sided 1e-3 with 31 degrees of freedom (student_t_two_sided_quantile)
   const double t3 = stats::student_t_two_sided_quantile(1e-3, kMisReplicates - 1);
   for (const Case& c : cases) {
@@ -192,6 +192,42 @@ TEST_CASE("AlbedoMis: unbiased against quadrature, honest replicate errors, less
     const auto o = in.run({old}, 1 << 13, 11);
     CHECK(est[0].stderr_ * 3 < o[0].stderr_);
   }
+}
+
+TEST_CASE(
+    "AlbedoMis: 320 points x 32 reach SE 1e-4 at alpha 0.01, mu 0.9, and not without the rim-dense visible normals",
+    "[integrate][device][mis][planted]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  // issue 32's cell: before the rim-dense radial coordinate of the visible
+  // normals (kernels/albedo.cl) 320 points read rms SE 1.44e-4..1.49e-4
+  // (variance per point ~2.2e-4: (a)'s integrand falls from 1 to 0 within
+  // 1 - u_r < 0.03); with it ~7e-5 (variance per point ~5e-5). rms over 16
+  // independent integrals; the bound 1e-4 is 1.4x the expected SE, and the
+  // rms of 16 SEs of 31 degrees of freedom each spreads by ~3 % (chi-square,
+  // 496 dof).
+  const uint64_t samples = 320 * kMisReplicates;
+  auto rms_se = [&](Runtime& r) {
+    Integrator in(r, selection());
+    REQUIRE(in.mis_points(samples) == 320);
+    std::vector<IntegralSpec> specs;
+    for (uint32_t k = 0; k < 16; ++k)
+      specs.push_back(mis_spec("ggx", "smith_ggx_correlated", "none", 0.01, 0.9, 0, 0, k));
+    double ss = 0;
+    for (const auto& e : in.run(specs, samples, 17)) ss += e.stderr_ * e.stderr_ / specs.size();
+    return std::sqrt(ss);
+  };
+  const double se = rms_se(*rt);
+  INFO("rms SE " << se);
+  CHECK(se < 1e-4);
+  // planted: (a) at u_r itself (1 - u_r = v, weight 1), the estimator before the change
+  test::PlantedKernelDir plain("albedo.cl", "sample_vis_aniso_v(ox, R(0.0), oz, u_phi, v * v, w, w, &vx, &vy, &vz);",
+                               "sample_vis_aniso_v(ox, R(0.0), oz, u_phi, v, w, w, &vx, &vy, &vz);");
+  REQUIRE(plain.replace("albedo.cl", "*q_out = vis ? q / (R(2.0) * v) : q;", "*q_out = q;"));
+  Runtime planted = plain.runtime();
+  const double se_plain = rms_se(planted);
+  INFO("rms SE without the rim-dense coordinate " << se_plain);
+  CHECK(se_plain > 1e-4);
 }
 
 TEST_CASE("AlbedoMis: planted defects still fail the suite (a proposal that cancels a bug is a defect)",

@@ -184,15 +184,22 @@ double vis_pdf_i(const glm::dvec3& h, const glm::dvec3& o, double wx, double wy)
 
 // A visible normal of the GGX shape at o, by stretching to w = 1 and drawing
 // from the spherical cap (Dupuy & Benyoub 2023, Listing 3).
-glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, double wy) {
+// sample_vis_v takes v_r = 1 - u_r (mfv run's albedo forms it without rounding).
+namespace {
+glm::dvec3 sample_vis_v(const glm::dvec3& o, double u_phi, double v_r, double wx, double wy) {
   const glm::dvec3 os = glm::normalize(glm::dvec3(wx * o.x, wy * o.y, o.z));
   const double phi = 2.0 * M_PI * u_phi;
-  const double z = (1.0 - u_r) * (1.0 + os.z) - os.z;
+  const double z = v_r * (1.0 + os.z) - os.z;
   const double st = std::sqrt(std::clamp(1.0 - z * z, 0.0, 1.0));
   const glm::dvec3 hs = glm::dvec3(st * std::cos(phi), st * std::sin(phi), z) + os;
   const glm::dvec3 h(wx * hs.x, wy * hs.y, hs.z);
   const double len = glm::length(h);
   return len > 0.0 ? h / len : glm::dvec3(0.0);
+}
+}  // namespace
+
+glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double wx, double wy) {
+  return sample_vis_v(o, u_phi, 1.0 - u_r, wx, wy);
 }
 
 glm::dvec3 sample_vis(const glm::dvec3& o, double u_phi, double u_r, double w) { return sample_vis(o, u_phi, u_r, w, w); }
@@ -249,8 +256,9 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 // normal of the GGX shape (scramble seeds: Philox draw 3 at counter r, words
 // 0 and 1), the next n/10 a Cauchy slope (words 2, 3), the last n/10 the
 // cosine lobe (words 3, 2), each on Owen-scrambled Sobol points from its own
-// index 0; the shape and the slopes stretched to (width, width_y) where the
-// spec has a second width, the view at its azimuth phi_o. Balance heuristic
+// index 0 (the visible normals at the rim-dense u_r = 1 - (1 - t)²); the
+// shape and the slopes stretched to (width, width_y) where the spec has a
+// second width, the view at its azimuth phi_o. Balance heuristic
 // over the mixture c = (61/64, 1/64, 1/32) (Veach 1997 eq. 9.13), each point
 // weighted c_t n / n_t: f cos / (Σ c_t p_t).
 double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
@@ -262,11 +270,15 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
   const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
   glm::dvec3 i;
+  // the visible normals at u_r = 1 - (1 - t)², weight du_r/dt = 2(1 - t), t
+  // the net's coordinate (rim-dense (a) in kernels/albedo.cl)
+  const double jac = vis ? 2.0 * (1.0 - u_r) : 1.0;
   if (cosine) {
     const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
     i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
   } else {
-    const glm::dvec3 m = vis ? sample_vis(o, u_phi, u_r, wx, wy) : sample_m_aniso(1.0, u_phi, u_r, wx, wy);
+    const glm::dvec3 m =
+        vis ? sample_vis_v(o, u_phi, (1.0 - u_r) * (1.0 - u_r), wx, wy) : sample_m_aniso(1.0, u_phi, u_r, wx, wy);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
   if (i.z <= 0.0) return 0.0;
@@ -275,7 +287,7 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const double p_slope = pdf_slope_aniso(h, wx, wy) / (4.0 * glm::dot(o, h));
   const double q = c_vis * vis_pdf_i(h, o, wx, wy) + c_slope * p_slope + c_cos * i.z / M_PI;
   const double share = vis ? c_vis * n / n_vis : (cosine ? c_cos : c_slope) * n / n_def;
-  return share * spec_brdf(s.brdf, i, o) * i.z / q;
+  return share * jac * spec_brdf(s.brdf, i, o) * i.z / q;
 }
 
 }  // namespace
