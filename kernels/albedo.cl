@@ -173,22 +173,30 @@ static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg
 // that is not a power of two (3·2^10) gave no more than its 2^11 net alone.
 // Replicates are independent, so their spread gives an honest standard
 // error (host: Integrator::run, Student t with R - 1 degrees of freedom).
-// Rim-dense (a): (a) draws its visible normal at u_r = 1 - (1 - t)² from the
-// net's radial coordinate t and weights the point by du_r/dt = 2(1 - t) (a
-// change of variables in (a)'s own unit square, so its share's mean stays
-// unbiased, and q, the other shares and their points are untouched). Near
-// the cap's rim (u_r -> 1, h grazing the view) (a)'s integrand falls from
-// ~1 to 0 within 1 - u_r ~ 1e-3..3e-2 at alpha 0.01, mu 0.9, where the Cauchy
-// share's density overtakes the GGX shape's tail in q (and, below that, i
-// crosses the horizon): a step the net cannot resolve at 2^8 points. In t
-// it spans 1 - t ~ 0.03..0.17, the square root of its width in u_r (the
-// idea of rqmc_radial's polynomial transform, Sloan & Joe 1994 §2.12, at
-// one end). Measured in double (numpy twin of this estimator, 100-200
-// replicates), variance per point of the three shares together, before -> after: alpha 0.01, mu 0.9
-// at 320 points 2.5e-4 -> 5.1e-5, at 2560 6.5e-6 -> 3.0e-6; alpha 0.1,
-// mu 0.1 at 2560 2.6e-4 -> 4.3e-5; alpha 0.5, mu 0.5 at 2560 2.6e-5 ->
-// 2.2e-5 (docs/statistics.md). A cube, (1 - t)³, or the Korobov cubic
-// did less; the same warp on the Cauchy share raised its variance.
+// Rim-dense (a): (a) draws its visible normal at 1 - u_r = (1 - t)^1.5
+// from the net's radial coordinate t and weights the point by du_r/dt =
+// 1.5 (1 - t)^0.5 (a change of variables in (a)'s own unit square, so its
+// share's mean stays unbiased, and q, the other shares and their points are
+// untouched). Near the cap's rim (u_r -> 1, h grazing the view) (a)'s
+// integrand falls from ~1 to 0 within 1 - u_r ~ 1e-3..3e-2 at alpha 0.01,
+// mu 0.9, where the Cauchy share's density overtakes the GGX shape's tail
+// in q (and, below that, i crosses the horizon): a step the net cannot
+// resolve at 2^8 points; in t it is 1e-2..1e-1 wide (the idea of
+// rqmc_radial's polynomial transform, Sloan & Joe 1994 §2.12, at one end).
+// The exponent is the D's to pay for: (a) is the GGX shape whatever D is
+// under test, and a lighter-tailed D (Beckmann, Phong) is ~0 near the rim,
+// where the change puts more points. Measured in double (numpy twin of
+// this share, 80 points, 100 replicates, alpha 0.01..1 x mu 0.02..0.99),
+// the summed variance per point against exponent 1 (no change), 1.25, 1.5,
+// 2: GGX D 0.063, 0.036, 0.028, 0.030; Beckmann D 0.159, 0.176, 0.180,
+// 0.266. At 2 mfv run's furnace pooled SEs rose 1.2-1.45x for every
+// non-GGX D (fell 0.6-0.8x for GGX): 1.5 keeps GGX's gain at about a tenth
+// of that cost. Variance per point of the three shares together (twin,
+// 150-200 replicates), before -> after: alpha 0.01, mu 0.9 at 320 points
+// 2.5e-4 -> 5.3e-5, at 2560 6.5e-6 -> 3.1e-6; alpha 0.1, mu 0.1 at 2560
+// 2.6e-4 -> 4.1e-5; alpha 0.5, mu 0.5 at 2560 2.6e-5 -> 2.3e-5
+// (docs/statistics.md). The same change on the Cauchy share raised its
+// variance.
 // Reference twin: albedo_mis in host/reference/estimators.cpp.
 #define MIS_C_VIS R(0.9375)
 #define MIS_C_SLOPE R(0.03125)
@@ -236,10 +244,10 @@ static inline MFV_ALWAYS_INLINE void albedo_mis_geometry_c(int f, real f0, real 
   owen_sobol_2d(j, vis ? shift.x : cosine ? shift.w : shift.z, vis ? shift.y : cosine ? shift.z : shift.w, &u_phi, &u_r);
   real so2 = sin2_from_cos(co), ox = sqrt(so2), oz = co;  // the view in the xz-plane
   real vx, vy, vz, sx, sy, sz, s2;
-  // (a) at its rim-dense radial coordinate (above ALB_C_VIS): 1 - u_r = (1 - t)², t the net's
-  // coordinate (1 - t exact: u01_open's values are odd multiples of 2^-24)
-  real v = R(1.0) - u_r;
-  sample_vis_aniso_v(ox, R(0.0), oz, u_phi, v * v, w, w, &vx, &vy, &vz);
+  // (a) at its rim-dense radial coordinate (above ALB_C_VIS): 1 - u_r = (1 - t)^1.5, t the
+  // net's coordinate (1 - t exact: u01_open's values are odd multiples of 2^-24)
+  real v = R(1.0) - u_r, sv = sqrt(v);
+  sample_vis_aniso_v(ox, R(0.0), oz, u_phi, v * sv, w, w, &vx, &vy, &vz);
   sample_m_c(false, u_phi, u_r, w, &sx, &sy, &sz, &s2);
   real mx = vis ? vx : sx, my = vis ? vy : sy, mz = vis ? vz : sz;
   real om2 = R(2.0) * (ox * mx + oz * mz);  // o reflected about m (m = 0, a degenerate visible normal: i = -o)
@@ -253,7 +261,7 @@ static inline MFV_ALWAYS_INLINE void albedo_mis_geometry_c(int f, real f0, real 
   // of h with the reflection Jacobian 1 / (4 o·h); (c) cos/π
   real q = ALB_C_VIS * vis_pdf_i(hz, hs2, oz, so2, w) + ALB_C_SLOPE * pdf_slope(hz, hs2, w) / (R(4.0) * oh) +
            ALB_C_COS * iz * MFV_INV_PI;
-  *q_out = vis ? q / (R(2.0) * v) : q;  // (a)'s weight du_r/dt = 2(1 - t) as a divisor of q
+  *q_out = vis ? q / (R(1.5) * sv) : q;  // (a)'s weight du_r/dt = 1.5 (1 - t)^0.5 as a divisor of q
   *iz_out = iz;
   *hz_out = hz;
   *hs2_out = hs2;
@@ -311,7 +319,7 @@ static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shif
   } else {
     real mx, my, mz, s2;
     real v = R(1.0) - u_r;  // (a) rim-dense, as albedo_mis_geometry_c
-    if (vis) sample_vis_aniso_v(o.x, o.y, o.z, u_phi, v * v, wx, wy, &mx, &my, &mz);
+    if (vis) sample_vis_aniso_v(o.x, o.y, o.z, u_phi, v * sqrt(v), wx, wy, &mx, &my, &mz);
     else sample_m_aniso_c(false, u_phi, u_r, wx, wy, &mx, &my, &mz, &s2);
     real om2 = R(2.0) * (o.x * mx + o.y * my + o.z * mz);
     ix = om2 * mx - o.x;
@@ -324,7 +332,7 @@ static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shif
   real q = ALB_C_VIS * vis_pdf_i_aniso(hx, hy, hz, o.x, o.y, o.z, wx, wy) +
            ALB_C_SLOPE * pdf_slope_aniso(hx, hy, hz, wx, wy) / (R(4.0) * oh) + ALB_C_COS * iz * MFV_INV_PI;
   real share = vis ? ALB_SHARE_VIS : cosine ? ALB_SHARE_COS : ALB_SHARE_SLOPE;
-  q = vis ? q / (R(2.0) * (R(1.0) - u_r)) : q;  // (a)'s du_r/dt, as albedo_mis_geometry_c
+  q = vis ? q / (R(1.5) * sqrt(R(1.0) - u_r)) : q;  // (a)'s du_r/dt, as albedo_mis_geometry_c
   return share * spec_brdf(s, (real3)(ix, iy, iz), o) * iz / q;
 }
 

@@ -256,7 +256,7 @@ double albedo_rqmc(const IntegralRef& s, uint64_t seed, uint64_t index) {
 // normal of the GGX shape (scramble seeds: Philox draw 3 at counter r, words
 // 0 and 1), the next n/10 a Cauchy slope (words 2, 3), the last n/10 the
 // cosine lobe (words 3, 2), each on Owen-scrambled Sobol points from its own
-// index 0 (the visible normals at the rim-dense u_r = 1 - (1 - t)²); the
+// index 0 (the visible normals at the rim-dense 1 - u_r = (1 - t)^1.5); the
 // shape and the slopes stretched to (width, width_y) where the spec has a
 // second width, the view at its azimuth phi_o. Balance heuristic
 // over the mixture c = (61/64, 1/64, 1/32) (Veach 1997 eq. 9.13), each point
@@ -270,15 +270,15 @@ double albedo_mis(const IntegralRef& s, uint64_t seed, uint64_t index) {
   const double so = std::sqrt(1.0 - s.cos_o * s.cos_o);
   const glm::dvec3 o(so * std::cos(s.phi_o), so * std::sin(s.phi_o), s.cos_o);
   glm::dvec3 i;
-  // the visible normals at u_r = 1 - (1 - t)², weight du_r/dt = 2(1 - t), t
-  // the net's coordinate (rim-dense (a) in kernels/albedo.cl)
-  const double jac = vis ? 2.0 * (1.0 - u_r) : 1.0;
+  // the visible normals at 1 - u_r = (1 - t)^1.5, weight du_r/dt =
+  // 1.5 (1 - t)^0.5, t the net's coordinate (rim-dense (a) in kernels/albedo.cl)
+  const double jac = vis ? 1.5 * std::sqrt(1.0 - u_r) : 1.0;
   if (cosine) {
     const double st = std::sqrt(u_r), phi = 2.0 * M_PI * u_phi;
     i = {st * std::cos(phi), st * std::sin(phi), std::sqrt(1.0 - u_r)};
   } else {
     const glm::dvec3 m =
-        vis ? sample_vis_v(o, u_phi, (1.0 - u_r) * (1.0 - u_r), wx, wy) : sample_m_aniso(1.0, u_phi, u_r, wx, wy);
+        vis ? sample_vis_v(o, u_phi, std::pow(1.0 - u_r, 1.5), wx, wy) : sample_m_aniso(1.0, u_phi, u_r, wx, wy);
     i = 2.0 * glm::dot(o, m) * m - o;
   }
   if (i.z <= 0.0) return 0.0;
