@@ -299,7 +299,7 @@ static inline MFV_ALWAYS_INLINE real albedo_mis_microfacet(int d, int g, int f, 
 // terms, whole models, a scene's glTF lobes, a user's BRDF): the view o at
 // its azimuth (spec_view), the BRDF through spec_brdf, and proposals (a) and
 // (b) stretched to the widths (width, width_y) where the spec has two
-// (vis_pdf_i_aniso, sample_vis_aniso_c, pdf_slope_aniso; sample_m_aniso_c
+// (vis_pdf_i_aniso, sample_vis_aniso_v at the rim-dense coordinate, pdf_slope_aniso; sample_m_aniso_c
 // for the slopes), the same points, shares and weights as
 // albedo_mis_microfacet, which it equals up to rounding at one width and
 // phi_o = 0. Needs a width > 0 (a user file that declares no roughness keeps
@@ -313,13 +313,13 @@ static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shif
   owen_sobol_2d(j, vis ? shift.x : cosine ? shift.w : shift.z, vis ? shift.y : cosine ? shift.z : shift.w, &u_phi, &u_r);
   real wx = s->width, wy = spec_stretched(s) ? s->width_y : s->width;
   real3 o = spec_view(s);
+  real v = R(1.0) - u_r, sv = sqrt(v);  // (a) rim-dense, as albedo_mis_geometry_c
   real ix, iy, iz;
   if (cosine) {
     cosine_direction(u_phi, u_r, &ix, &iy, &iz);
   } else {
     real mx, my, mz, s2;
-    real v = R(1.0) - u_r;  // (a) rim-dense, as albedo_mis_geometry_c
-    if (vis) sample_vis_aniso_v(o.x, o.y, o.z, u_phi, v * sqrt(v), wx, wy, &mx, &my, &mz);
+    if (vis) sample_vis_aniso_v(o.x, o.y, o.z, u_phi, v * sv, wx, wy, &mx, &my, &mz);
     else sample_m_aniso_c(false, u_phi, u_r, wx, wy, &mx, &my, &mz, &s2);
     real om2 = R(2.0) * (o.x * mx + o.y * my + o.z * mz);
     ix = om2 * mx - o.x;
@@ -332,7 +332,7 @@ static inline real albedo_mis_general(__global const IntegralSpec* s, uint4 shif
   real q = ALB_C_VIS * vis_pdf_i_aniso(hx, hy, hz, o.x, o.y, o.z, wx, wy) +
            ALB_C_SLOPE * pdf_slope_aniso(hx, hy, hz, wx, wy) / (R(4.0) * oh) + ALB_C_COS * iz * MFV_INV_PI;
   real share = vis ? ALB_SHARE_VIS : cosine ? ALB_SHARE_COS : ALB_SHARE_SLOPE;
-  q = vis ? q / (R(1.5) * sqrt(R(1.0) - u_r)) : q;  // (a)'s du_r/dt, as albedo_mis_geometry_c
+  q = vis ? q / (R(1.5) * sv) : q;  // (a)'s du_r/dt, as albedo_mis_geometry_c
   return share * spec_brdf(s, (real3)(ix, iy, iz), o) * iz / q;
 }
 
