@@ -288,3 +288,35 @@ TEST_CASE("a one-pair AlbedoMis kernel that evaluates another D or G than its pa
     CHECK(differ == 3);  // the pair's three integrals, not the other pair's
   }
 }
+
+TEST_CASE("The microfacet reciprocity kernel takes a launch only where its compile pays, with the generic "
+          "kernel's asymmetries to the bit",
+          "[device][specialize][reciprocity]") {
+  // Integrator::reciprocity: isotropic microfacet integrals go to
+  // reciprocity_values_microfacet from kMicrofacetReciprocityPairs pairs a
+  // launch, otherwise to reciprocity_values; both draw the same pairs and
+  // evaluate the same BRDF, so the worst asymmetry and its pair agree
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  std::vector<IntegralSpec> specs = mixed_specs();
+  for (auto& s : specs) s.check = static_cast<int32_t>(IntegralKind::DNorm), s.strata = 0;  // kind ignored
+  const uint32_t pairs = 4096;
+  REQUIRE(uint64_t(specs.size()) * pairs < kMicrofacetReciprocityPairs);
+  Integrator small(*rt, three_of_each()), forced(*rt, three_of_each());
+  forced.set_microfacet_reciprocity_from(0);
+  const WorstPairs a = small.reciprocity(specs, pairs, 7), b = forced.reciprocity(specs, pairs, 7);
+  CHECK(small.launched_kernels().count("reciprocity_values_microfacet") == 0);
+  CHECK(forced.launched_kernels().count("reciprocity_values_microfacet") == 1);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    INFO("integral " << i << ": generic " << a.worst[i] << " at " << a.at[i] << ", microfacet " << b.worst[i]
+                     << " at " << b.at[i]);
+    CHECK(a.worst[i] > 0);
+    CHECK(a.worst[i] == b.worst[i]);
+    CHECK(a.at[i] == b.at[i]);
+  }
+  // a launch that holds the threshold's pairs takes the microfacet kernel
+  Integrator large(*rt, three_of_each());
+  large.set_microfacet_reciprocity_from(uint64_t(specs.size()) * pairs);
+  large.reciprocity(specs, pairs, 7);
+  CHECK(large.launched_kernels().count("reciprocity_values_microfacet") == 1);
+}

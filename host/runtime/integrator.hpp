@@ -11,6 +11,7 @@
 #include "abi/integral.h"
 #include "runtime/dispatch.hpp"
 #include "runtime/opencl.hpp"
+#include "runtime/specialize.hpp"
 #include "util/progress.hpp"
 
 #include <algorithm>
@@ -132,6 +133,11 @@ class Integrator {
   // reciprocity_values: one pair per work-item; the microfacet kernel where
   // the program has it and the spec is an isotropic model-0 BRDF).
   WorstPairs reciprocity(const std::vector<IntegralSpec>& specs, uint32_t pairs, uint64_t seed);
+  // The microfacet reciprocity kernel takes a launch's isotropic microfacet
+  // integrals only where they hold at least `pairs` pairs in all (default
+  // kMicrofacetReciprocityPairs: where its compile pays); 0: always (mfv
+  // bench, tests of that kernel). The floats are the same either way.
+  void set_microfacet_reciprocity_from(uint64_t pairs) { microfacet_reciprocity_from_ = pairs; }
 
   Runtime& runtime() { return rt_; }
   const cl::Program& program() const { return program_; }
@@ -197,6 +203,7 @@ class Integrator {
   // `integrate`'s work-group size, local_size_
   std::set<std::string> check_kernels_;
   bool compile_ahead_ = false;
+  uint64_t microfacet_reciprocity_from_ = kMicrofacetReciprocityPairs;
   uint32_t mis_replicates_ = kMisReplicates;
   size_t local_size_ = 64;          // of `integrate`: 64, or less where the device or kernel allows less
   progress::Task* task_ = nullptr;  // run()'s progress, advanced as each batch's sums are read

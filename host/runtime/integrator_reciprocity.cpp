@@ -65,11 +65,20 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
     if (specs[i].model != MFV_MODEL_MICROFACET && kernel_names_.count(name)) by_model[name].push_back(i);
     else slow.push_back(i);
   }
+  // the microfacet kernel only where its compile pays (kMicrofacetReciprocityPairs);
+  // otherwise the generic one takes those integrals too, the same floats
+  if (uint64_t(fast.size()) * pairs < microfacet_reciprocity_from_) {
+    slow.insert(slow.end(), fast.begin(), fast.end());
+    fast.clear();
+  }
   if (compile_ahead_) {  // one integral of each kernel's group
     for (auto* at : {&fast, &slow}) at->resize(std::min<size_t>(at->size(), 1));
     for (auto& [name, at] : by_model) at.resize(1);
   }
-  if (!fast.empty()) worst_of(microfacet, specs, fast, pairs, seed, out);
+  if (!fast.empty()) {
+    launched_.insert("reciprocity_values_microfacet");
+    worst_of(microfacet, specs, fast, pairs, seed, out);
+  }
   for (const auto& [name, at] : by_model) {
     cl::Kernel k = launched(name);
     worst_of(k, specs, at, pairs, seed, out);

@@ -46,6 +46,17 @@ std::string generate_model_specializations(const std::vector<const Model*>& mode
 constexpr double kModelReciprocityPairsPerKernel = 1e7;
 bool model_reciprocity_per_model_pays(uint64_t pairs, size_t models);
 
+// From how many microfacet pairs in one reciprocity launch (all its
+// integrals) reciprocity_values_microfacet takes them rather than the generic
+// reciprocity_values (the same floats): the kernel costs a compile on a cold
+// run, 1.15 s of CPU (AMD EPYC Zen 4, AVX2, PoCL 3.1 pthread-haswell: mfv run
+// --check reciprocity cold, 3.90 s against 2.75 s), and saves 77 ms of CPU a
+// million pairs warm (mfv bench --integrand reciprocity: 6.5e7 pairs per
+// CPU-second against 1.09e7 for the generic kernel); so from 1.5e7 pairs,
+// about --scale 40 of the default run's 4e5 microfacet pairs
+// (docs/performance.md, "Cold start").
+constexpr uint64_t kMicrofacetReciprocityPairs = 15000000;
+
 // OpenCL C that defines `integrate` for the iid integrals of one check
 // (kernels/integrate.cl MFV_INTEGRATE_IID) for the checks that have one
 // (the transmission checks' masking_t and bsdf_avg): the generic kernel's
