@@ -47,8 +47,9 @@ namespace {
 // mean estimate 3.61e-6, mean actual error 2.42e-7 (beckmann/smith_beckmann:
 // 3.21e-6, 4.74e-7); the pooled test adds the mean estimate to its bias
 // bound. The error lies in phi, not in t: with 2 panels a decade the fine
-// rule read 3.59e-6 and 2.0e-7 (beckmann 3.02e-6, 8.3e-8) at 1.47x the nodes
-// (issue 30: the truth is a cold run's host CPU). The former pair (order 8
+// rule read 3.59e-6 and 2.0e-7 (beckmann 3.02e-6, 8.3e-8) with 34560 nodes a
+// view against 18432 (the three rules 54240 against 38112; issue 30: the
+// truth is a cold run's host CPU). The former pair (order 8
 // and 6, 2 and 4 phi panels) read 3.94e-5 against 3.58e-6
 // (tests/test_furnace_truth.cpp).
 const ProductRule kFine{12, 1, 8, 1e-7}, kCoarse{10, 2, 4, 1e-7}, kCoarser{8, 2, 4, 1e-7};
