@@ -320,3 +320,37 @@ TEST_CASE("The microfacet reciprocity kernel takes a launch only where its compi
   large.reciprocity(specs, pairs, 7);
   CHECK(large.launched_kernels().count("reciprocity_values_microfacet") == 1);
 }
+
+TEST_CASE("A pair's RQMC albedo kernel is specialized only where an RQMC integral of the pair asks for it",
+          "[specialize]") {
+  // fast_path_pairs marks the pairs with an AlbedoRqmc or EavgRqmc integral;
+  // generate_specializations gives albedo_rqmc_values only to those (mfv
+  // run has none: one front-end compile fewer per pair on a cold run)
+  using test::albedo_spec;
+  const std::vector<IntegralSpec> mis_only = {
+      albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.3, 0.7, 0.04, 0.0, 0, IntegralKind::AlbedoMis),
+      albedo_spec("beckmann", "smith_beckmann", "none", 0.05, 0.5, 1.0, 0.0, 1, IntegralKind::Masking)};
+  const std::vector<TermPair> none = fast_path_pairs(mis_only);
+  REQUIRE(none.size() == 2);
+  for (const TermPair& p : none) CHECK_FALSE(p.rqmc);
+  CHECK(generate_specializations(none).find("MFV_ALBEDO_RQMC_VALUES") == std::string::npos);
+  CHECK(generate_specializations(none).find("MFV_ALBEDO_MIS_VALUES") != std::string::npos);
+  std::vector<IntegralSpec> one = mis_only;
+  one.push_back(albedo_spec("ggx", "smith_ggx_correlated", "schlick", 0.5, 0.5, 0.04, 0.0, 2, IntegralKind::AlbedoRqmc));
+  const std::vector<TermPair> marked = fast_path_pairs(one);
+  REQUIRE(marked.size() == 2);
+  const int ggx = term_index(find_term("ggx")), corr = term_index(find_term("smith_ggx_correlated"));
+  const int beckmann = term_index(find_term("beckmann")), separable = term_index(find_term("smith_beckmann"));
+  const std::string text = generate_specializations(marked);
+  CHECK(text.find(fmt::format("albedo_rqmc_values__d{}_g{},", ggx, corr)) != std::string::npos);
+  CHECK(text.find(fmt::format("albedo_rqmc_values__d{}_g{},", beckmann, separable)) == std::string::npos);
+  // a selection that asks for a pair's RQMC kernel keeps it when merged with one that does not
+  TermSelection a, b;
+  a.specialized = none;
+  b.specialized = marked;
+  a.add(b);
+  REQUIRE(a.specialized.size() == 2);
+  for (const TermPair& p : a.specialized) CHECK(p.rqmc == (p.d == ggx && p.g == corr));
+  // a pair given by hand (mfv energy's tables, bench --case) keeps its RQMC kernel
+  CHECK(TermPair{ggx, corr}.rqmc);
+}

@@ -29,7 +29,13 @@ void TermSelection::add(const TermSelection& o) {
   g1 = g1 || o.g1;
   reciprocity_per_model = reciprocity_per_model || o.reciprocity_per_model;
   std::set<TermPair> pairs(specialized.begin(), specialized.end());
-  pairs.insert(o.specialized.begin(), o.specialized.end());
+  for (const TermPair& p : o.specialized) {
+    auto [at, added] = pairs.insert(p);
+    if (!added && p.rqmc && !at->rqmc) {  // the pair's RQMC kernel where either selection asks for it
+      pairs.erase(at);
+      pairs.insert(p);
+    }
+  }
   specialized.assign(pairs.begin(), pairs.end());
 }
 

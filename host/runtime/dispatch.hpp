@@ -12,9 +12,13 @@
 
 namespace mfv {
 
-// A D and a G term by id (term_index).
+// A D and a G term by id (term_index), and whether the program specializes
+// the RQMC albedo kernel to the pair too (mfv energy's tables; a run whose
+// integrals of the pair are all AlbedoMis or masking leaves it out: one
+// front-end compile fewer per pair, runtime/specialize.hpp fast_path_pairs).
 struct TermPair {
   int d = 0, g = 0;
+  bool rqmc = true;
   bool operator<(const TermPair& o) const { return d != o.d ? d < o.d : g < o.g; }
 };
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 namespace mfv {
@@ -20,6 +21,7 @@ struct Specializable {
   By by;
   bool d_norm;
   bool one_pair = false;
+  bool rqmc = false;  // only for the pairs whose `rqmc` is set (fast_path_pairs)
 };
 constexpr Specializable kSpecializable[] = {
     {"d_norm_values", "MFV_D_NORM_VALUES", By::D, true},
@@ -28,7 +30,7 @@ constexpr Specializable kSpecializable[] = {
     {"masking_values", "MFV_MASKING_VALUES", By::G, false},
     {"albedo_mis_df", "MFV_ALBEDO_MIS_DF", By::D, false},
     {"albedo_mis_values", "MFV_ALBEDO_MIS_VALUES", By::G, false},
-    {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", By::Pair, false},
+    {"albedo_rqmc_values", "MFV_ALBEDO_RQMC_VALUES", By::Pair, false, false, true},
     // AlbedoMis in one kernel, for a program of one pair only (bench --case, one model): one
     // launch instead of three; many pairs keep the three kernels' compiles (one per D, one per G)
     {"albedo_mis_pair", "MFV_ALBEDO_MIS_PAIR", By::Pair, false, true},
@@ -69,13 +71,17 @@ const Specializable* find(const std::string& base) {
 }  // namespace
 
 std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs) {
-  std::set<TermPair> pairs;
+  std::map<std::pair<int, int>, bool> pairs;  // (D, G) -> an RQMC integral among them
   // as Integrator's values_kernel and AlbedoMis: catalog terms (model 0),
   // isotropic (no second width, view in the xz-plane), one width
   for (const auto& s : specs)
-    if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && s.width > 0)
-      pairs.insert({s.d, s.check == MFV_CHECK_D_NORM ? kNoG : s.g});
-  return {pairs.begin(), pairs.end()};
+    if (s.estimator == 0 && s.model == 0 && !(s.pd2 > 0) && !(s.width_y > 0) && s.phi_o == 0 && s.width > 0) {
+      const bool rqmc = s.check == MFV_CHECK_ALBEDO_RQMC || s.check == MFV_CHECK_EAVG_RQMC;
+      pairs[{s.d, s.check == MFV_CHECK_D_NORM ? kNoG : s.g}] |= rqmc;
+    }
+  std::vector<TermPair> out;
+  for (const auto& [dg, rqmc] : pairs) out.push_back({dg.first, dg.second, rqmc});
+  return out;
 }
 
 std::string generate_specializations(const std::vector<TermPair>& pairs) {
@@ -84,7 +90,7 @@ std::string generate_specializations(const std::vector<TermPair>& pairs) {
   const auto others = std::count_if(pairs.begin(), pairs.end(), [](const TermPair& p) { return p.g != kNoG; });
   for (const auto& p : pairs)
     for (const auto& k : kSpecializable)
-      if (k.d_norm == (p.g == kNoG) && (!k.one_pair || others == 1)) {
+      if (k.d_norm == (p.g == kNoG) && (!k.one_pair || others == 1) && (p.rqmc || !k.rqmc)) {
         const std::string name = name_of(k.base, p.d, p.g, k.by);
         if (defined.insert(name).second) out += fmt::format("{}({}, {})\n", k.macro, name, ids_of(p.d, p.g, k.by));
       }

@@ -17,13 +17,14 @@ namespace mfv {
 
 // The (D, G) pairs of the isotropic microfacet integrals among `specs` (the
 // ones the fast paths take), each once, in a fixed order; d_norm integrals
-// give (D, kNoG).
+// give (D, kNoG). A pair's `rqmc` is set where one of its integrals is
+// AlbedoRqmc or EavgRqmc (albedo_rqmc_values).
 constexpr int kNoG = -1;
 std::vector<TermPair> fast_path_pairs(const std::vector<IntegralSpec>& specs);
 
 // OpenCL C that defines the specialized kernels of `pairs` (after
 // kernels/integrate.cl): d_norm_values for (D, kNoG); albedo_rqmc_values
-// for the other pairs, and masking's masking_d and AlbedoMis's albedo_mis_df
+// for the other pairs whose `rqmc` is set, and masking's masking_d and AlbedoMis's albedo_mis_df
 // per D and masking_values and albedo_mis_values per G of those pairs (each
 // once); where there is one such pair (not counting d_norm's), also
 // albedo_mis_pair, AlbedoMis's three kernels in one for that pair.
