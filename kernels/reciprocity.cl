@@ -7,8 +7,12 @@
 // near-mirror. Pair `index` (Philox draw 1; reference twin: reciprocity_pair
 // in host/reference/estimators.cpp), by components: directions from sincos_2pi, the
 // near-retro/mirror offsets normalised with rsqrt, both sides selected.
-static inline void reciprocity_pair_c(__global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay,
-                                      real* az, real* bx, real* by, real* bz) {
+// (flatten and MFV_ALWAYS_INLINE: inlined with its Philox call, also where a
+// kernel calls it twice, reciprocity_values_microfacet)
+static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c(__global const IntegralSpec* s,
+                                                                                 ulong seed, uint index, real* ax,
+                                                                                 real* ay, real* az, real* bx,
+                                                                                 real* by, real* bz) {
   uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 1u), index);
   uint kind = index % 4u;
   real scale = kind == 1u ? R(1e-3) : R(1.0);  // both grazing
@@ -64,25 +68,41 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const Integr
 }
 
 #if !defined(MFV_USER_BRDF) && !defined(MFV_DOUBLE)
-// The microfacet kernel (model 0, isotropic): work-item (k, j) draws pair k
-// of integral j once and evaluates f(a, b) and f(b, a) with brdf_eval_c,
-// the same floats reciprocity_values gives. flatten inlines both calls; the
-// terms and the generated eval_D/eval_G/eval_F under them are always_inline,
-// so no call is left and PoCL vectorizes the work-item loop.
-__kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs,
-                                                                     ulong seed, __global float* restrict asym) {
-  size_t k = get_global_id(0), j = get_global_id(1);
-  __global const IntegralSpec* s = specs + j;
+// The microfacet asymmetry of pair `index` (model 0, isotropic): the pair
+// drawn once, f(a, b) and f(b, a) with brdf_above_c, the same floats
+// reciprocity_values gives. brdf_eval_c's horizon test once for both
+// values, in select form: a branch would leave the parameters' loads
+// conditional (haswell: scalar).
+static inline MFV_ALWAYS_INLINE float reciprocity_microfacet_asym(__global const IntegralSpec* s, ulong seed,
+                                                                  uint index) {
   real ax, ay, az, bx, by, bz;
-  reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);
-  // brdf_eval_c's horizon test once for both values, in select form: a
-  // branch would leave the parameters' loads conditional (haswell: scalar)
+  reciprocity_pair_c(s, seed, index, &ax, &ay, &az, &bx, &by, &bz);
   bool below = fmin(az, bz) <= R(0.0);
   real fab = brdf_above_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
   real fba = brdf_above_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
   fab = below ? R(0.0) : fab;
   fba = below ? R(0.0) : fba;
-  asym[j * get_global_size(0) + k] = reciprocity_asym(fab, fba);
+  return reciprocity_asym(fab, fba);
+}
+
+// The microfacet kernel, two pairs per work-item: work-item (k, j) of a
+// launch n = get_global_size(0) wide writes pairs k and k + n of integral j
+// (the host launches half the pairs, Integrator::worst_of). One pair is
+// one long chain of dependent operations (Philox's ten rounds, the
+// directions, then 7 square roots and 17 divisions, 8 lanes at a time on
+// haswell), longer than the core's out-of-order window reaches; two
+// independent chains in one body let the core overlap them
+// (docs/performance.md, "Reciprocity: two pairs per work-item"). Pair k + n
+// is not pair k + 1, so LLVM's SLP pass finds no adjacent stores from which
+// to pair the two into 2-lane vectors. flatten inlines both calls; the terms
+// and the generated eval_D/eval_G/eval_F under them are always_inline, so no
+// call is left and PoCL vectorizes the work-item loop.
+__kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs,
+                                                                     ulong seed, __global float* restrict asym) {
+  size_t k = get_global_id(0), j = get_global_id(1), n = get_global_size(0);
+  __global const IntegralSpec* s = specs + j;
+  asym[j * 2 * n + k] = reciprocity_microfacet_asym(s, seed, (uint)k);
+  asym[j * 2 * n + k + n] = reciprocity_microfacet_asym(s, seed, (uint)(k + n));
 }
 
 // The whole-model kernel for the constant model id MODEL, one per model

@@ -254,7 +254,8 @@ const BenchRow* find_row(const BenchReport& r, const std::string& integrand, con
 //   d_norm: d_norm_values 34 flops, 81 integer ops (Philox's 32x32->64
 //     multiplies in 64-bit lanes, xors, shifts, masks).
 //   albedo: albedo_values 134 flops, 114 integer ops.
-//   reciprocity: reciprocity_values_microfacet 191 flops, 128 integer ops.
+//   reciprocity: reciprocity_values_microfacet 382 flops, 255 integer ops per work-item, which
+//     takes two pairs: 191 and 128 per pair.
 // The hand counts they replace (77, 172, 185 + 4 sin/cos) had counted
 // sincos_2pi in d_norm's path, where the kernel has none.
 FlopCount flops_per_sample(const std::string& integrand) {

@@ -193,7 +193,7 @@ class Integrator {
   cl::Buffer nan_buffer(cl_mem_flags flags, size_t bytes);
   // One launch of a reciprocity kernel over specs[at[..]] into out.
   void worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at, uint32_t pairs,
-                uint64_t seed, WorstPairs& out);
+                uint64_t seed, WorstPairs& out, uint32_t per_item = 1);
   Runtime& rt_;
   cl::Program program_;
   bool acc_double_;

@@ -12,13 +12,15 @@
 namespace mfv {
 
 // One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each;
-// `k` writes one asymmetry per pair (kernels/reciprocity.cl).
+// `k` writes one asymmetry per pair, per_item pairs per work-item (kernels/reciprocity.cl:
+// reciprocity_values_microfacet writes pairs i and i + pairs / 2; per_item divides pairs).
 void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
-                          uint32_t pairs, uint64_t seed, WorstPairs& out) {
+                          uint32_t pairs, uint64_t seed, WorstPairs& out, uint32_t per_item) {
+  const uint32_t items = pairs / per_item;  // work-items per integral
   const size_t kMaxValues = size_t(1) << 22;  // 16 MiB of asymmetries a launch
   const size_t per_launch = std::max<size_t>(1, kMaxValues / pairs);
   size_t local = fit_local_size(k, rt_.device().device, 256);  // the device's and kernel's limits
-  while (pairs % local != 0) local /= 2;                       // a power of two that divides pairs
+  while (items % local != 0) local /= 2;                       // a power of two that divides items
   for (size_t first = 0; first < at.size() && !(compile_ahead_ && first > 0); first += per_launch) {
     const size_t count = std::min(per_launch, at.size() - first);
     std::vector<IntegralSpec> batch;
@@ -28,7 +30,7 @@ void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs,
     k.setArg(0, sb);
     k.setArg(1, static_cast<cl_ulong>(seed));
     k.setArg(2, ab);
-    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(pairs, count), cl::NDRange(local, 1));
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items, count), cl::NDRange(local, 1));
     std::vector<float> a(count * pairs);
     rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
     for (size_t i = 0; i < count; ++i) {
@@ -57,7 +59,10 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   // one (kernels/reciprocity.cl MFV_MODEL_RECIPROCITY_VALUES, PoCL only)
   std::map<std::string, std::vector<size_t>> by_model;
   for (size_t i = 0; i < specs.size(); ++i) {
-    if (microfacet() && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) && !(specs[i].width_y > 0)) {
+    // the microfacet kernel takes two pairs per work-item: an even count (reciprocity_pairs'
+    // are multiples of 64; an odd count goes to the generic kernel, the same floats)
+    if (microfacet() && pairs % 2 == 0 && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) &&
+        !(specs[i].width_y > 0)) {
       fast.push_back(i);
       continue;
     }
@@ -77,7 +82,7 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   }
   if (!fast.empty()) {
     launched_.insert("reciprocity_values_microfacet");
-    worst_of(microfacet, specs, fast, pairs, seed, out);
+    worst_of(microfacet, specs, fast, pairs, seed, out, 2);
   }
   for (const auto& [name, at] : by_model) {
     cl::Kernel k = launched(name);
