@@ -52,10 +52,14 @@ bool model_reciprocity_per_model_pays(uint64_t pairs, size_t models);
 // reciprocity_values (the same floats): the kernel costs a compile on a cold
 // run, 1.15 s of CPU (AMD EPYC Zen 4, AVX2, PoCL 3.1 pthread-haswell: mfv run
 // --check reciprocity cold, 3.90 s against 2.75 s), and saves 77 ms of CPU a
-// million pairs warm (mfv bench --integrand reciprocity: 6.5e7 pairs per
-// CPU-second against 1.09e7 for the generic kernel); so from 1.5e7 pairs,
-// about --scale 40 of the default run's 4e5 microfacet pairs
-// (docs/performance.md, "Cold start").
+// million pairs warm where it is 8 wide (mfv bench --integrand reciprocity,
+// a one-pair program: 6.5e7 pairs per CPU-second against 1.09e7 for the
+// generic kernel); so from 1.5e7 pairs, about --scale 6 of the default run's
+// 594 microfacet integrals (2.4e6 pairs). In a program of many terms, such
+// as the default run's, the kernel is scalar on haswell and saves about
+// 12 ms a million pairs (warm --check reciprocity: 0.58 s against 0.61 s),
+// so there it pays only from ~1e8: the threshold is the lower of the two
+// (docs/performance.md, "Cold start at 1.93x warm").
 constexpr uint64_t kMicrofacetReciprocityPairs = 15000000;
 
 // OpenCL C that defines `integrate` for the iid integrals of one check
