@@ -158,7 +158,9 @@ TEST_CASE("On a CPU without AVX-512 the two-target script refuses an avx512 colu
                                           MFV_BINARY + " " + kBench + " --out /dev/null");
   INFO(r.out);
   CHECK(r.code == 2);
-  CHECK(r.out.find("target avx512: PoCL compiles for 'haswell' here, not 'skylake-avx512'") != std::string::npos);
+  // PoCL's best CPU here (haswell on an AVX2 CPU), whichever it is, named against the one asked for
+  CHECK(r.out.find("target avx512: PoCL compiles for '") != std::string::npos);
+  CHECK(r.out.find("' here, not 'skylake-avx512'") != std::string::npos);
 }
 
 namespace {
