@@ -11,7 +11,7 @@
 #include "abi/integral.h"  // IntegralSpec, MFV_CHECK_*, MFV_EST_*, MFV_SLOT_* (shared with the host)
 
 // MFV_SAMPLE_VALUES(name, VALUE): the shape of the one-sample-per-work-item
-// kernels (integrate.cl, aniso_values.cl, model_values.cl): work-item (k, j)
+// kernels (aniso_values.cl, model_values.cl): work-item (k, j)
 // stores VALUE, an expression of s (integral j), r (its Philox draw at sample
 // first + k) and first + k; sum_values or sum_pairs reduce.
 #define MFV_SAMPLE_VALUES(NAME, VALUE)                                                                            \
@@ -21,6 +21,42 @@
     __global const IntegralSpec* s = specs + j;                                                                  \
     uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);                                                       \
     values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
+  }
+
+// MFV_SAMPLE_VALUES_2(name, VALUE): MFV_SAMPLE_VALUES with two samples per
+// work-item, k and k + n of a launch n wide (the host launches half of the
+// row's samples; runtime/integrator.cpp sums_values), stored where the
+// one-sample kernel stores them, so sum_values and sum_pairs see the same
+// floats. One sample is one chain of dependent operations (Philox's ten
+// rounds, then the integrand) longer than the core's out-of-order window;
+// two independent chains in one body overlap (docs/performance.md, "Two
+// samples per work-item"). k + n rather than k + 1, so LLVM's SLP pass
+// finds no adjacent stores from which to pair the two into 2-lane vectors,
+// which would keep PoCL from vectorizing across work-items; and the second
+// sample in a block of its own (`n != 0` always holds), as SLP pairs only
+// within a block: in one block it paired the two samples' compares and
+// everything under them into 2-lane vectors (d_norm_values, "instruction
+// return type cannot be vectorized"). flatten: LLVM inlines one Philox call
+// but not two (cost 555 against 337), and a call left in the body keeps the
+// work-item loop scalar.
+#define MFV_SAMPLE_VALUES_2(NAME, VALUE)                                                                          \
+  __kernel __attribute__((flatten)) void NAME(__global const IntegralSpec* restrict specs, ulong seed,            \
+                                              ulong first, __global float* restrict values) {                    \
+    size_t k0 = get_global_id(0), j = get_global_id(1), n = get_global_size(0);                                  \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    float v0, v1 = 0.0f;                                                                                         \
+    {                                                                                                            \
+      size_t k = k0;                                                                                             \
+      uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);                                        \
+      v0 = (float)(VALUE);                                                                                       \
+    }                                                                                                            \
+    if (n != 0) {                                                                                                \
+      size_t k = k0 + n;                                                                                         \
+      uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);                                        \
+      v1 = (float)(VALUE);                                                                                       \
+    }                                                                                                            \
+    values[j * 2 * n + k0] = v0;                                                                                 \
+    values[j * 2 * n + k0 + n] = v1;                                                                             \
   }
 
 // Counter word 3 of integral s's Philox draw `draw` (< 256): the draw with

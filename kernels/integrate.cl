@@ -218,17 +218,18 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* s
 
 #ifndef MFV_USER_BRDF
 // The fast path of `integrate` for isotropic microfacet albedo integrals
-// (spec_is_microfacet; host: Integrator::run). One sample per work-item
-// and no barrier: PoCL turns a work-group into a loop over its work-items
-// and vectorizes that loop only where the body has no inner loop and keeps
-// no 64-bit value per work-item across a barrier (a local-memory reduction
-// keeps pointers and size_t counters), so the samples are stored and
-// sum_values reduces them. Work-item (k, j) takes sample first + k of
-// integral j; the sample is the one `integrate` takes at that index, to the
-// bit (the same albedo_value_microfacet).
-MFV_SAMPLE_VALUES(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd,
-                                                         s->width, s->cos_o, u01_open(r.x), u01_open(r.y),
-                                                         u01_open(r.z), u01_open(r.w)))
+// (spec_is_microfacet; host: Integrator::run). Two samples per work-item
+// (MFV_SAMPLE_VALUES_2) and no barrier: PoCL turns a work-group into a loop
+// over its work-items and vectorizes that loop only where the body has no
+// inner loop and keeps no 64-bit value per work-item across a barrier (a
+// local-memory reduction keeps pointers and size_t counters), so the
+// samples are stored and sum_values reduces them. Work-item (k, j) of a
+// launch n wide takes samples first + k and first + k + n of integral j;
+// each is the one `integrate` takes at that index, to the bit (the same
+// albedo_value_microfacet).
+MFV_SAMPLE_VALUES_2(albedo_values, albedo_value_microfacet(s->d, s->g, s->f, s->pd, s->pg, s->f0, s->f1, s->kd,
+                                                           s->width, s->cos_o, u01_open(r.x), u01_open(r.y),
+                                                           u01_open(r.z), u01_open(r.w)))
 #endif
 
 #ifndef MFV_USER_BRDF
@@ -324,16 +325,17 @@ MFV_MIS_ROWS(albedo_mis_general_values, albedo_mis_general)
 MFV_MIS_ROWS(bsdf_flux_mis_values, bsdf_flux_mis)
 
 #ifndef MFV_USER_BRDF
-// d_norm (stratified) and masking of isotropic microfacet integrals
-// (spec_is_microfacet) with one sample per work-item, as albedo_values:
-// work-item (k, j) takes sample first + k of integral j, the sample
-// `integrate` takes there. sum_pairs / sum_values reduce.
+// d_norm (stratified) of isotropic microfacet integrals
+// (spec_is_microfacet) with two samples per work-item, as albedo_values:
+// work-item (k, j) of a launch n wide takes samples first + k and first +
+// k + n of integral j, the samples `integrate` takes there. sum_pairs
+// reduces (neighbouring strata are stored side by side, as before).
 // MFV_D_NORM_VALUES(name, D) defines d_norm_values with the term id D: s->d
 // here, a constant in the kernels specialized per D (runtime/specialize.cpp),
 // where the select chain of eval_D folds to the one term.
 #define MFV_D_NORM_VALUES(NAME, D)                                                                                \
-  MFV_SAMPLE_VALUES(NAME,                                                                                         \
-                    d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w)))
+  MFV_SAMPLE_VALUES_2(NAME,                                                                                       \
+                      d_norm_value_c(D, s->pd, s->width, s->strata, (uint)(first + k), u01_open(r.z), u01_open(r.w)))
 MFV_D_NORM_VALUES(d_norm_values, s->d)
 
 // masking in three kernels, as AlbedoMis (albedo_mis_geometry above), one

@@ -251,17 +251,19 @@ const BenchRow* find_row(const BenchReport& r, const std::string& integrand, con
 // there the rate is an estimate. sincos_2pi is in-house polynomials, so it
 // is in the flops; no library call is left. Not counted: the reductions
 // (sum_pairs, sum_values: ~2 double additions per sample).
-//   d_norm: d_norm_values 34 flops, 81 integer ops (Philox's 32x32->64
+//   d_norm: d_norm_values 68 flops, 160 integer ops per work-item, which
+//     takes two samples: 34 and 80 per sample (Philox's 32x32->64
 //     multiplies in 64-bit lanes, xors, shifts, masks).
-//   albedo: albedo_values 134 flops, 114 integer ops.
+//   albedo: albedo_values 268 flops, 224 integer ops per work-item (two
+//     samples): 134 and 112 per sample.
 //   reciprocity: reciprocity_values_microfacet 382 flops, 255 integer ops per work-item, which
 //     takes two pairs: 191 and 128 per pair.
 // The hand counts they replace (77, 172, 185 + 4 sin/cos) had counted
 // sincos_2pi in d_norm's path, where the kernel has none.
 FlopCount flops_per_sample(const std::string& integrand) {
   if (integrand == kPeak) return {kPeakFlops, 0, 0};
-  if (integrand == "d_norm") return {34, 0, 81};
-  if (integrand == "albedo") return {134, 0, 114};
+  if (integrand == "d_norm") return {34, 0, 80};
+  if (integrand == "albedo") return {134, 0, 112};
   return {191, 0, 128};
 }
 

@@ -250,6 +250,8 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const bool pairs = base == "d_norm_values" || base == "d_norm_aniso_values";
   // RQMC: an E and a B plane, reduced by sum_rqmc
   const bool rqmc = base == "albedo_rqmc_values";
+  // two samples per work-item, k and k + m / 2 of a row of m (kernels/estimators.cl MFV_SAMPLE_VALUES_2)
+  const uint64_t per_work_item = base == "albedo_values" || base == "d_norm_values" ? 2 : 1;
   cl::Kernel values_k = launched(kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
   cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
@@ -270,13 +272,13 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
                         const_cast<IntegralSpec*>(specs.data() + first));
     for (uint32_t s0 = 0; s0 < slices && !(compile_ahead_ && s0 > 0); s0 += nslices) {
       const uint32_t ns = std::min(nslices, slices - s0);
-      const size_t m = size_t(ns) * per_slice, groups = count * ns;
-      // the largest power of two up to 1024 that divides m and that the device and kernel allow
+      const size_t m = size_t(ns) * per_slice, groups = count * ns, width = m / per_work_item;
+      // the largest power of two up to 1024 that divides the launch's width and that the device and kernel allow
       size_t local = fit_local_size(values_k, rt_.device().device, 1024);
       if (three_kernels)
         local = std::min({local, fit_local_size(geometry_k, rt_.device().device, 1024),
                           fit_local_size(d_k, rt_.device().device, 1024)});
-      while (m % local != 0) local /= 2;
+      while (width % local != 0) local /= 2;
       if (three_kernels) {
         set_args(geometry_k, spec_buf, static_cast<cl_ulong>(seed),
                  static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice), planes);
@@ -288,7 +290,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
         set_args(values_k, spec_buf, static_cast<cl_ulong>(seed),
                  static_cast<cl_ulong>(first_index + uint64_t(s0) * per_slice), values);
       }
-      rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(m, count), cl::NDRange(local, 1));
+      rt_.queue().enqueueNDRangeKernel(values_k, cl::NullRange, cl::NDRange(width, count), cl::NDRange(local, 1));
       const size_t padded = counted_grid(sum_k, rt_.device().device, groups);  // a sum per launched work-item
       cl::Buffer sums = nan_buffer(CL_MEM_WRITE_ONLY, padded * MFV_SUM_SLOTS * acc);
       sum_k.setArg(0, values);
