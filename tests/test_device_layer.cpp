@@ -14,6 +14,8 @@
 #include <sched.h>
 #include <unistd.h>
 #include <cstdlib>
+#include <iterator>
+#include <random>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -55,6 +57,60 @@ TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[
   CHECK(w.at[0] == 0);
   Integrator good(*test::device_runtime(), ggx_selection());
   CHECK(good.reciprocity({ggx_albedo(0)}, 64, 7).worst[0] < 1e-4);
+}
+
+TEST_CASE("A reciprocity pair no kernel wrote counts as the worst in a launch over the kept buffer",
+          "[device][device_layer]") {
+  if (!test::device_runtime()) return;
+  // a launch above kNanCopyBytes reuses worst_of's buffer: it is NaN again before each launch, so
+  // pair 0, left unwritten at seed 8 only, is not read as seed 7's value from the call before
+  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * 2 * n + k] = reciprocity_microfacet_asym(",
+                                   "  if (k > 0 || seed != 8) asym[j * 2 * n + k] = reciprocity_microfacet_asym(");
+  Runtime planted = dir.runtime();
+  Integrator bad(planted, ggx_selection());
+  bad.set_microfacet_reciprocity_from(0);
+  std::vector<IntegralSpec> specs;
+  for (uint32_t i = 0; i < 40; ++i) specs.push_back(ggx_albedo(i));
+  const uint32_t pairs = 8192;  // 40 x 8192 floats: 1.25 MiB, above kNanCopyBytes
+  REQUIRE(specs.size() * pairs * sizeof(float) > kNanCopyBytes);
+  const WorstPairs before = bad.reciprocity(specs, pairs, 7), after = bad.reciprocity(specs, pairs, 8);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    CHECK(before.worst[i] < 1e-4);
+    CHECK(std::isinf(after.worst[i]));
+    CHECK(after.at[i] == 0);
+  }
+}
+
+TEST_CASE("worst_of_values finds the worst and its pair as the one-pass scan does", "[device_layer]") {
+  // the scan it replaces (Integrator::worst_of until issue 31): NaN is infinity at the last NaN,
+  // else the first greatest value above 0
+  auto scan = [](const std::vector<float>& v, float& worst, uint32_t& where) {
+    worst = 0, where = 0;
+    for (uint32_t p = 0; p < v.size(); ++p)
+      if (!(v[p] <= worst)) worst = std::isnan(v[p]) ? INFINITY : v[p], where = p;
+  };
+  std::mt19937 rng(31);
+  const float specials[] = {0.0f, -0.0f, -1.0f, INFINITY, -INFINITY, NAN, -NAN, 1e-30f, 0.5f, 0.25f};
+  int compared = 0;
+  for (uint32_t n : {0u, 1u, 7u, 255u, 256u, 257u, 1000u, 4096u}) {
+    for (int trial = 0; trial < 200; ++trial) {
+      std::vector<float> v(n);
+      // few distinct values, so ties are common; a few specials planted
+      for (float& x : v) x = float(rng() % 5) * 0.125f;
+      const int plant = trial % 4 == 0 ? 0 : int(rng() % 4);
+      for (int i = 0; i < plant && n > 0; ++i) v[rng() % n] = specials[rng() % std::size(specials)];
+      if (trial % 3 == 0)
+        for (float& x : v) x = -x;  // none above 0 (but a planted positive special)
+      float w0, w1;
+      uint32_t a0, a1;
+      scan(v, w0, a0);
+      worst_of_values(v.data(), n, w1, a1);
+      const bool same = (std::isinf(w0) ? std::isinf(w1) : w0 == w1) && std::signbit(w0) == std::signbit(w1) && a0 == a1;
+      if (!same) FAIL_CHECK("n " << n << " trial " << trial << ": " << w0 << " at " << a0 << " against " << w1 << " at " << a1);
+      ++compared;
+    }
+  }
+  CHECK(compared == 8 * 200);
 }
 
 TEST_CASE("The microfacet reciprocity kernel of two pairs per work-item gives every pair the generic kernel's bits",

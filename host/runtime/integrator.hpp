@@ -87,6 +87,15 @@ std::vector<T> program_sample_values(Runtime& rt, const cl::Program& program, co
 // A device buffer of `bytes` filled with NaN (0x7fffffff: a float NaN, and a
 // double NaN twice over): a value no kernel wrote reads as NaN and fails its check.
 cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes);
+// Up to this size nan_filled_buffer copies NaN in (integrator_samples.cpp), above it fills.
+inline constexpr size_t kNanCopyBytes = size_t(1) << 20;
+
+// The worst of n asymmetries v[0 .. n) and its index, as a scan keeping the
+// running worst would find them (`if (!(v[p] <= worst)) worst = isnan(v[p]) ?
+// inf : v[p], where = p`, from worst = 0): the first greatest value above 0,
+// or infinity at the last NaN where there is one; 0 at 0 where none is above
+// 0. (Integrator::worst_of; in two passes, the first of which vectorizes.)
+void worst_of_values(const float* v, uint32_t n, float& worst, uint32_t& where);
 
 // The worst asymmetry of each integral's reciprocity pairs 0 .. pairs - 1
 // and the pair where it was (Integrator::reciprocity). NaN counts as the
@@ -191,6 +200,13 @@ class Integrator {
   void sum_rows(const cl::Buffer& values, size_t rows, uint64_t per_row, Sums* out);
   void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
   cl::Buffer nan_buffer(cl_mem_flags flags, size_t bytes);
+  // worst_of's asymmetries, kept from call to call where a launch's exceed
+  // nan_filled_buffer's copy size: a fresh 16 MiB device buffer and host
+  // copy each call cost page faults and zeroing (docs/performance.md,
+  // "Reciprocity: the host's part")
+  cl::Buffer worst_values_;
+  size_t worst_values_bytes_ = 0;
+  std::vector<float> worst_host_;
   // One launch of a reciprocity kernel over specs[at[..]] into out.
   void worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at, uint32_t pairs,
                 uint64_t seed, WorstPairs& out, uint32_t per_item = 1);

@@ -6,10 +6,58 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <string>
 
 namespace mfv {
+
+namespace {
+inline uint32_t bits_of(float x) {
+  uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+}  // namespace
+
+void worst_of_values(const float* v, uint32_t n, float& worst, uint32_t& where) {
+  // A float's bits as a signed integer are ordered as the floats among
+  // non-negative ones (+inf 0x7f800000 above every finite one) and below 0
+  // for negative ones; without its sign bit, above 0x7f800000 for a NaN only.
+  // Pass 1, by blocks of kBlock, two integer maxima per block (a loop the
+  // compiler vectorizes: a select in it did not): the first block with the
+  // greatest value and the last block with a NaN. Pass 2 looks for the
+  // index in that one block.
+  constexpr uint32_t kBlock = 256;
+  constexpr int32_t kInf = 0x7f800000;
+  int32_t top = 0;
+  uint32_t top_block = 0, nan_block = 0;
+  bool nan = false;
+  for (uint32_t b = 0; b < n; b += kBlock) {
+    const float* q = v + b;
+    const uint32_t len = std::min(n - b, kBlock);
+    int32_t m = 0, m_abs = 0;
+    for (uint32_t i = 0; i < len; ++i) {
+      const uint32_t x = bits_of(q[i]);
+      m = std::max(m, int32_t(x));
+      m_abs = std::max(m_abs, int32_t(x & 0x7fffffffu));
+    }
+    if (m_abs > kInf) nan = true, nan_block = b;
+    else if (m > top) top = m, top_block = b;  // strictly greater: the first block with it
+  }
+  worst = 0;
+  where = 0;
+  if (nan) {  // the scan's last update is at the last NaN, to inf
+    worst = INFINITY;
+    for (uint32_t p = std::min(n, nan_block + kBlock); p-- > nan_block;)
+      if (int32_t(bits_of(v[p]) & 0x7fffffffu) > kInf) return void(where = p);
+  } else if (top > 0) {  // the scan's last update is at the first greatest value
+    std::memcpy(&worst, &top, sizeof worst);
+    for (uint32_t p = top_block; p < std::min(n, top_block + kBlock); ++p)
+      if (int32_t(bits_of(v[p])) == top) return void(where = p);
+  }
+}
 
 // One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each;
 // `k` writes one asymmetry per pair, per_item pairs per work-item (kernels/reciprocity.cl:
@@ -26,23 +74,28 @@ void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs,
     std::vector<IntegralSpec> batch;
     for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
     cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
-    cl::Buffer ab = nan_buffer(CL_MEM_WRITE_ONLY, count * pairs * sizeof(float));  // an unwritten pair is the worst
+    const size_t values = count * pairs, bytes = values * sizeof(float);
+    // an unwritten pair is the worst: NaN in every value first, in a buffer kept from the last
+    // launch where one is large (a fill command), or a fresh one (nan_filled_buffer's copy)
+    cl::Buffer ab;
+    if (bytes > kNanCopyBytes) {
+      if (worst_values_bytes_ < bytes) {
+        worst_values_ = cl::Buffer(rt_.context(), CL_MEM_WRITE_ONLY, bytes);
+        worst_values_bytes_ = bytes;
+      }
+      rt_.queue().enqueueFillBuffer(worst_values_, cl_uint(0x7fffffffu), 0, bytes);
+      ab = worst_values_;
+    } else {
+      ab = nan_buffer(CL_MEM_WRITE_ONLY, bytes);
+    }
     k.setArg(0, sb);
     k.setArg(1, static_cast<cl_ulong>(seed));
     k.setArg(2, ab);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items, count), cl::NDRange(local, 1));
-    std::vector<float> a(count * pairs);
-    rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, a.size() * sizeof(float), a.data());
-    for (size_t i = 0; i < count; ++i) {
-      float worst = 0;
-      uint32_t where = 0;
-      for (uint32_t p = 0; p < pairs; ++p) {
-        const float v = a[i * pairs + p];
-        if (!(v <= worst)) worst = std::isnan(v) ? INFINITY : v, where = p;
-      }
-      out.worst[at[first + i]] = worst;
-      out.at[at[first + i]] = where;
-    }
+    if (worst_host_.size() < values) worst_host_.resize(values);
+    rt_.queue().enqueueReadBuffer(ab, CL_TRUE, 0, bytes, worst_host_.data());
+    for (size_t i = 0; i < count; ++i)
+      worst_of_values(worst_host_.data() + i * pairs, pairs, out.worst[at[first + i]], out.at[at[first + i]]);
   }
 }
 

@@ -46,8 +46,7 @@ cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan
 // fills; with copies its fastest of 99 calls took 116-138 us against 135-148 us at alpha 0.01, mu 0.9
 // (docs/performance.md, issue 32). A larger buffer's fill stays with the device (a copy of 16 MiB
 // would cost the host).
-constexpr size_t kNanCopyBytes = size_t(1) << 20;
-
+// (kNanCopyBytes: runtime/integrator.hpp)
 cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
   // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
   // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
