@@ -201,12 +201,10 @@ class Integrator {
   void add_sums(const cl::Buffer& sums, size_t count, uint32_t slices, Sums* out);
   cl::Buffer nan_buffer(cl_mem_flags flags, size_t bytes);
   // worst_of's asymmetries, kept from call to call where a launch's exceed
-  // nan_filled_buffer's copy size: a fresh 16 MiB device buffer and host
-  // copy each call cost page faults and zeroing (docs/performance.md,
-  // "Reciprocity: the host's part")
+  // nan_filled_buffer's copy size: a fresh 16 MiB device buffer each call
+  // cost page faults and zeroing (docs/performance.md, issue 31)
   cl::Buffer worst_values_;
   size_t worst_values_bytes_ = 0;
-  std::vector<float> worst_host_;
   // One launch of a reciprocity kernel over specs[at[..]] into out.
   void worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at, uint32_t pairs,
                 uint64_t seed, WorstPairs& out, uint32_t per_item = 1);
