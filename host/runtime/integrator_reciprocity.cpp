@@ -75,19 +75,8 @@ void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs,
     for (size_t i = 0; i < count; ++i) batch.push_back(specs[at[first + i]]);
     cl::Buffer sb(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, count * sizeof(IntegralSpec), batch.data());
     const size_t values = count * pairs, bytes = values * sizeof(float);
-    // an unwritten pair is the worst: NaN in every value first, in a buffer kept from the last
-    // launch where one is large (a fill command), or a fresh one (nan_filled_buffer's copy)
-    cl::Buffer ab;
-    if (bytes > kNanCopyBytes) {
-      if (worst_values_bytes_ < bytes) {
-        worst_values_ = cl::Buffer(rt_.context(), CL_MEM_WRITE_ONLY, bytes);
-        worst_values_bytes_ = bytes;
-      }
-      rt_.queue().enqueueFillBuffer(worst_values_, cl_uint(0x7fffffffu), 0, bytes);
-      ab = worst_values_;
-    } else {
-      ab = nan_buffer(CL_MEM_WRITE_ONLY, bytes);
-    }
+    // an unwritten pair is the worst: NaN in every value first
+    cl::Buffer ab = kept_nan_buffer(worst_values_, CL_MEM_WRITE_ONLY, bytes);
     k.setArg(0, sb);
     k.setArg(1, static_cast<cl_ulong>(seed));
     k.setArg(2, ab);

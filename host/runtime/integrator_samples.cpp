@@ -40,6 +40,16 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
 
 cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
 
+cl::Buffer Integrator::kept_nan_buffer(KeptBuffer& kept, cl_mem_flags flags, size_t bytes) {
+  if (bytes <= kNanCopyBytes) return nan_buffer(flags, bytes);
+  if (kept.bytes < bytes) {
+    kept.buffer = cl::Buffer(rt_.context(), flags, bytes);
+    kept.bytes = bytes;
+  }
+  rt_.queue().enqueueFillBuffer(kept.buffer, cl_uint(0x7fffffffu), 0, bytes / sizeof(cl_uint) * sizeof(cl_uint));
+  return kept.buffer;
+}
+
 // Buffers up to this size are NaN from the start (CL_MEM_COPY_HOST_PTR, a copy on the host), larger
 // ones by a fill command: on PoCL each command costs a hand-over to its worker threads, and a short
 // launch (mfv bench --case, 640 points x 32: an 80 KiB values buffer and a sums buffer) paid two
