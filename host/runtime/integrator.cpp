@@ -254,7 +254,7 @@ std::vector<Integrator::Sums> Integrator::sums_values(const std::vector<Integral
   const uint64_t per_work_item = base == "albedo_values" || base == "d_norm_values" ? 2 : 1;
   cl::Kernel values_k = launched(kernel), sum_k(program_, rqmc ? "sum_rqmc" : pairs ? "sum_pairs" : "sum_values");
   const size_t capacity = std::min(per_launch, specs.size()) * nslices * per_slice * (rqmc ? 2 : 1);
-  cl::Buffer values = kept_nan_buffer(sample_values_, CL_MEM_READ_WRITE, capacity * sizeof(float));
+  cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, capacity * sizeof(float));
   cl::Kernel geometry_k, d_k;
   cl::Buffer planes, dv;
   if (three_kernels) {

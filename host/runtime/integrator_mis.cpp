@@ -90,7 +90,7 @@ std::vector<Integrator::Sums> Integrator::sums_mis(const std::vector<IntegralSpe
   cl::Kernel k = launched(kernel);
   cl::Buffer spec_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, specs.size() * sizeof(IntegralSpec),
                       const_cast<IntegralSpec*>(specs.data()));
-  cl::Buffer values = kept_nan_buffer(mis_values_, CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
+  cl::Buffer values = nan_buffer(CL_MEM_READ_WRITE, std::min(per_launch, rows) * n * sizeof(float));
   cl::Kernel geometry_k, df_k;
   cl::Buffer planes, df;
   if (three_kernels) {
