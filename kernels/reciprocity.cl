@@ -85,24 +85,30 @@ static inline MFV_ALWAYS_INLINE float reciprocity_microfacet_asym(__global const
   return reciprocity_asym(fab, fba);
 }
 
-// The microfacet kernel, two pairs per work-item: work-item (k, j) of a
-// launch n = get_global_size(0) wide writes pairs k and k + n of integral j
-// (the host launches half the pairs, Integrator::worst_of). One pair is
-// one long chain of dependent operations (Philox's ten rounds, the
-// directions, then 7 square roots and 17 divisions, 8 lanes at a time on
-// haswell), longer than the core's out-of-order window reaches; two
-// independent chains in one body let the core overlap them
-// (docs/performance.md, "Reciprocity: two pairs per work-item"). Pair k + n
-// is not pair k + 1, so LLVM's SLP pass finds no adjacent stores from which
-// to pair the two into 2-lane vectors. flatten inlines both calls; the terms
-// and the generated eval_D/eval_G/eval_F under them are always_inline, so no
-// call is left and PoCL vectorizes the work-item loop.
+// The microfacet kernel, four pairs per work-item: work-item (k, j) of a
+// launch n = get_global_size(0) wide writes pairs k, k + n, k + 2n and k + 3n
+// of integral j (the host launches a quarter of the pairs,
+// Integrator::worst_of, kMicrofacetPairsPerItem). One pair is one long chain
+// of dependent operations (Philox's ten rounds, the directions, then 7
+// square roots and 17 divisions, 8 lanes at a time on haswell), longer than
+// the core's out-of-order window reaches; independent chains in one body let
+// the core overlap them, and the work-item's own costs are shared by four
+// (docs/performance.md, "Reciprocity: two pairs per work-item" and "four
+// pairs"; two pairs gave 17.7-18.3 % of the peak row, four 19.4-19.5 %,
+// eight 17.5-19.0 %). Pairs k + mn, not k + m, so LLVM's SLP pass finds no
+// adjacent stores from which to pair them into 2-lane vectors. n is a
+// multiple of 4 (reciprocity_pairs' counts are multiples of 64), so the four
+// are of one kind (index % 4). flatten inlines the calls; the terms and the
+// generated eval_D/eval_G/eval_F under them are always_inline, so no call is
+// left and PoCL vectorizes the work-item loop.
 __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global const IntegralSpec* restrict specs,
                                                                      ulong seed, __global float* restrict asym) {
   size_t k = get_global_id(0), j = get_global_id(1), n = get_global_size(0);
   __global const IntegralSpec* s = specs + j;
-  asym[j * 2 * n + k] = reciprocity_microfacet_asym(s, seed, (uint)k);
-  asym[j * 2 * n + k + n] = reciprocity_microfacet_asym(s, seed, (uint)(k + n));
+  asym[j * 4 * n + k] = reciprocity_microfacet_asym(s, seed, (uint)k);
+  asym[j * 4 * n + k + n] = reciprocity_microfacet_asym(s, seed, (uint)(k + n));
+  asym[j * 4 * n + k + 2 * n] = reciprocity_microfacet_asym(s, seed, (uint)(k + 2 * n));
+  asym[j * 4 * n + k + 3 * n] = reciprocity_microfacet_asym(s, seed, (uint)(k + 3 * n));
 }
 
 // The whole-model kernel for the constant model id MODEL, one per model

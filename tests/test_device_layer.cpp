@@ -47,8 +47,8 @@ IntegralSpec ggx_albedo(uint32_t stream) {
 TEST_CASE("A reciprocity pair no kernel wrote counts as the worst asymmetry", "[device][device_layer]") {
   if (!test::device_runtime()) return;
   // the microfacet kernel leaves the asymmetry of pair 0 unwritten
-  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * 2 * n + k] = reciprocity_microfacet_asym(",
-                                   "  if (k > 0) asym[j * 2 * n + k] = reciprocity_microfacet_asym(");
+  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * 4 * n + k] = reciprocity_microfacet_asym(",
+                                   "  if (k > 0) asym[j * 4 * n + k] = reciprocity_microfacet_asym(");
   Runtime planted = dir.runtime();
   Integrator bad(planted, ggx_selection());
   bad.set_microfacet_reciprocity_from(0);  // the planted kernel, however few the pairs
@@ -64,8 +64,8 @@ TEST_CASE("A reciprocity pair no kernel wrote counts as the worst in a launch ov
   if (!test::device_runtime()) return;
   // a launch above kNanCopyBytes reuses worst_of's buffer: it is NaN again before each launch, so
   // pair 0, left unwritten at seed 8 only, is not read as seed 7's value from the call before
-  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * 2 * n + k] = reciprocity_microfacet_asym(",
-                                   "  if (k > 0 || seed != 8) asym[j * 2 * n + k] = reciprocity_microfacet_asym(");
+  const test::PlantedKernelDir dir("reciprocity.cl", "  asym[j * 4 * n + k] = reciprocity_microfacet_asym(",
+                                   "  if (k > 0 || seed != 8) asym[j * 4 * n + k] = reciprocity_microfacet_asym(");
   Runtime planted = dir.runtime();
   Integrator bad(planted, ggx_selection());
   bad.set_microfacet_reciprocity_from(0);
@@ -113,9 +113,9 @@ TEST_CASE("worst_of_values finds the worst and its pair as the one-pass scan doe
   CHECK(compared == 8 * 200);
 }
 
-TEST_CASE("The microfacet reciprocity kernel of two pairs per work-item gives every pair the generic kernel's bits",
+TEST_CASE("The microfacet reciprocity kernel of four pairs per work-item gives every pair the generic kernel's bits",
           "[device][device_layer][reciprocity]") {
-  // kernels/reciprocity.cl: reciprocity_values_microfacet writes pairs k and k + n of a launch n wide,
+  // kernels/reciprocity.cl: reciprocity_values_microfacet writes pairs k + m n (m = 0..3) of a launch n wide,
   // reciprocity_values (spec_brdf) pair k of a launch as wide as the pairs; every pair of three widths
   Runtime* rt = test::device_runtime();
   if (!rt) return;
@@ -142,7 +142,7 @@ TEST_CASE("The microfacet reciprocity kernel of two pairs per work-item gives ev
     return bits;
   };
   const auto generic = asymmetries("reciprocity_values", pairs);
-  const auto fast = asymmetries("reciprocity_values_microfacet", pairs / 2);
+  const auto fast = asymmetries("reciprocity_values_microfacet", pairs / 4);
   size_t differ = 0, nonzero = 0;
   for (size_t i = 0; i < generic.size(); ++i) {
     differ += generic[i] != fast[i];

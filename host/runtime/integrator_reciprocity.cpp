@@ -14,6 +14,10 @@
 namespace mfv {
 
 namespace {
+// Pairs per work-item of reciprocity_values_microfacet (kernels/reciprocity.cl: pairs k + m n of a
+// launch n wide, m = 0..3): four measured fastest of 2, 4 and 8 (docs/performance.md, issue 31)
+constexpr uint32_t kMicrofacetPairsPerItem = 4;
+
 inline uint32_t bits_of(float x) {
   uint32_t b;
   std::memcpy(&b, &x, sizeof b);
@@ -61,7 +65,7 @@ void worst_of_values(const float* v, uint32_t n, float& worst, uint32_t& where) 
 
 // One launch of a reciprocity_values kernel over specs[at[0..]] into the worst of each;
 // `k` writes one asymmetry per pair, per_item pairs per work-item (kernels/reciprocity.cl:
-// reciprocity_values_microfacet writes pairs i and i + pairs / 2; per_item divides pairs).
+// reciprocity_values_microfacet writes pairs i + m pairs / 4, m = 0..3; per_item divides pairs).
 void Integrator::worst_of(cl::Kernel& k, const std::vector<IntegralSpec>& specs, const std::vector<size_t>& at,
                           uint32_t pairs, uint64_t seed, WorstPairs& out, uint32_t per_item) {
   const uint32_t items = pairs / per_item;  // work-items per integral
@@ -102,9 +106,9 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   // one (kernels/reciprocity.cl MFV_MODEL_RECIPROCITY_VALUES, PoCL only)
   std::map<std::string, std::vector<size_t>> by_model;
   for (size_t i = 0; i < specs.size(); ++i) {
-    // the microfacet kernel takes two pairs per work-item: an even count (reciprocity_pairs'
-    // are multiples of 64; an odd count goes to the generic kernel, the same floats)
-    if (microfacet() && pairs % 2 == 0 && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) &&
+    // the microfacet kernel takes kMicrofacetPairsPerItem pairs per work-item: a count they divide
+    // (reciprocity_pairs' are multiples of 64; another goes to the generic kernel, the same floats)
+    if (microfacet() && pairs % kMicrofacetPairsPerItem == 0 && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) &&
         !(specs[i].width_y > 0)) {
       fast.push_back(i);
       continue;
@@ -125,7 +129,7 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   }
   if (!fast.empty()) {
     launched_.insert("reciprocity_values_microfacet");
-    worst_of(microfacet, specs, fast, pairs, seed, out, 2);
+    worst_of(microfacet, specs, fast, pairs, seed, out, kMicrofacetPairsPerItem);
   }
   for (const auto& [name, at] : by_model) {
     cl::Kernel k = launched(name);
