@@ -9,11 +9,11 @@
 // near-retro/mirror offsets normalised with rsqrt, both sides selected.
 // (flatten and MFV_ALWAYS_INLINE: inlined with its Philox call, also where a
 // kernel calls it twice, reciprocity_values_microfacet)
-static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c(__global const IntegralSpec* s,
-                                                                                 ulong seed, uint index, real* ax,
-                                                                                 real* ay, real* az, real* bx,
-                                                                                 real* by, real* bz) {
-  uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 1u), index);
+// reciprocity_pair_of: the pair from its draw r; reciprocity_pair_c draws it
+// with mfv_philox, reciprocity_pair_split (the microfacet kernel's) with
+// mfv_philox_split: the same bits.
+static inline MFV_ALWAYS_INLINE void reciprocity_pair_of(uint4 r, uint index, real* ax, real* ay, real* az, real* bx,
+                                                         real* by, real* bz) {
   uint kind = index % 4u;
   real scale = kind == 1u ? R(1e-3) : R(1.0);  // both grazing
   real ca = u01_open(r.x) * scale, cb = u01_open(r.z) * scale, u_w = u01_open(r.w);
@@ -30,6 +30,20 @@ static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c
   *bx = near ? nx * inv : sb * pb.y;
   *by = near ? ny * inv : sb * pb.x;
   *bz = near ? nz * inv : cb;  // nz = ca > 0: above the horizon
+}
+
+static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c(__global const IntegralSpec* s,
+                                                                                 ulong seed, uint index, real* ax,
+                                                                                 real* ay, real* az, real* bx,
+                                                                                 real* by, real* bz) {
+  reciprocity_pair_of(mfv_philox(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
+}
+
+// reciprocity_pair_c drawn with mfv_philox_split (the same bits; flatten
+// inlines the generator, which the kernel's own flatten leaves a call)
+static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_split(
+    __global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay, real* az, real* bx, real* by, real* bz) {
+  reciprocity_pair_of(mfv_philox_split(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
 }
 
 // |f1 - f2| / max(|f1|, |f2|, 1e-4), 0 where both vanish: relative, except
@@ -76,7 +90,7 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const Integr
 static inline MFV_ALWAYS_INLINE float reciprocity_microfacet_asym(__global const IntegralSpec* s, ulong seed,
                                                                   uint index) {
   real ax, ay, az, bx, by, bz;
-  reciprocity_pair_c(s, seed, index, &ax, &ay, &az, &bx, &by, &bz);
+  reciprocity_pair_split(s, seed, index, &ax, &ay, &az, &bx, &by, &bz);
   bool below = fmin(az, bz) <= R(0.0);
   real fab = brdf_above_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
   real fba = brdf_above_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);

@@ -33,6 +33,33 @@ static inline uint4 mfv_philox(ulong seed, uint stream, uint draw, ulong sample)
   return (uint4)(c0, c1, c2, c3);
 }
 
+// mfv_philox's bits, each 32 x 32-bit product's high word from its own
+// expression (the 64-bit product shifted) and its low word as a 32-bit
+// product: LLVM then forms a vector high multiply and a vpmulld in 32-bit
+// lanes, where mfv_philox's 64-bit products take eight lanes as two AVX2
+// registers and cross-lane shuffles to split them. reciprocity_values_microfacet
+// draws with it (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
+// row against 19.4 %, medians; llvm-mca on the kernel's loop of 32 pairs,
+// znver3 1060 -> 1021 cycles, skylake-avx512 1022 -> 1007); d_norm keeps
+// mfv_philox, whose loop on skylake-avx512 grew from 109 to 142 instructions
+// with it (docs/performance.md, issue 31). tests/test_philox.cpp checks both.
+static inline uint4 mfv_philox_split(ulong seed, uint stream, uint draw, ulong sample) {
+  uint c0 = (uint)sample, c1 = (uint)(sample >> 32), c2 = stream, c3 = draw;
+  uint k0 = (uint)seed, k1 = (uint)(seed >> 32);
+#pragma unroll
+  for (int round = 0; round < 10; ++round) {
+    uint h0 = (uint)(((ulong)PHILOX_M0 * c0) >> 32), h1 = (uint)(((ulong)PHILOX_M1 * c2) >> 32);
+    uint n0 = h1 ^ c1 ^ k0, n2 = h0 ^ c3 ^ k1;
+    c1 = PHILOX_M1 * c2;  // the products' low words, mod 2^32
+    c3 = PHILOX_M0 * c0;
+    c0 = n0;
+    c2 = n2;
+    k0 += PHILOX_W0;
+    k1 += PHILOX_W1;
+  }
+  return (uint4)(c0, c1, c2, c3);
+}
+
 // Uniform in (0,1) by integer arithmetic: (2k+1) * 2^-24 with k < 2^23 is
 // exact in float and in double, so both sides see the identical number.
 static inline real u01_open(uint x) { return (real)((((x >> 9) << 1) | 1u)) * R(5.9604644775390625e-8); }
@@ -41,6 +68,15 @@ __kernel void philox_kat(ulong seed, uint stream, uint draw, ulong first, __glob
                          __global float* uniforms) {
   size_t i = get_global_id(0);
   uint4 r = mfv_philox(seed, stream, draw, first + i);
+  out[i] = r;
+  uniforms[i] = (float)u01_open(r.x);
+}
+
+// philox_kat through mfv_philox_split
+__kernel void philox_split_kat(ulong seed, uint stream, uint draw, ulong first, __global uint4* out,
+                               __global float* uniforms) {
+  size_t i = get_global_id(0);
+  uint4 r = mfv_philox_split(seed, stream, draw, first + i);
   out[i] = r;
   uniforms[i] = (float)u01_open(r.x);
 }

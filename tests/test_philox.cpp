@@ -47,7 +47,10 @@ TEST_CASE("Philox on the OpenCL device gives the host's bits and uniforms", "[de
   Runtime* rt = test::device_runtime();
   if (!rt) return;
   cl::Program prog = rt->build({"common.cl", "rng.cl"}, {});
-  cl::Kernel k(prog, "philox_kat");
+  // mfv_philox and mfv_philox_split (kernels/rng.cl), each
+  const std::string kernel = GENERATE(as<std::string>{}, "philox_kat", "philox_split_kat");
+  CAPTURE(kernel);
+  cl::Kernel k(prog, kernel.c_str());
   const size_t n = 4096;
   const uint64_t seed = 0x0123456789abcdefull, first = 0xfffffff0ull;  // crosses the 32-bit boundary
   cl::Buffer out(rt->context(), CL_MEM_WRITE_ONLY, n * 4 * sizeof(cl_uint));

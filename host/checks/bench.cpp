@@ -256,15 +256,16 @@ const BenchRow* find_row(const BenchReport& r, const std::string& integrand, con
 //     multiplies in 64-bit lanes, xors, shifts, masks).
 //   albedo: albedo_values 268 flops, 224 integer ops per work-item (two
 //     samples): 134 and 112 per sample.
-//   reciprocity: reciprocity_values_microfacet 382 flops, 255 integer ops per work-item, which
-//     takes two pairs: 191 and 128 per pair.
+//   reciprocity: reciprocity_values_microfacet 764 flops, 521 integer ops per work-item, which
+//     takes four pairs: 191 and 130 per pair (its Philox, mfv_philox_split, writes each product's
+//     two words as separate expressions: 128 before, the same flops).
 // The hand counts they replace (77, 172, 185 + 4 sin/cos) had counted
 // sincos_2pi in d_norm's path, where the kernel has none.
 FlopCount flops_per_sample(const std::string& integrand) {
   if (integrand == kPeak) return {kPeakFlops, 0, 0};
   if (integrand == "d_norm") return {34, 0, 80};
   if (integrand == "albedo") return {134, 0, 112};
-  return {191, 0, 128};
+  return {191, 0, 130};
 }
 
 void validate_bench_options(const BenchOptions& opt) {
