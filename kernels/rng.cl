@@ -64,19 +64,15 @@ static inline uint4 mfv_philox_split(ulong seed, uint stream, uint draw, ulong s
 // exact in float and in double, so both sides see the identical number.
 static inline real u01_open(uint x) { return (real)((((x >> 9) << 1) | 1u)) * R(5.9604644775390625e-8); }
 
-__kernel void philox_kat(ulong seed, uint stream, uint draw, ulong first, __global uint4* out,
-                         __global float* uniforms) {
-  size_t i = get_global_id(0);
-  uint4 r = mfv_philox(seed, stream, draw, first + i);
-  out[i] = r;
-  uniforms[i] = (float)u01_open(r.x);
-}
-
-// philox_kat through mfv_philox_split
-__kernel void philox_split_kat(ulong seed, uint stream, uint draw, ulong first, __global uint4* out,
-                               __global float* uniforms) {
-  size_t i = get_global_id(0);
-  uint4 r = mfv_philox_split(seed, stream, draw, first + i);
-  out[i] = r;
-  uniforms[i] = (float)u01_open(r.x);
-}
+// Known-answer kernels (tests/test_philox.cpp): each generator's words and
+// first uniform at counters first + i.
+#define MFV_PHILOX_KAT(NAME, GENERATOR)                                                                          \
+  __kernel void NAME(ulong seed, uint stream, uint draw, ulong first, __global uint4* out,                       \
+                     __global float* uniforms) {                                                                 \
+    size_t i = get_global_id(0);                                                                                 \
+    uint4 r = GENERATOR(seed, stream, draw, first + i);                                                          \
+    out[i] = r;                                                                                                  \
+    uniforms[i] = (float)u01_open(r.x);                                                                          \
+  }
+MFV_PHILOX_KAT(philox_kat, mfv_philox)
+MFV_PHILOX_KAT(philox_split_kat, mfv_philox_split)
