@@ -105,8 +105,10 @@ TEST_CASE("worst_of_values finds the worst and its pair as the one-pass scan doe
       uint32_t a0, a1;
       scan(v, w0, a0);
       worst_of_values(v.data(), n, w1, a1);
-      const bool same = (std::isinf(w0) ? std::isinf(w1) : w0 == w1) && std::signbit(w0) == std::signbit(w1) && a0 == a1;
-      if (!same) FAIL_CHECK("n " << n << " trial " << trial << ": " << w0 << " at " << a0 << " against " << w1 << " at " << a1);
+      const bool same =
+          (std::isinf(w0) ? std::isinf(w1) : w0 == w1) && std::signbit(w0) == std::signbit(w1) && a0 == a1;
+      if (!same)
+        FAIL_CHECK("n " << n << " trial " << trial << ": " << w0 << " at " << a0 << " against " << w1 << " at " << a1);
       ++compared;
     }
   }

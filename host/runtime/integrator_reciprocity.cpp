@@ -108,8 +108,8 @@ WorstPairs Integrator::reciprocity(const std::vector<IntegralSpec>& specs, uint3
   for (size_t i = 0; i < specs.size(); ++i) {
     // the microfacet kernel takes kMicrofacetPairsPerItem pairs per work-item: a count they divide
     // (reciprocity_pairs' are multiples of 64; another goes to the generic kernel, the same floats)
-    if (microfacet() && pairs % kMicrofacetPairsPerItem == 0 && specs[i].model == MFV_MODEL_MICROFACET && !(specs[i].pd2 > 0) &&
-        !(specs[i].width_y > 0)) {
+    if (microfacet() && pairs % kMicrofacetPairsPerItem == 0 && specs[i].model == MFV_MODEL_MICROFACET &&
+        !(specs[i].pd2 > 0) && !(specs[i].width_y > 0)) {
       fast.push_back(i);
       continue;
     }
