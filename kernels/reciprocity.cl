@@ -7,11 +7,11 @@
 // near-mirror. Pair `index` (Philox draw 1; reference twin: reciprocity_pair
 // in host/reference/estimators.cpp), by components: directions from sincos_2pi, the
 // near-retro/mirror offsets normalised with rsqrt, both sides selected.
-// (flatten and MFV_ALWAYS_INLINE: inlined with its Philox call, also where a
-// kernel calls it twice, reciprocity_values_microfacet)
 // reciprocity_pair_of: the pair from its draw r; reciprocity_pair_c draws it
 // with mfv_philox, reciprocity_pair_split (the microfacet kernel's) with
-// mfv_philox_split: the same bits.
+// mfv_philox_split: the same bits. Both are flatten and MFV_ALWAYS_INLINE,
+// so each is inlined with its Philox call also where a kernel calls it
+// several times (reciprocity_values_microfacet: four).
 static inline MFV_ALWAYS_INLINE void reciprocity_pair_of(uint4 r, uint index, real* ax, real* ay, real* az, real* bx,
                                                          real* by, real* bz) {
   uint kind = index % 4u;
@@ -39,10 +39,10 @@ static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c
   reciprocity_pair_of(mfv_philox(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
 }
 
-// reciprocity_pair_c drawn with mfv_philox_split (the same bits; flatten
-// inlines the generator, which the kernel's own flatten leaves a call)
-static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_split(
-    __global const IntegralSpec* s, ulong seed, uint index, real* ax, real* ay, real* az, real* bx, real* by, real* bz) {
+static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_split(__global const IntegralSpec* s,
+                                                                                     ulong seed, uint index, real* ax,
+                                                                                     real* ay, real* az, real* bx,
+                                                                                     real* by, real* bz) {
   reciprocity_pair_of(mfv_philox_split(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
 }
 

@@ -40,13 +40,23 @@ std::vector<float> Integrator::sample_values(const std::vector<IntegralSpec>& sp
 
 cl::Buffer Integrator::nan_buffer(cl_mem_flags flags, size_t bytes) { return nan_filled_buffer(rt_, flags, bytes); }
 
+namespace {
+// 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
+// (0x7fc00000 twice would not be: its double exponent is 0x7fc)
+constexpr cl_uint kNanPattern = 0x7fffffffu;
+
+void fill_nan(Runtime& rt, const cl::Buffer& b, size_t bytes) {
+  rt.queue().enqueueFillBuffer(b, kNanPattern, 0, bytes / sizeof(kNanPattern) * sizeof(kNanPattern));
+}
+}  // namespace
+
 cl::Buffer Integrator::kept_nan_buffer(KeptBuffer& kept, cl_mem_flags flags, size_t bytes) {
   if (bytes <= kNanCopyBytes) return nan_buffer(flags, bytes);
   if (kept.bytes < bytes) {
     kept.buffer = cl::Buffer(rt_.context(), flags, bytes);
     kept.bytes = bytes;
   }
-  rt_.queue().enqueueFillBuffer(kept.buffer, cl_uint(0x7fffffffu), 0, bytes / sizeof(cl_uint) * sizeof(cl_uint));
+  fill_nan(rt_, kept.buffer, bytes);
   return kept.buffer;
 }
 
@@ -58,15 +68,12 @@ cl::Buffer Integrator::kept_nan_buffer(KeptBuffer& kept, cl_mem_flags flags, siz
 // would cost the host).
 // (kNanCopyBytes: runtime/integrator.hpp)
 cl::Buffer nan_filled_buffer(Runtime& rt, cl_mem_flags flags, size_t bytes) {
-  // 0x7fffffff is a float NaN, and twice a double NaN: exponent bits all ones, mantissa non-zero
-  // (0x7fc00000 twice would not be: its double exponent is 0x7fc)
-  const cl_uint pattern = 0x7fffffffu;
   if (bytes > 0 && bytes <= kNanCopyBytes) {
-    thread_local const std::vector<cl_uint> nan(kNanCopyBytes / sizeof(cl_uint), pattern);
+    thread_local const std::vector<cl_uint> nan(kNanCopyBytes / sizeof(cl_uint), kNanPattern);
     return cl::Buffer(rt.context(), flags | CL_MEM_COPY_HOST_PTR, bytes, const_cast<cl_uint*>(nan.data()));
   }
   cl::Buffer b(rt.context(), flags, bytes);
-  if (bytes > 0) rt.queue().enqueueFillBuffer(b, pattern, 0, bytes / sizeof(pattern) * sizeof(pattern));
+  if (bytes > 0) fill_nan(rt, b, bytes);
   return b;
 }
 
