@@ -127,25 +127,43 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
 // vectorizer runs eight work-items per AVX2 instruction in albedo_values.
 // The general path below takes the other albedo integrals.
 
-static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
-                                           real co, real u_branch, real u_pick, real u_phi, real u_r) {
-  real ox = sqrt(sin2_from_cos(co)), oz = co;  // spec_view at phi_o = 0
+// Its two stages, apart so that albedo_values can interleave two samples
+// (kernels/integrate.cl): the light direction i (o = (ox, 0, oz), the view
+// at phi_o = 0; `lobe`: the cosine lobe's branch, u_branch < MIX_I_COS)...
+static inline void albedo_light_microfacet(bool lobe, real w, real ox, real oz, real u_pick, real u_phi, real u_r,
+                                           real* ix, real* iy, real* iz) {
   // both candidates, one selected (as in sample_m_c)
   real cx, cy, cz;
   cosine_direction(u_phi, u_r, &cx, &cy, &cz);
   real mx, my, c, s2;
   sample_m_c(u_pick < MIX_COS, u_phi, u_r, w, &mx, &my, &c, &s2);
   real om2 = R(2.0) * (ox * mx + oz * c);  // o reflected about m
-  bool lobe = u_branch < MIX_I_COS;
   real rx = om2 * mx - ox, ry = om2 * my, rz = om2 * c - oz;
-  real ix = lobe ? cx : rx, iy = lobe ? cy : ry, iz = lobe ? cz : rz;
-  if (iz <= R(0.0)) return R(0.0);
+  *ix = lobe ? cx : rx;
+  *iy = lobe ? cy : ry;
+  *iz = lobe ? cz : rz;
+}
+
+// ...and the sample's value at i, f(i,o) (n·i) / pdf(i).
+static inline real albedo_weight_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                            real ox, real oz, real ix, real iy, real iz) {
   real hx, hy, hz;
-  // o·h; the arguments are brdf_eval_c's own (iy + 0: the view's y), so the
-  // compiler forms the half vector once for both
-  real oh = R(0.5) * normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);
-  real pm = pdf_mix(hz, pdf_slope(hz, hx * hx + hy * hy, w));
-  return brdf_eval_c(d, g, f, ix, iy, iz, ox, R(0.0), oz, pd, pg, f0, f1, kd) * iz / albedo_pdf(iz, oh, pm);
+  // |i + o| = 2 o·h, and the half vector, formed once for the pdf and the
+  // BRDF (brdf_eval_c's own: iy + 0 is the view's y)
+  real len = normalize_sum(ix + ox, iy + R(0.0), iz + oz, &hx, &hy, &hz);
+  real hs2 = hx * hx + hy * hy, oh = R(0.5) * len;
+  real pm = pdf_mix(hz, pdf_slope(hz, hs2, w));
+  // brdf_eval_c, whose horizon test and half vector these are
+  real fr = (iz <= R(0.0) || oz <= R(0.0)) ? R(0.0) : brdf_above_h(d, g, f, iz, oz, hz, hs2, oh, pd, pg, f0, f1, kd);
+  return iz <= R(0.0) ? R(0.0) : fr * iz / albedo_pdf(iz, oh, pm);
+}
+
+static inline real albedo_value_microfacet(int d, int g, int f, real pd, real pg, real f0, real f1, real kd, real w,
+                                           real co, real u_branch, real u_pick, real u_phi, real u_r) {
+  real ox = sqrt(sin2_from_cos(co)), oz = co;  // spec_view at phi_o = 0
+  real ix, iy, iz;
+  albedo_light_microfacet(u_branch < MIX_I_COS, w, ox, oz, u_pick, u_phi, u_r, &ix, &iy, &iz);
+  return albedo_weight_microfacet(d, g, f, pd, pg, f0, f1, kd, w, ox, oz, ix, iy, iz);
 }
 
 // ---- mfv run's albedo (MFV_CHECK_ALBEDO_MIS; host: IntegralKind::AlbedoMis) --

@@ -37,8 +37,9 @@ static inline uint4 mfv_philox(ulong seed, uint stream, uint draw, ulong sample)
 // expression (the 64-bit product shifted) and its low word as a 32-bit
 // product: LLVM then forms a vector high multiply and a vpmulld in 32-bit
 // lanes, where mfv_philox's 64-bit products take eight lanes as two AVX2
-// registers and cross-lane shuffles to split them. reciprocity_values_microfacet
-// draws with it (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
+// registers and cross-lane shuffles to split them. albedo_values (issue 31,
+// docs/performance.md) and reciprocity_values_microfacet draw with it; the
+// latter (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
 // row against 19.4 %, medians; llvm-mca on the kernel's loop of 32 pairs,
 // znver3 1060 -> 1021 cycles, skylake-avx512 1022 -> 1007); d_norm keeps
 // mfv_philox, whose loop on skylake-avx512 grew from 109 to 142 instructions
@@ -63,6 +64,18 @@ static inline uint4 mfv_philox_split(ulong seed, uint stream, uint draw, ulong s
 // Uniform in (0,1) by integer arithmetic: (2k+1) * 2^-24 with k < 2^23 is
 // exact in float and in double, so both sides see the identical number.
 static inline real u01_open(uint x) { return (real)((((x >> 9) << 1) | 1u)) * R(5.9604644775390625e-8); }
+
+// u01_open(x) < MIX_I_COS (0.2, albedo's cosine-lobe share) as an integer
+// compare, the same truth for every x: u01_open(x) = (2k + 1) 2^-24 with
+// k = x >> 9, below 0.2 exactly when 2k + 1 <= 3355443 (0.2 * 2^24 =
+// 3355443.2 in double, 3355443.25 with float's 0.2f), that is when k <=
+// 1677721, x < 1677722 * 2^9. albedo_values takes it so that LLVM's SLP pass
+// finds no two float compares of one sample's words (r.x here, r.y's
+// u_pick < MIX_COS) to pair into a 2-lane vector, which PoCL's work-item
+// vectorizer refuses (kernels/integrate.cl). tests/test_philox.cpp checks it
+// against both compares around the threshold.
+#define MFV_U01_BELOW_FIFTH 858993664u
+static inline bool u01_open_below_fifth(uint x) { return x < MFV_U01_BELOW_FIFTH; }
 
 // Known-answer kernels (tests/test_philox.cpp): each generator's words and
 // first uniform at counters first + i.

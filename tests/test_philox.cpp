@@ -1,9 +1,12 @@
 #include "device_fixture.hpp"
 #include "rng/philox.hpp"
+#include "test_files.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <regex>
+#include <string>
 
 using namespace mfv;
 
@@ -83,4 +86,33 @@ TEST_CASE("Philox on the OpenCL device gives the host's bits and uniforms", "[de
   std::array<cl_uint, 4> first_out{};
   rt->queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(first_out), first_out.data());
   CHECK(first_out == kKats[0].out);
+}
+
+// albedo_values takes the cosine lobe's branch as an integer compare of the
+// Philox word (kernels/rng.cl u01_open_below_fifth) where the other
+// albedo paths compare u01_open(x) < MIX_I_COS: the same truth for every x,
+// in the float programs (0.2f) and the double ones (0.2). Both constants
+// are read from the kernel sources, so a change to either is checked. u01_open
+// depends on x >> 9 only, so the 2^23 values of k = x >> 9 cover every x.
+TEST_CASE("albedo_values' integer lobe compare agrees with u01_open(x) < MIX_I_COS for every x", "[rng]") {
+  const std::string rng = test::slurp(std::string(MFV_KERNEL_SOURCE_DIR) + "/rng.cl");
+  const std::string est = test::slurp(std::string(MFV_KERNEL_SOURCE_DIR) + "/estimators.cl");
+  std::smatch m;
+  REQUIRE(std::regex_search(rng, m, std::regex(R"(#define MFV_U01_BELOW_FIFTH (\d+)u)")));
+  const uint64_t threshold = std::stoull(m[1].str());
+  REQUIRE(std::regex_search(est, m, std::regex(R"(#define MIX_I_COS R\(([0-9.]+)\))")));
+  const double share = std::stod(m[1].str());
+  const float share_f = std::stof(m[1].str());
+  uint64_t below = 0, mismatches = 0;
+  for (uint32_t k = 0; k < (1u << 23); ++k) {
+    const uint32_t x = k << 9;
+    const double u = u01_open(x);
+    const bool by_int = x < threshold;
+    mismatches += (u < share) != by_int;
+    mismatches += (static_cast<float>(u) < share_f) != by_int;  // u is exact in float
+    below += by_int;
+  }
+  CHECK(mismatches == 0);
+  CHECK(below == threshold >> 9);  // the threshold is a multiple of 2^9: no k straddles it
+  CHECK(threshold % 512 == 0);
 }
