@@ -131,16 +131,20 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
 // eval_model(model, b, a, p)), so the same floats; with MODEL a constant,
 // eval_model's switch folds to the one model, flatten leaves no call, and
 // PoCL vectorizes the work-item loop where the model's code allows it
-// (docs/performance.md). No generic instance: see model_values.cl (Intel).
-#define MFV_MODEL_RECIPROCITY_VALUES(NAME, MODEL)                                                               \
-  __kernel __attribute__((flatten)) void NAME(__global const IntegralSpec* restrict specs, ulong seed,          \
-                                              __global float* restrict asym) {                                 \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                        \
-    __global const IntegralSpec* s = specs + j;                                                               \
-    real ax, ay, az, bx, by, bz;                                                                              \
-    reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                       \
-    real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);                                                   \
-    real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};                              \
+// (docs/performance.md). The pair is drawn with mfv_philox_split (the same
+// bits): with the models in select form (models.cl above_horizons) SLP
+// paired mfv_philox's two 64-bit products into a <2 x i64> multiply,
+// which PoCL's work-item vectorizer refuses. No generic instance: see
+// model_values.cl (Intel).
+#define MFV_MODEL_RECIPROCITY_VALUES(NAME, MODEL)                                                                \
+  __kernel __attribute__((flatten)) void NAME(__global const IntegralSpec* restrict specs, ulong seed,           \
+                                              __global float* restrict asym) {                                   \
+    size_t k = get_global_id(0), j = get_global_id(1);                                                           \
+    __global const IntegralSpec* s = specs + j;                                                                  \
+    real ax, ay, az, bx, by, bz;                                                                                 \
+    reciprocity_pair_split(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                      \
+    real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);                                                      \
+    real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};                                 \
     asym[j * get_global_size(0) + k] = reciprocity_asym(eval_model(MODEL, b, a, p), eval_model(MODEL, a, b, p)); \
   }
 #endif

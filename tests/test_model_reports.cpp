@@ -132,8 +132,8 @@ static void expect_gate_fails(const std::string& id, const std::string& from, co
 TEST_CASE("the stability gate fails on a planted whole model that gives NaN near the horizon",
           "[device][stability][models][planted]") {
   // Lambert made 0/0 below n.l = 0.01: sqrt of a negative number
-  expect_gate_fails("lambert", "return p[0] * MFV_INV_PI;",
-                    "return p[0] * MFV_INV_PI * sqrt(l.z - R(0.01)) / sqrt(l.z - R(0.01));");
+  expect_gate_fails("lambert", "above_horizons(l.z, v.z, p[0] * MFV_INV_PI);",
+                    "above_horizons(l.z, v.z, p[0] * MFV_INV_PI * sqrt(l.z - R(0.01)) / sqrt(l.z - R(0.01)));");
 }
 
 TEST_CASE("mfv stability gates Oren-Nayar: tan(beta) formed before its zero factors gives 0 inf = NaN at the horizon",

@@ -209,7 +209,8 @@ TEST_CASE("closed_form and energy fail on planted whole-model defects", "[device
   opt.reference_samples = 0;  // the plants are in the kernel only: test the statistics alone
   test::PlantedKernelDir dir;
   // EON without its multiple-scattering lobe is FON: it loses up to ~10 % at r = 1
-  REQUIRE(dir.replace("models.cl", "  return f_ss + f_ms;", "  return f_ss + R(0.0) * f_ms;"));
+  REQUIRE(dir.replace("models.cl", "above_horizons(l.z, v.z, f_ss + f_ms);",
+                      "above_horizons(l.z, v.z, f_ss + R(0.0) * f_ms);"));
   // Phong "normalised" by (n+2)/π: twice the energy
   REQUIRE(dir.replace("models.cl", "return (p[1] + R(2.0)) * (R(0.5) * MFV_INV_PI) * model_phong(l, v, p);",
                       "return (p[1] + R(2.0)) * MFV_INV_PI * model_phong(l, v, p);"));
