@@ -43,6 +43,35 @@ inline const Plant kKelemenQuotientsPaired = {
     "  real qv = VoH <= R(0.0) ? R(0.0) : NoV / VoH;\n  real g = (NoL / VoH) * qv;",
     "  real g = (NoL / VoH) * (NoV / VoH);"};
 
+// model_albedo_value_c's test of the sampled direction as the early return
+// it was before (kernels/model_values.cl): the same floats, but the return
+// before eval_model reads the parameters leaves their loads conditional,
+// LLVM sinks them into the branch (a masked gather on haswell), and
+// model_albedo_values__m1 (Lambert) stays scalar on AVX2 while AVX-512
+// vectorizes it (tests/test_vectorize_targets.cpp).
+inline const Plant kModelAlbedoEarlyReturn = {"model_albedo_value_c's horizon test as an early return",
+                                              "model_values.cl", "  real hx, hy, hz;\n  real oh",
+                                              "  if (iz <= R(0.0)) return R(0.0);\n  real hx, hy, hz;\n  real oh"};
+
+// The whole-model albedo kernels drawing with mfv_philox, not
+// mfv_philox_split (kernels/model_values.cl): the same bits, but in the
+// branch-free model code LLVM's SLP pass pairs Philox's two 64-bit products
+// into a <2 x i64> multiply, and model_albedo_values__m1 stays scalar on
+// AVX-512 while AVX2 vectorizes it (tests/test_vectorize_targets.cpp).
+inline const Plant kModelAlbedoPhiloxPaired = {
+    "the whole-model albedo kernels drawing with mfv_philox", "model_values.cl",
+    "    uint4 r = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k);",
+    "    uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);"};
+
+// above_horizons's test as fmin(lz, vz) <= 0 (the form first tried): the
+// same floats, but in a reciprocity kernel f(a, b) and f(b, a) then test
+// fmin(b.z, a.z) and fmin(a.z, b.z), which LLVM does not merge and its SLP
+// pass packs into a 2-lane vector: model_reciprocity_values__m1 (Lambert)
+// goes scalar on both targets (tests/test_vectorize_targets.cpp).
+inline const Plant kHorizonsFmin = {"above_horizons as fmin(lz, vz) <= 0", "models.cl",
+                                    "  return ((lz <= R(0.0)) | (vz <= R(0.0))) ? R(0.0) : f;",
+                                    "  return fmin(lz, vz) <= R(0.0) ? R(0.0) : f;"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).

@@ -53,6 +53,17 @@ const char* const kEnergyG6 = "energy --models /kelemen --grid 2x2 --max-points 
 // reciprocity_values_microfacet scalar on haswell.
 const char* const kEnergyGgxAllG = "energy --models ggx/ --grid 2x2 --max-points 1024 --replicates 2";
 
+// Whole models (kernels/model_values.cl, kernels/reciprocity.cl): Lambert
+// (m1) and radiance_002_fixed (m14), whose model_albedo_values__mN and
+// model_reciprocity_values__mN are 8-wide on both targets since the models'
+// select form (models.cl above_horizons) and mfv_philox_split in these
+// kernels (docs/performance.md, "Whole models on both targets"). The per-model
+// reciprocity kernels are built where the pairs reach 1e7 a model
+// (model_reciprocity_per_model_pays): 4 integrals x 64 x 64 x 1250 pairs.
+const char* const kWholeModels = "run --check reciprocity --scale 1250 --model lambert radiance_002_fixed";
+const char* const kWholeModelKernels[] = {"model_albedo_values__m1", "model_reciprocity_values__m1",
+                                          "model_albedo_values__m14", "model_reciprocity_values__m14"};
+
 std::map<std::string, Widths> vectorization(const std::string& kernel_dir, const std::string& command = kBench) {
   const std::string script = std::string(MFV_KERNEL_SOURCE_DIR) + "/../scripts/pocl-vectorization.sh";
   const auto r = mfv::test::run_mfv_shell("bash " + script + " --targets avx2,avx512 " + MFV_BINARY +
@@ -278,5 +289,47 @@ TEST_CASE("The kelemen vectorization test fails on G_kelemen's two quotients tha
     REQUIRE(w.count(k));
     CHECK(w.at(k).avx2 == "scalar");
     CHECK(w.at(k).avx512 != "scalar");
+  }
+}
+
+TEST_CASE("Whole models' albedo and reciprocity kernels vectorize on AVX2 and on AVX-512", "[vectorize][device]") {
+  const mfv::test::PlantedKernelDir kernels;
+  const auto w = vectorization(kernels.path(), kWholeModels);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  for (const char* k : kWholeModelKernels) {
+    INFO(k);
+    REQUIRE(w.count(k));
+    CHECK(w.at(k).avx2 != "scalar");
+    CHECK(w.at(k).avx512 != "scalar");
+  }
+}
+
+TEST_CASE("The whole-model vectorization test fails on an early horizon return, on Philox's products SLP pairs and "
+          "on a horizon test SLP pairs",
+          "[vectorize][device]") {
+  // planted, each alone: the test above fails on a Lambert kernel, on the
+  // target(s) measured (5 December 2026, PoCL 3.1)
+  struct Case {
+    const mfv::test::Plant* plant;
+    const char* kernel;
+    bool avx2_scalar, avx512_scalar;
+  };
+  for (const Case& c : {Case{&mfv::test::kModelAlbedoEarlyReturn, "model_albedo_values__m1", true, false},
+                        Case{&mfv::test::kModelAlbedoPhiloxPaired, "model_albedo_values__m1", false, true},
+                        Case{&mfv::test::kHorizonsFmin, "model_reciprocity_values__m1", true, true}}) {
+    INFO(c.plant->name << ": " << c.kernel);
+    const mfv::test::PlantedKernelDir kernels(c.plant->file, c.plant->from, c.plant->to);
+    const auto w = vectorization(kernels.path(), kWholeModels);
+    if (!have_remarks(w)) {
+      mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+      return;
+    }
+    REQUIRE(w.count(c.kernel));
+    CHECK((w.at(c.kernel).avx2 == "scalar") == c.avx2_scalar);
+    CHECK((w.at(c.kernel).avx512 == "scalar") == c.avx512_scalar);
+    CHECK(w.at(c.kernel).avx512 != "-");
   }
 }
