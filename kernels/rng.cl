@@ -37,9 +37,11 @@ static inline uint4 mfv_philox(ulong seed, uint stream, uint draw, ulong sample)
 // expression (the 64-bit product shifted) and its low word as a 32-bit
 // product: LLVM then forms a vector high multiply and a vpmulld in 32-bit
 // lanes, where mfv_philox's 64-bit products take eight lanes as two AVX2
-// registers and cross-lane shuffles to split them. albedo_values (issue 31,
-// docs/performance.md) and reciprocity_values_microfacet draw with it; the
-// latter (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
+// registers and cross-lane shuffles to split them. albedo_values, the
+// whole models' kernels (kernels/model_values.cl, reciprocity.cl: with it SLP
+// does not pair the two products into a 2-lane multiply, which kept them
+// scalar on skylake-avx512) and reciprocity_values_microfacet draw with it
+// (issue 31, docs/performance.md); the latter (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
 // row against 19.4 %, medians; llvm-mca on the kernel's loop of 32 pairs,
 // znver3 1060 -> 1021 cycles, skylake-avx512 1022 -> 1007); d_norm keeps
 // mfv_philox, whose loop on skylake-avx512 grew from 109 to 142 instructions
