@@ -14,12 +14,14 @@
 // kernels (aniso_values.cl, model_values.cl): work-item (k, j)
 // stores VALUE, an expression of s (integral j), r (its Philox draw at sample
 // first + k) and first + k; sum_values or sum_pairs reduce.
-#define MFV_SAMPLE_VALUES(NAME, VALUE)                                                                            \
+#define MFV_SAMPLE_VALUES(NAME, VALUE) MFV_SAMPLE_VALUES_DRAWN(NAME, mfv_philox, VALUE)
+// ...with another generator of mfv_philox's bits (model_values.cl: mfv_philox_split)
+#define MFV_SAMPLE_VALUES_DRAWN(NAME, GENERATOR, VALUE)                                                           \
   __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                       \
                      __global float* restrict values) {                                                          \
     size_t k = get_global_id(0), j = get_global_id(1);                                                           \
     __global const IntegralSpec* s = specs + j;                                                                  \
-    uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);                                                       \
+    uint4 r = GENERATOR(seed, s->stream, spec_draw(s, 0u), first + k);                                           \
     values[j * get_global_size(0) + k] = (float)(VALUE);                                                         \
   }
 

@@ -37,19 +37,13 @@ static inline MFV_ALWAYS_INLINE real model_albedo_value_c(int model, __global co
   return iz <= R(0.0) ? R(0.0) : f;  // select form: the parameters' loads unconditional (models.cl above_horizons)
 }
 
-// MFV_SAMPLE_VALUES's shape (kernels/estimators.cl), drawing with
-// mfv_philox_split (kernels/rng.cl, the same bits as mfv_philox): in the
-// branch-free model code LLVM's SLP pass pairs mfv_philox's two 64-bit
-// products of a round into a <2 x i64> multiply, a vector value PoCL's
-// work-item vectorizer refuses (skylake-avx512 lost every model kernel
-// so); the split form's 32-bit words are not paired.
-#define MFV_MODEL_ALBEDO_VALUES(NAME, MODEL)                                                               \
-  __kernel void NAME(__global const IntegralSpec* restrict specs, ulong seed, ulong first,                 \
-                     __global float* restrict values) {                                                    \
-    size_t k = get_global_id(0), j = get_global_id(1);                                                     \
-    __global const IntegralSpec* s = specs + j;                                                            \
-    uint4 r = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k);                              \
-    values[j * get_global_size(0) + k] =                                                                   \
-        (float)model_albedo_value_c(MODEL, s, u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w)); \
-  }
+// MFV_SAMPLE_VALUES drawing with mfv_philox_split (kernels/rng.cl, the
+// same bits as mfv_philox): in the branch-free model code LLVM's SLP pass
+// pairs mfv_philox's two 64-bit products of a round into a <2 x i64>
+// multiply, a vector value PoCL's work-item vectorizer refuses
+// (skylake-avx512 lost every model kernel so); the split form's 32-bit
+// words are not paired.
+#define MFV_MODEL_ALBEDO_VALUES(NAME, MODEL)               \
+  MFV_SAMPLE_VALUES_DRAWN(NAME, mfv_philox_split,          \
+                          model_albedo_value_c(MODEL, s, u01_open(r.x), u01_open(r.y), u01_open(r.z), u01_open(r.w)))
 #endif

@@ -60,8 +60,7 @@ inline const Plant kModelAlbedoEarlyReturn = {"model_albedo_value_c's horizon te
 // AVX-512 while AVX2 vectorizes it (tests/test_vectorize_targets.cpp).
 inline const Plant kModelAlbedoPhiloxPaired = {
     "the whole-model albedo kernels drawing with mfv_philox", "model_values.cl",
-    "    uint4 r = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k);",
-    "    uint4 r = mfv_philox(seed, s->stream, spec_draw(s, 0u), first + k);"};
+    "  MFV_SAMPLE_VALUES_DRAWN(NAME, mfv_philox_split,", "  MFV_SAMPLE_VALUES_DRAWN(NAME, mfv_philox,"};
 
 // above_horizons's test as fmin(lz, vz) <= 0 (the form first tried): the
 // same floats, but in a reciprocity kernel f(a, b) and f(b, a) then test
