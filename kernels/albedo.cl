@@ -128,7 +128,7 @@ static inline real2 albedo_rqmc_value(__global const IntegralSpec* s, uint4 shif
 // The general path below takes the other albedo integrals.
 
 // Its two stages, apart so that albedo_values can interleave two samples
-// (kernels/integrate.cl): the light direction i (o = (ox, 0, oz), the view
+// (below): the light direction i (o = (ox, 0, oz), the view
 // at phi_o = 0; `lobe`: the cosine lobe's branch, u_branch < MIX_I_COS)...
 static inline void albedo_light_microfacet(bool lobe, real w, real ox, real oz, real u_pick, real u_phi, real u_r,
                                            real* ix, real* iy, real* iz) {
@@ -387,3 +387,57 @@ static inline real albedo_value(__global const IntegralSpec* s, real u_branch, r
   return albedo_weight(s, i, o, w);
 }
 
+#ifndef MFV_USER_BRDF
+// The fast path of `integrate` for isotropic microfacet albedo integrals
+// (spec_is_microfacet; host: Integrator::run). Two samples per work-item
+// and no barrier: PoCL turns a work-group into a loop over its work-items
+// and vectorizes that loop only where the body has no inner loop and keeps
+// no 64-bit value per work-item across a barrier (a local-memory reduction
+// keeps pointers and size_t counters), so the samples are stored and
+// sum_values reduces them. Work-item (k, j) of a launch n wide takes samples
+// first + k and first + k + n of integral j, stored where
+// MFV_SAMPLE_VALUES_2 stores them; each is the one `integrate` takes at
+// that index, to the bit (albedo_value_microfacet's two stages, and
+// mfv_philox_split: mfv_philox's bits).
+// The two samples are interleaved by stage: both draws, both light
+// directions, then both values. A sample is one chain of dependent
+// operations (~300 cycles by llvm-mca: Philox's rounds, then a dozen
+// divisions and square roots in series) whose vector loop body is longer
+// than the core's out-of-order window, so a second sample written after the
+// first overlapped it little; by stage, the window holds both chains
+// (docs/performance.md, issue 31: +12 % on AVX2). Each of the second sample's
+// stages sits in a block of its own (`n != 0` always holds), as in
+// MFV_SAMPLE_VALUES_2, so that SLP does not pair the two samples' operations
+// into 2-lane vectors; and `lobe` is an integer compare of r.x
+// (u01_open_below_fifth), so that SLP does not pair it with u_pick's.
+__kernel __attribute__((flatten)) void albedo_values(__global const IntegralSpec* restrict specs, ulong seed,
+                                                     ulong first, __global float* restrict values) {
+  size_t k0 = get_global_id(0), j = get_global_id(1), n = get_global_size(0);
+  __global const IntegralSpec* s = specs + j;
+  // the parameters loaded once, before the blocks (a load inside one is a gather)
+  int d = s->d, g = s->g, f = s->f;
+  real pd = s->pd, pg = s->pg, f0 = s->f0, f1 = s->f1, kd = s->kd, w = s->width, co = s->cos_o;
+  real ox = sqrt(sin2_from_cos(co)), oz = co;  // spec_view at phi_o = 0, as albedo_value_microfacet
+  uint4 ra = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k0);
+  // the second draw's words as scalars: a uint4 out of the block would be a
+  // vector-typed phi, which the work-item vectorizer refuses
+  uint rbx = 0u, rby = 0u, rbz = 0u, rbw = 0u;
+  if (n != 0) {
+    uint4 rb = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k0 + n);
+    rbx = rb.x;
+    rby = rb.y;
+    rbz = rb.z;
+    rbw = rb.w;
+  }
+  real ixa, iya, iza, ixb = R(0.0), iyb = R(0.0), izb = R(0.0);
+  albedo_light_microfacet(u01_open_below_fifth(ra.x), w, ox, oz, u01_open(ra.y), u01_open(ra.z), u01_open(ra.w),
+                          &ixa, &iya, &iza);
+  if (n != 0)
+    albedo_light_microfacet(u01_open_below_fifth(rbx), w, ox, oz, u01_open(rby), u01_open(rbz), u01_open(rbw), &ixb,
+                            &iyb, &izb);
+  float va = (float)albedo_weight_microfacet(d, g, f, pd, pg, f0, f1, kd, w, ox, oz, ixa, iya, iza), vb = 0.0f;
+  if (n != 0) vb = (float)albedo_weight_microfacet(d, g, f, pd, pg, f0, f1, kd, w, ox, oz, ixb, iyb, izb);
+  values[j * 2 * n + k0] = va;
+  values[j * 2 * n + k0 + n] = vb;
+}
+#endif

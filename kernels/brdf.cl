@@ -4,7 +4,7 @@
 // seed 000: f = kd/π + D(h) F(l,h) G(l,v,h) / (4 (n·l)(n·v)), local frame n = +z,
 // wi = light, wo = view, both pointing away from the surface.
 // By components (l = (lx, ly, lz), v = (vx, vy, vz)): no float3 value, so
-// PoCL can run work-items in SIMD lanes (integrate.cl albedo_values).
+// PoCL can run work-items in SIMD lanes (albedo.cl albedo_values).
 // brdf_above_c is the value where both directions are above the horizon
 // (lz > 0, vz > 0; elsewhere its result is meaningless and must be selected
 // away): kernels that select 0 below the horizon themselves

@@ -216,60 +216,7 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void integrate(__global const IntegralSpec* s
     MFV_INTEGRATE_REDUCE                                                                                         \
   }
 
-#ifndef MFV_USER_BRDF
-// The fast path of `integrate` for isotropic microfacet albedo integrals
-// (spec_is_microfacet; host: Integrator::run). Two samples per work-item
-// and no barrier: PoCL turns a work-group into a loop over its work-items
-// and vectorizes that loop only where the body has no inner loop and keeps
-// no 64-bit value per work-item across a barrier (a local-memory reduction
-// keeps pointers and size_t counters), so the samples are stored and
-// sum_values reduces them. Work-item (k, j) of a launch n wide takes samples
-// first + k and first + k + n of integral j, stored where
-// MFV_SAMPLE_VALUES_2 stores them; each is the one `integrate` takes at
-// that index, to the bit (albedo_value_microfacet's two stages, and
-// mfv_philox_split: mfv_philox's bits).
-// The two samples are interleaved by stage: both draws, both light
-// directions, then both values. A sample is one chain of dependent
-// operations (~300 cycles by llvm-mca: Philox's rounds, then a dozen
-// divisions and square roots in series) whose vector loop body is longer
-// than the core's out-of-order window, so a second sample written after the
-// first overlapped it little; by stage, the window holds both chains
-// (docs/performance.md, issue 31: +12 % on AVX2). Each of the second sample's
-// stages sits in a block of its own (`n != 0` always holds), as in
-// MFV_SAMPLE_VALUES_2, so that SLP does not pair the two samples' operations
-// into 2-lane vectors; and `lobe` is an integer compare of r.x
-// (u01_open_below_fifth), so that SLP does not pair it with u_pick's.
-__kernel __attribute__((flatten)) void albedo_values(__global const IntegralSpec* restrict specs, ulong seed,
-                                                     ulong first, __global float* restrict values) {
-  size_t k0 = get_global_id(0), j = get_global_id(1), n = get_global_size(0);
-  __global const IntegralSpec* s = specs + j;
-  // the parameters loaded once, before the blocks (a load inside one is a gather)
-  int d = s->d, g = s->g, f = s->f;
-  real pd = s->pd, pg = s->pg, f0 = s->f0, f1 = s->f1, kd = s->kd, w = s->width, co = s->cos_o;
-  real ox = sqrt(sin2_from_cos(co)), oz = co;  // spec_view at phi_o = 0, as albedo_value_microfacet
-  uint4 ra = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k0);
-  // the second draw's words as scalars: a uint4 out of the block would be a
-  // vector-typed phi, which the work-item vectorizer refuses
-  uint rbx = 0u, rby = 0u, rbz = 0u, rbw = 0u;
-  if (n != 0) {
-    uint4 rb = mfv_philox_split(seed, s->stream, spec_draw(s, 0u), first + k0 + n);
-    rbx = rb.x;
-    rby = rb.y;
-    rbz = rb.z;
-    rbw = rb.w;
-  }
-  real ixa, iya, iza, ixb = R(0.0), iyb = R(0.0), izb = R(0.0);
-  albedo_light_microfacet(u01_open_below_fifth(ra.x), w, ox, oz, u01_open(ra.y), u01_open(ra.z), u01_open(ra.w),
-                          &ixa, &iya, &iza);
-  if (n != 0)
-    albedo_light_microfacet(u01_open_below_fifth(rbx), w, ox, oz, u01_open(rby), u01_open(rbz), u01_open(rbw), &ixb,
-                            &iyb, &izb);
-  float va = (float)albedo_weight_microfacet(d, g, f, pd, pg, f0, f1, kd, w, ox, oz, ixa, iya, iza), vb = 0.0f;
-  if (n != 0) vb = (float)albedo_weight_microfacet(d, g, f, pd, pg, f0, f1, kd, w, ox, oz, ixb, iyb, izb);
-  values[j * 2 * n + k0] = va;
-  values[j * 2 * n + k0 + n] = vb;
-}
-#endif
+// albedo_values, the fast path for isotropic microfacet albedo integrals: kernels/albedo.cl
 
 #ifndef MFV_USER_BRDF
 // mfv run's albedo (MFV_CHECK_ALBEDO_MIS) with one point per work-item, as

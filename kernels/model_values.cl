@@ -2,7 +2,7 @@
 // iid albedo integrals of mfv run's energy and closed_form checks
 // (MFV_CHECK_ALBEDO, isotropic proposal, light in the xz-plane, one width
 // > 0; host: Integrator values_kernel) with one sample per work-item, stored
-// and reduced by sum_values, as albedo_values (kernels/integrate.cl).
+// and reduced by sum_values, as albedo_values (kernels/albedo.cl).
 // MFV_MODEL_ALBEDO_VALUES(NAME, MODEL) defines the kernel for the constant
 // model id MODEL, one per model (runtime/specialize.cpp, PoCL only), where
 // eval_model's switch folds to the one model and PoCL vectorizes the

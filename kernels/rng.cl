@@ -74,7 +74,7 @@ static inline real u01_open(uint x) { return (real)((((x >> 9) << 1) | 1u)) * R(
 // 1677721, x < 1677722 * 2^9. albedo_values takes it so that LLVM's SLP pass
 // finds no two float compares of one sample's words (r.x here, r.y's
 // u_pick < MIX_COS) to pair into a 2-lane vector, which PoCL's work-item
-// vectorizer refuses (kernels/integrate.cl). tests/test_philox.cpp checks it
+// vectorizer refuses (kernels/albedo.cl). tests/test_philox.cpp checks it
 // against both compares around the threshold.
 #define MFV_U01_BELOW_FIFTH 858993664u
 static inline bool u01_open_below_fifth(uint x) { return x < MFV_U01_BELOW_FIFTH; }

@@ -1,5 +1,5 @@
 // Integrator::run's fast path for isotropic microfacet albedo integrals
-// (kernels/integrate.cl albedo_values + sum_values) takes the samples the
+// (kernels/albedo.cl albedo_values + sum_values) takes the samples the
 // general `integrate` kernel takes and gives the same estimates: over
 // several D x G x F, grazing and normal views, tiny widths, diffuse kd,
 // launches split along the sample axis, and later passes (first_index > 0);
