@@ -8,10 +8,10 @@
 // in host/reference/estimators.cpp), by components: directions from sincos_2pi, the
 // near-retro/mirror offsets normalised with rsqrt, both sides selected.
 // reciprocity_pair_of: the pair from its draw r; reciprocity_pair_c draws it
-// with mfv_philox, reciprocity_pair_split (the microfacet kernel's) with
-// mfv_philox_split: the same bits. Both are flatten and MFV_ALWAYS_INLINE,
-// so each is inlined with its Philox call also where a kernel calls it
-// several times (reciprocity_values_microfacet: four).
+// with mfv_philox_split (mfv_philox's bits: in the vectorized kernels below
+// SLP would pair mfv_philox's two 64-bit products into a 2-lane multiply).
+// flatten and MFV_ALWAYS_INLINE, so it is inlined with its Philox call also
+// where a kernel calls it several times (reciprocity_values_microfacet: four).
 static inline MFV_ALWAYS_INLINE void reciprocity_pair_of(uint4 r, uint index, real* ax, real* ay, real* az, real* bx,
                                                          real* by, real* bz) {
   uint kind = index % 4u;
@@ -36,13 +36,6 @@ static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_c
                                                                                  ulong seed, uint index, real* ax,
                                                                                  real* ay, real* az, real* bx,
                                                                                  real* by, real* bz) {
-  reciprocity_pair_of(mfv_philox(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
-}
-
-static inline MFV_ALWAYS_INLINE __attribute__((flatten)) void reciprocity_pair_split(__global const IntegralSpec* s,
-                                                                                     ulong seed, uint index, real* ax,
-                                                                                     real* ay, real* az, real* bx,
-                                                                                     real* by, real* bz) {
   reciprocity_pair_of(mfv_philox_split(seed, s->stream, spec_draw(s, 1u), index), index, ax, ay, az, bx, by, bz);
 }
 
@@ -90,7 +83,7 @@ __kernel MFV_NO_IMPLICIT_VECTORIZE void reciprocity_values(__global const Integr
 static inline MFV_ALWAYS_INLINE float reciprocity_microfacet_asym(__global const IntegralSpec* s, ulong seed,
                                                                   uint index) {
   real ax, ay, az, bx, by, bz;
-  reciprocity_pair_split(s, seed, index, &ax, &ay, &az, &bx, &by, &bz);
+  reciprocity_pair_c(s, seed, index, &ax, &ay, &az, &bx, &by, &bz);
   bool below = fmin(az, bz) <= R(0.0);
   real fab = brdf_above_c(s->d, s->g, s->f, ax, ay, az, bx, by, bz, s->pd, s->pg, s->f0, s->f1, s->kd);
   real fba = brdf_above_c(s->d, s->g, s->f, bx, by, bz, ax, ay, az, s->pd, s->pg, s->f0, s->f1, s->kd);
@@ -142,7 +135,7 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
     size_t k = get_global_id(0), j = get_global_id(1);                                                           \
     __global const IntegralSpec* s = specs + j;                                                                  \
     real ax, ay, az, bx, by, bz;                                                                                 \
-    reciprocity_pair_split(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                      \
+    reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                          \
     real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);                                                      \
     real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};                                 \
     asym[j * get_global_size(0) + k] = reciprocity_asym(eval_model(MODEL, b, a, p), eval_model(MODEL, a, b, p)); \

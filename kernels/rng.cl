@@ -40,10 +40,11 @@ static inline uint4 mfv_philox(ulong seed, uint stream, uint draw, ulong sample)
 // registers and cross-lane shuffles to split them. albedo_values, the
 // whole models' kernels (kernels/model_values.cl, reciprocity.cl: with it SLP
 // does not pair the two products into a 2-lane multiply, which kept them
-// scalar on skylake-avx512) and reciprocity_values_microfacet draw with it
-// (issue 31, docs/performance.md); the latter (mfv bench on AVX2, 5 alternated rounds: 20.2 % of the peak
-// row against 19.4 %, medians; llvm-mca on the kernel's loop of 32 pairs,
-// znver3 1060 -> 1021 cycles, skylake-avx512 1022 -> 1007); d_norm keeps
+// scalar on skylake-avx512) and the reciprocity pairs draw with it (issue
+// 31, docs/performance.md); reciprocity_values_microfacet (mfv bench on
+// AVX2, 5 alternated rounds: 20.2 % of the peak row against 19.4 %,
+// medians; llvm-mca on the kernel's loop of 32 pairs, znver3 1060 -> 1021
+// cycles, skylake-avx512 1022 -> 1007); d_norm keeps
 // mfv_philox, whose loop on skylake-avx512 grew from 109 to 142 instructions
 // with it (docs/performance.md, issue 31). tests/test_philox.cpp checks both.
 static inline uint4 mfv_philox_split(ulong seed, uint stream, uint draw, ulong sample) {
@@ -75,7 +76,7 @@ static inline real u01_open(uint x) { return (real)((((x >> 9) << 1) | 1u)) * R(
 // finds no two float compares of one sample's words (r.x here, r.y's
 // u_pick < MIX_COS) to pair into a 2-lane vector, which PoCL's work-item
 // vectorizer refuses (kernels/albedo.cl). tests/test_philox.cpp checks it
-// against both compares around the threshold.
+// against both compares for every x.
 #define MFV_U01_BELOW_FIFTH 858993664u
 static inline bool u01_open_below_fifth(uint x) { return x < MFV_U01_BELOW_FIFTH; }
 
