@@ -220,15 +220,19 @@ static inline real Lambda_charlie(real NoV, real alpha) {
 }
 
 static inline real G1_charlie(real NoV, real alpha) {
-  if (NoV <= R(0.0)) return R(0.0);
-  return R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));
+  // select form: an early return here kept this G's masking and AlbedoMis
+  // kernels scalar on AVX2 (8-wide on AVX-512; docs/performance.md). At and
+  // below the horizon Λ is ∞ and g is 0 already; the select says so.
+  real g = R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));
+  return NoV <= R(0.0) ? R(0.0) : g;
 }
 
 static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {
   // KHR_materials_sheen "Sheen visibility" (Charlie): V = 1/((1 + Λ(v) + Λ(l)) 4 (n·v)(n·l)),
   // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))
-  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);
-  return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
+  // select form, as G1_charlie's
+  real g = R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
+  return (NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0)) ? R(0.0) : g;
 }
 
 static inline real G_neubelt_sheen(real NoL, real NoV, real NoH, real VoH, real unused) {

@@ -43,6 +43,24 @@ inline const Plant kKelemenQuotientsPaired = {
     "  real qv = VoH <= R(0.0) ? R(0.0) : NoV / VoH;\n  real g = (NoL / VoH) * qv;",
     "  real g = (NoL / VoH) * (NoV / VoH);"};
 
+// G1_charlie's and G_charlie_sheen's horizon tests as the early returns they
+// were before (kernels/terms_g.cl): the same floats, but the masking and
+// AlbedoMis kernels of charlie_sheen (masking_values__g23,
+// albedo_mis_values__g23) stay scalar on AVX2 while AVX-512 vectorizes them
+// (tests/test_vectorize_targets.cpp). Either select alone keeps them wide.
+inline const Plant kCharlieEarlyReturns = {
+    "G1_charlie's and G_charlie_sheen's horizon tests as early returns", "terms_g.cl",
+    "  real g = R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));\n  return NoV <= R(0.0) ? R(0.0) : g;\n}\n\n"
+    "static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {\n"
+    "  // KHR_materials_sheen \"Sheen visibility\" (Charlie): V = 1/((1 + Λ(v) + Λ(l)) 4 (n·v)(n·l)),\n"
+    "  // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))\n  // select form, as G1_charlie's\n"
+    "  real g = R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v "
+    "to the bit\n  return (NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0)) ? R(0.0) : g;",
+    "  if (NoV <= R(0.0)) return R(0.0);\n  return R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));\n}\n\n"
+    "static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {\n"
+    "  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);\n"
+    "  return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));"};
+
 // model_albedo_value_c's test of the sampled direction as the early return
 // it was before (kernels/model_values.cl): the same floats, but the return
 // before eval_model reads the parameters leaves their loads conditional,

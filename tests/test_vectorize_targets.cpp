@@ -53,6 +53,10 @@ const char* const kEnergyG6 = "energy --models /kelemen --grid 2x2 --max-points 
 // reciprocity_values_microfacet scalar on haswell.
 const char* const kEnergyGgxAllG = "energy --models ggx/ --grid 2x2 --max-points 1024 --replicates 2";
 
+// The energy program of charlie with charlie_sheen (G id 23): its masking and
+// AlbedoMis kernels per G (`__g23`), per D (`__d22`) and per pair.
+const char* const kEnergyCharlie = "energy --models charlie/charlie_sheen --grid 2x2 --max-points 1024 --replicates 2";
+
 // Whole models (kernels/model_values.cl, kernels/reciprocity.cl): Lambert
 // (m1) and radiance_002_fixed (m14), whose model_albedo_values__mN and
 // model_reciprocity_values__mN are 8-wide on both targets since the models'
@@ -331,5 +335,47 @@ TEST_CASE("The whole-model vectorization test fails on an early horizon return, 
     CHECK((w.at(c.kernel).avx2 == "scalar") == c.avx2_scalar);
     CHECK((w.at(c.kernel).avx512 == "scalar") == c.avx512_scalar);
     CHECK(w.at(c.kernel).avx512 != "-");
+  }
+}
+
+TEST_CASE("The kernels of charlie with charlie_sheen vectorize on AVX2 and on AVX-512: no kernel of its program "
+          "differs between them",
+          "[vectorize][device]") {
+  const mfv::test::PlantedKernelDir kernels;
+  const auto w = vectorization(kernels.path(), kEnergyCharlie);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  // masking_values__g23, albedo_mis_values__g23, albedo_rqmc_values__d22_g23, albedo_mis_pair__d22_g23
+  const auto g = pair_kernels(w, "_g23");
+  CHECK(g.size() == 4);
+  for (const auto& [k, x] : g) {
+    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
+    CHECK(x.avx2 != "scalar");
+    CHECK(x.avx512 != "scalar");
+  }
+  for (const auto& [k, x] : w) {
+    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
+    CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
+  }
+}
+
+TEST_CASE("The charlie_sheen vectorization test fails on G1_charlie's and G_charlie_sheen's early returns",
+          "[vectorize][device]") {
+  const auto& p = mfv::test::kCharlieEarlyReturns;
+  const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
+  const auto w = vectorization(kernels.path(), kEnergyCharlie);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  // planted: scalar on avx2 only (measured 5 December 2026, PoCL 3.1), so the test above fails
+  for (const char* k : {"masking_values__g23", "albedo_mis_values__g23"}) {
+    INFO(k);
+    REQUIRE(w.count(k));
+    CHECK(w.at(k).avx2 == "scalar");
+    CHECK(w.at(k).avx512 != "scalar");
+    CHECK(w.at(k).avx512 != "-");
   }
 }
