@@ -240,12 +240,18 @@ static inline real G_neubelt_sheen(real NoL, real NoV, real NoH, real VoH, real 
   // Order: 1886", cloth BRDF visibility (after Ashikhmin and Premoze 2007):
   // V = 1 / (4 (n.l + n.v - (n.l)(n.v))), returned as G = 4 (n.l)(n.v) V.
   // Cosines above 1 (rounding) are taken as 1. (l + v) - l v loses at most
-  // one bit (l v <= (l + v) / 2); G = (min / den) max: the quotient lies in
-  // (0, 1] (den >= max(l, v)), so l v never underflows at grazing, and the
-  // form is symmetric in l and v to the bit (reciprocity).
-  real l = min(NoL, R(1.0)), v = min(NoV, R(1.0));
-  real den = (l + v) - l * v;
-  real g = (min(l, v) / den) * max(l, v);
+  // one bit (l v <= (l + v) / 2); G = (lo / den) hi: the quotient lies in
+  // (0, 1] (den >= hi), so l v never underflows at grazing, and the form is
+  // symmetric in l and v to the bit (reciprocity). lo = min(l, v) and
+  // hi = max(l, v) are formed from fmin/fmax of the cosines, lo clamped by
+  // hi: the same floats as clamping each cosine first, but no two like
+  // operations side by side, which LLVM's SLP pass packed into a 2-lane
+  // vector and which kept every generic kernel of a program with this G
+  // scalar on AVX2 (docs/performance.md).
+  real hi = min(fmax(NoL, NoV), R(1.0));
+  real lo = min(fmin(NoL, NoV), hi);
+  real den = (lo + hi) - lo * hi;
+  real g = (lo / den) * hi;
   return fmin(NoL, NoV) <= R(0.0) ? R(0.0) : g;  // select form, as G_implicit
 }
 

@@ -61,6 +61,19 @@ inline const Plant kCharlieEarlyReturns = {
     "  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);\n"
     "  return R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));"};
 
+// G_neubelt_sheen with each cosine clamped first, min(NoL, 1) and min(NoV, 1)
+// (the form before issue 31's fix, kernels/terms_g.cl): the same floats, but
+// LLVM's SLP pass packs the two clamps into a 2-lane vector, and the generic
+// kernels of a program with this G (albedo_values, albedo_mis_values,
+// reciprocity_values_microfacet) stay scalar on AVX2 while AVX-512
+// vectorizes them (tests/test_vectorize_targets.cpp).
+inline const Plant kNeubeltClampsPaired = {
+    "G_neubelt_sheen's cosines clamped side by side", "terms_g.cl",
+    "  real hi = min(fmax(NoL, NoV), R(1.0));\n  real lo = min(fmin(NoL, NoV), hi);\n"
+    "  real den = (lo + hi) - lo * hi;\n  real g = (lo / den) * hi;",
+    "  real l = min(NoL, R(1.0)), v = min(NoV, R(1.0));\n  real den = (l + v) - l * v;\n"
+    "  real g = (min(l, v) / den) * max(l, v);"};
+
 // model_albedo_value_c's test of the sampled direction as the early return
 // it was before (kernels/model_values.cl): the same floats, but the return
 // before eval_model reads the parameters leaves their loads conditional,

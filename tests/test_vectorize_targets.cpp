@@ -57,6 +57,12 @@ const char* const kEnergyGgxAllG = "energy --models ggx/ --grid 2x2 --max-points
 // AlbedoMis kernels per G (`__g23`), per D (`__d22`) and per pair.
 const char* const kEnergyCharlie = "energy --models charlie/charlie_sheen --grid 2x2 --max-points 1024 --replicates 2";
 
+// The run's program of charlie with neubelt_sheen: its generic
+// kernels (albedo_values, albedo_mis_values, reciprocity_values_microfacet:
+// the program's one G in their select chains), built with the reciprocity
+// check's.
+const char* const kRunNeubelt = "run --check reciprocity --model charlie/neubelt_sheen";
+
 // Whole models (kernels/model_values.cl, kernels/reciprocity.cl): Lambert
 // (m1) and radiance_002_fixed (m14), whose model_albedo_values__mN and
 // model_reciprocity_values__mN are 8-wide on both targets since the models'
@@ -372,6 +378,47 @@ TEST_CASE("The charlie_sheen vectorization test fails on G1_charlie's and G_char
   }
   // planted: scalar on avx2 only (measured 5 December 2026, PoCL 3.1), so the test above fails
   for (const char* k : {"masking_values__g23", "albedo_mis_values__g23"}) {
+    INFO(k);
+    REQUIRE(w.count(k));
+    CHECK(w.at(k).avx2 == "scalar");
+    CHECK(w.at(k).avx512 != "scalar");
+    CHECK(w.at(k).avx512 != "-");
+  }
+}
+
+TEST_CASE("The generic kernels of a program with neubelt_sheen vectorize on AVX2 and on AVX-512: no kernel of it "
+          "differs between them",
+          "[vectorize][device]") {
+  const mfv::test::PlantedKernelDir kernels;
+  const auto w = vectorization(kernels.path(), kRunNeubelt);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  for (const char* k : {"albedo_values", "albedo_mis_values", "reciprocity_values_microfacet"}) {
+    INFO(k);
+    REQUIRE(w.count(k));
+    CHECK(w.at(k).avx2 != "scalar");
+    CHECK(w.at(k).avx512 != "scalar");
+  }
+  for (const auto& [k, x] : w) {
+    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
+    if (x.avx2 == "-" || x.avx512 == "-") continue;  // not compiled for one target (see the first test)
+    CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
+  }
+}
+
+TEST_CASE("The neubelt_sheen vectorization test fails on G_neubelt_sheen's two clamps side by side",
+          "[vectorize][device]") {
+  const auto& p = mfv::test::kNeubeltClampsPaired;
+  const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
+  const auto w = vectorization(kernels.path(), kRunNeubelt);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  // planted: scalar on avx2 only (measured 5 December 2026, PoCL 3.1), so the test above fails
+  for (const char* k : {"albedo_values", "albedo_mis_values", "reciprocity_values_microfacet"}) {
     INFO(k);
     REQUIRE(w.count(k));
     CHECK(w.at(k).avx2 == "scalar");
