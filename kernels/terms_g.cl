@@ -232,7 +232,7 @@ static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real 
   // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))
   // select form, as G1_charlie's
   real g = R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v to the bit
-  return (NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0)) ? R(0.0) : g;
+  return ((NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0))) ? R(0.0) : g;
 }
 
 static inline real G_neubelt_sheen(real NoL, real NoV, real NoH, real VoH, real unused) {

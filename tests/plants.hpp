@@ -55,7 +55,7 @@ inline const Plant kCharlieEarlyReturns = {
     "  // KHR_materials_sheen \"Sheen visibility\" (Charlie): V = 1/((1 + Λ(v) + Λ(l)) 4 (n·v)(n·l)),\n"
     "  // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))\n  // select form, as G1_charlie's\n"
     "  real g = R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v "
-    "to the bit\n  return (NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0)) ? R(0.0) : g;",
+    "to the bit\n  return ((NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0))) ? R(0.0) : g;",
     "  if (NoV <= R(0.0)) return R(0.0);\n  return R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));\n}\n\n"
     "static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {\n"
     "  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);\n"
