@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <set>
@@ -198,6 +199,35 @@ std::map<std::string, Widths> pair_kernels(const std::map<std::string, Widths>& 
   return g;
 }
 
+// `plant` makes each named kernel of `command`'s programs scalar on avx2
+// and wide on avx512 (measured 5 December 2026, PoCL 3.1): a test that asks
+// for them wide on both, or for no kernel to differ, fails on it.
+void require_avx2_only_scalar(const mfv::test::Plant& plant, const char* command,
+                              std::initializer_list<const char*> names) {
+  const mfv::test::PlantedKernelDir kernels(plant.file, plant.from, plant.to);
+  const auto w = vectorization(kernels.path(), command);
+  if (!have_remarks(w)) {
+    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
+    return;
+  }
+  for (const char* k : names) {
+    INFO(k);
+    REQUIRE(w.count(k));
+    CHECK(w.at(k).avx2 == "scalar");
+    CHECK(w.at(k).avx512 != "scalar");
+    CHECK(w.at(k).avx512 != "-");
+  }
+}
+
+// No kernel compiled for both targets is scalar on one and wide on the other.
+void require_no_difference(const std::map<std::string, Widths>& w) {
+  for (const auto& [k, x] : w) {
+    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
+    if (x.avx2 == "-" || x.avx512 == "-") continue;  // not compiled for one target (see the first test)
+    CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("The energy kernels of every D with smith_ggx_correlated vectorize on AVX2 and on AVX-512",
@@ -284,22 +314,11 @@ TEST_CASE("The kernels of every D with kelemen, and of ggx with every G, vectori
 
 TEST_CASE("The kelemen vectorization test fails on G_kelemen's two quotients that SLP pairs on AVX2",
           "[vectorize][device]") {
-  const auto& p = mfv::test::kKelemenQuotientsPaired;
-  const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
-  const auto w = vectorization(kernels.path(), kEnergyGgxAllG);
-  if (!have_remarks(w)) {
-    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
-    return;
-  }
   // planted: the pair's RQMC albedo kernel and the multi-G generic masking
   // and reciprocity kernels go scalar on avx2 only, so the test above fails
   // (AlbedoMis's albedo_mis_values__g6, G without D, stays 8-wide on both)
-  for (const char* k : {"albedo_rqmc_values__d2_g6", "masking_values", "reciprocity_values_microfacet"}) {
-    INFO(k);
-    REQUIRE(w.count(k));
-    CHECK(w.at(k).avx2 == "scalar");
-    CHECK(w.at(k).avx512 != "scalar");
-  }
+  require_avx2_only_scalar(mfv::test::kKelemenQuotientsPaired, kEnergyGgxAllG,
+                           {"albedo_rqmc_values__d2_g6", "masking_values", "reciprocity_values_microfacet"});
 }
 
 TEST_CASE("Whole models' albedo and reciprocity kernels vectorize on AVX2 and on AVX-512", "[vectorize][device]") {
@@ -361,29 +380,13 @@ TEST_CASE("The kernels of charlie with charlie_sheen vectorize on AVX2 and on AV
     CHECK(x.avx2 != "scalar");
     CHECK(x.avx512 != "scalar");
   }
-  for (const auto& [k, x] : w) {
-    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
-    CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
-  }
+  require_no_difference(w);
 }
 
 TEST_CASE("The charlie_sheen vectorization test fails on G1_charlie's and G_charlie_sheen's early returns",
           "[vectorize][device]") {
-  const auto& p = mfv::test::kCharlieEarlyReturns;
-  const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
-  const auto w = vectorization(kernels.path(), kEnergyCharlie);
-  if (!have_remarks(w)) {
-    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
-    return;
-  }
-  // planted: scalar on avx2 only (measured 5 December 2026, PoCL 3.1), so the test above fails
-  for (const char* k : {"masking_values__g23", "albedo_mis_values__g23"}) {
-    INFO(k);
-    REQUIRE(w.count(k));
-    CHECK(w.at(k).avx2 == "scalar");
-    CHECK(w.at(k).avx512 != "scalar");
-    CHECK(w.at(k).avx512 != "-");
-  }
+  require_avx2_only_scalar(mfv::test::kCharlieEarlyReturns, kEnergyCharlie,
+                           {"masking_values__g23", "albedo_mis_values__g23"});
 }
 
 TEST_CASE("The generic kernels of a program with neubelt_sheen vectorize on AVX2 and on AVX-512: no kernel of it "
@@ -401,28 +404,11 @@ TEST_CASE("The generic kernels of a program with neubelt_sheen vectorize on AVX2
     CHECK(w.at(k).avx2 != "scalar");
     CHECK(w.at(k).avx512 != "scalar");
   }
-  for (const auto& [k, x] : w) {
-    INFO(k << ": avx2 " << x.avx2 << ", avx512 " << x.avx512);
-    if (x.avx2 == "-" || x.avx512 == "-") continue;  // not compiled for one target (see the first test)
-    CHECK((x.avx2 == "scalar") == (x.avx512 == "scalar"));
-  }
+  require_no_difference(w);
 }
 
 TEST_CASE("The neubelt_sheen vectorization test fails on G_neubelt_sheen's two clamps side by side",
           "[vectorize][device]") {
-  const auto& p = mfv::test::kNeubeltClampsPaired;
-  const mfv::test::PlantedKernelDir kernels(p.file, p.from, p.to);
-  const auto w = vectorization(kernels.path(), kRunNeubelt);
-  if (!have_remarks(w)) {
-    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
-    return;
-  }
-  // planted: scalar on avx2 only (measured 5 December 2026, PoCL 3.1), so the test above fails
-  for (const char* k : {"albedo_values", "albedo_mis_values", "reciprocity_values_microfacet"}) {
-    INFO(k);
-    REQUIRE(w.count(k));
-    CHECK(w.at(k).avx2 == "scalar");
-    CHECK(w.at(k).avx512 != "scalar");
-    CHECK(w.at(k).avx512 != "-");
-  }
+  require_avx2_only_scalar(mfv::test::kNeubeltClampsPaired, kRunNeubelt,
+                           {"albedo_values", "albedo_mis_values", "reciprocity_values_microfacet"});
 }
