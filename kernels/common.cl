@@ -59,10 +59,10 @@ static inline real saturate(real x) { return clamp(x, R(0.0), R(1.0)); }
 static inline real safe_sqrt(real x) { return sqrt(max(x, R(0.0))); }
 static inline real sqr(real x) { return x * x; }
 
-// exp, log, log1p and erfc without a library call in float programs (the
-// terms call these). PoCL's are out-of-line calls (SLEEF, cost above LLVM's
-// inline threshold), and one call in a kernel stops PoCL running its
-// work-items in SIMD lanes. Branch-free (selects), no table; double programs
+// exp, log, log1p, erfc and acos without a library call in float programs
+// (the terms and whole models call these). PoCL's are out-of-line calls
+// (SLEEF, cost above LLVM's inline threshold), and one call in a kernel
+// stops PoCL running its work-items in SIMD lanes. Branch-free (selects), no table; double programs
 // (the reference twin) take the library's. Errors, measured against the
 // double library over every float in [-104, 89] (exp) and [2^-149, 2^128)
 // (log) by tests/test_fast_math.cpp: see there.
@@ -72,6 +72,7 @@ static inline real mfv_log(real x) { return log(x); }
 static inline real mfv_log1p(real x) { return log1p(x); }
 static inline real mfv_erfc(real x) { return erfc(x); }
 static inline real mfv_pow(real x, real y) { return pow(x, y); }
+static inline real mfv_acos(real x) { return acos(x); }
 #else
 // 2^k for an integer k in [-126, 127], from its bits.
 static inline float mfv_pow2i(int k) { return as_float((k + 127) << 23); }
@@ -132,6 +133,27 @@ static inline float mfv_erfc(float x) {
             t * (0.27886807f + t * (-1.13520398f + t * (1.48851587f + t * (-0.82215223f + t * 0.17087277f))))))));
   float y = mfv_exp(-z * z) * (t * mfv_exp(p));
   return x < 0.0f ? 2.0f - y : y;
+}
+
+// acos(x) for x in [-1, 1] (eon's FON albedo), the method of Cephes acosf
+// and asinf (Moshier, "Methods and Programs for Mathematical Functions",
+// 1989; cephes/single/asinf.c, acosf.c, whose coefficients these are): for
+// a = |x| <= 1/2, acos(a) = π/2 - asin(a), asin(a) = a + a z P(z) with z = a²,
+// P of degree 4 (a minimax fit on [0, 1/4]); for a > 1/2, acos(a) =
+// 2 asin(t) with t = sqrt((1 - a)/2) <= 1/2 (1 - a exact by Sterbenz, no
+// cancellation near 1); acos(-a) = π - acos(a). Branch-free (selects).
+// Ends: acos(±1) = 0 and π exactly (t = 0), acos(0) = π/2; a |x| above 1
+// (a cosine rounded up) is taken as ±1; NaN stays NaN.
+static inline float mfv_acos(float x) {
+  float a = fmin(fabs(x), 1.0f);
+  bool hi = a > 0.5f;
+  float z = hi ? 0.5f * (1.0f - a) : a * a;
+  float t = hi ? sqrt(z) : a;
+  float p = t + t * z * (1.6666752422e-1f + z * (7.4953002686e-2f + z * (4.5470025998e-2f +
+                                                 z * (2.4181311049e-2f + z * 4.2163199048e-2f))));
+  float r = hi ? 2.0f * p : 1.57079632679489662f - p;
+  r = x < 0.0f ? 3.14159265358979324f - r : r;
+  return x != x ? x : r;
 }
 
 // x^y for x >= 0 and finite y (the Charlie Λ fit's x^c, c in (0, 1)):

@@ -81,7 +81,7 @@ static inline real eon_E_fon(real mu, real r) {
   // (Si/mu)(1 - Si³) with 1 - Si³ = (1 - Si)(1 + Si + Si²) and 1 - Si = mu²/(1 + Si):
   // Si mu (1 + Si + Si²)/(1 + Si), no cancellation at grazing mu (and 0 at mu = 0)
   real tail = Si * mu * (R(1.0) + Si + Si * Si) / (R(1.0) + Si);
-  real G = Si * (acos(mu) - Si * mu) + (R(2.0) / R(3.0)) * (tail - Si);
+  real G = Si * (mfv_acos(mu) - Si * mu) + (R(2.0) / R(3.0)) * (tail - Si);
   return AF + r * AF * MFV_INV_PI * G;
 }
 
@@ -91,7 +91,7 @@ static inline real model_eon(real3 l, real3 v, const real* p) {
   real rho = p[0], r = p[1];
   real c1 = R(0.5) - R(2.0) / (R(3.0) * MFV_PI);
   real c2 = R(2.0) / R(3.0) - R(28.0) / (R(15.0) * MFV_PI);
-  real s = dot(l, v) - l.z * v.z;
+  real s = l.x * v.x + l.y * v.y;  // l·v - (n·l)(n·v), by components (dot() is a float3 value)
   real AF = R(1.0) / (R(1.0) + c1 * r);
   // ρ A_F/π (1 + r s/t), t = max(n·l, n·v) where s > 0, with s/t formed last:
   // at l = v along the horizon t ~ 2^-149 and s/t overflows, so ρ = 0 or
@@ -102,7 +102,14 @@ static inline real model_eon(real3 l, real3 v, const real* p) {
   real avg = AF * (R(1.0) + c2 * r);
   real rho_ms = rho * rho * avg / (R(1.0) - rho * (R(1.0) - avg));
   real eps = R(1e-7);
-  real f_ms = rho_ms * MFV_INV_PI * max(eps, R(1.0) - eon_E_fon(v.z, r)) * max(eps, R(1.0) - eon_E_fon(l.z, r)) /
+  // E_FON at l in a block of its own: in one block with E_FON at v, LLVM's SLP
+  // pass paired the two into 2-lane vectors, which keeps PoCL's work-item
+  // loop scalar (docs/performance.md, "The rest of the catalog"). r == r
+  // always holds where the value is used (a NaN r makes E_FON NaN as well),
+  // so the floats are those of the one-block form.
+  real e_l = NAN;
+  if (r == r) e_l = eon_E_fon(l.z, r);
+  real f_ms = rho_ms * MFV_INV_PI * max(eps, R(1.0) - eon_E_fon(v.z, r)) * max(eps, R(1.0) - e_l) /
               max(eps, R(1.0) - avg);
   return above_horizons(l.z, v.z, f_ss + f_ms);
 }
@@ -120,12 +127,17 @@ static inline real model_toon_specular(real3 l, real3 v, const real* p) {
   return above_horizons(l.z, v.z, h.z >= p[1] ? p[0] : R(0.0));
 }
 
-static inline real model_phong(real3 l, real3 v, const real* p) {
+// MFV_ALWAYS_INLINE: phong_normalized calls it too, and with both in one
+// program LLVM kept it out of line (cost 470 > 225), a call that keeps the
+// whole-model kernels scalar.
+static inline MFV_ALWAYS_INLINE real model_phong(real3 l, real3 v, const real* p) {
   // seed 004 Phong: r = 2(l·n)n - l = (-l.x, -l.y, l.z), f = ks clamp(v·r)^γ
-  // v·r = 1 - |v - r|²/2 for unit vectors: log1p keeps 1 - v·r where v·r ~ 1
-  real3 d = (real3)(v.x + l.x, v.y + l.y, v.z - l.z);
-  real d2 = dot(d, d);
-  real lobe = p[0] * exp(p[1] * log1p(R(-0.5) * d2));
+  // v·r = 1 - |v - r|²/2 for unit vectors: log1p keeps 1 - v·r where v·r ~ 1.
+  // By components and with mfv_exp/mfv_log1p (common.cl): dot() of a float3
+  // and the library's exp and log1p kept the kernels scalar.
+  real dx = v.x + l.x, dy = v.y + l.y, dz = v.z - l.z;
+  real d2 = dx * dx + dy * dy + dz * dz;
+  real lobe = p[0] * mfv_exp(p[1] * mfv_log1p(R(-0.5) * d2));
   real f = d2 >= R(2.0) ? (p[1] == R(0.0) ? p[0] : R(0.0)) : lobe;  // v·r <= 0; 0^0 = 1, as pow
   return above_horizons(l.z, v.z, f);
 }
@@ -143,8 +155,12 @@ static inline real model_blinn(real3 l, real3 v, const real* p) {
 }
 
 // exp(-((h.x/ax)² + (h.y/ay)²)/(h.z)²): the anisotropic Beckmann exponent, for any length of h.
+// tx² + ty² in one expression (a fused multiply-add): the sum of two
+// separate squares was a 2-lane reduction for LLVM's SLP pass (with h.x, h.y
+// and the adjacent ax, ay under it), which kept the Ward kernels scalar.
 static inline real ward_exp(real3 h, real ax, real ay) {
-  return exp(-(sqr(h.x / ax) + sqr(h.y / ay)) / (h.z * h.z));
+  real tx = h.x / ax, ty = h.y / ay;
+  return exp(-(tx * tx + ty * ty) / (h.z * h.z));
 }
 
 static inline real model_ward(real3 l, real3 v, const real* p) {
@@ -152,7 +168,9 @@ static inline real model_ward(real3 l, real3 v, const real* p) {
   // ks exp(...) / (4π αt αb sqrt((n·l)(n·v))), tangent +x, bitangent +y
   real s2, voh;
   real3 h = half_vector(l, v, &s2, &voh);
-  real f = p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));
+  // divided by αt and by αb in turn: their product p[1]·p[2] (two adjacent
+  // loads) was a 2-lane SLP vector that kept the Ward kernels scalar on haswell
+  real f = p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / p[1] / p[2] / (sqrt(l.z) * sqrt(v.z));
   return above_horizons(l.z, v.z, f);
 }
 
@@ -167,7 +185,7 @@ static inline real model_ward_dur(real3 l, real3 v, const real* p) {
   // 0 there avoids 0/0 once (n·ĥ)² underflows (n·ĥ below ~1e-23 in float).
   // One factor at a time: (v·ĥ)² and (n·ĥ)⁴ underflow (l ~ -v, or ĥ grazing),
   // where ks = 0 gave 0/0; dividing by each in turn gives 0 or the true value.
-  real f = p[0] * e * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / voh / voh / c2 / c2;
+  real f = p[0] * e * (R(0.25) * MFV_INV_PI) / p[1] / p[2] / voh / voh / c2 / c2;
   return above_horizons(l.z, v.z, e == R(0.0) ? R(0.0) : f);
 }
 

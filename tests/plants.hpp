@@ -102,6 +102,29 @@ inline const Plant kHorizonsFmin = {"above_horizons as fmin(lz, vz) <= 0", "mode
                                     "  return ((lz <= R(0.0)) | (vz <= R(0.0))) ? R(0.0) : f;",
                                     "  return fmin(lz, vz) <= R(0.0) ? R(0.0) : f;"};
 
+// Phong's lobe through the library's log1p again, not mfv_log1p
+// (kernels/models.cl model_phong): an out-of-line SLEEF call, which keeps
+// model_albedo_values__m6 and __m7 (phong_004, phong_normalized) scalar on
+// both targets (tests/test_vectorize_targets.cpp).
+inline const Plant kPhongLibraryLog1p = {"Phong's lobe through the library's log1p", "models.cl",
+                                         "mfv_exp(p[1] * mfv_log1p(R(-0.5) * d2))",
+                                         "mfv_exp(p[1] * log1p(R(-0.5) * d2))"};
+
+// EON's E_FON at l in the same block as at v (kernels/models.cl model_eon):
+// the same floats, but LLVM's SLP pass pairs the two evaluations into 2-lane
+// vectors, and model_albedo_values__m3 goes scalar on both targets
+// (tests/test_vectorize_targets.cpp).
+inline const Plant kEonFonPaired = {"EON's two E_FON in one block", "models.cl",
+                                    "  if (r == r) e_l = eon_E_fon(l.z, r);", "  e_l = eon_E_fon(l.z, r);"};
+
+// Ward's exponent as the sum of two separate squares (kernels/models.cl
+// ward_exp): a 2-lane reduction for LLVM's SLP pass, which keeps
+// model_albedo_values__m9 (ward_004) scalar on AVX2 while AVX-512
+// vectorizes it (tests/test_vectorize_targets.cpp).
+inline const Plant kWardSquaresPaired = {"Ward's exponent as two separate squares", "models.cl",
+                                         "  return exp(-(tx * tx + ty * ty) / (h.z * h.z));",
+                                         "  return exp(-(sqr(tx) + sqr(ty)) / (h.z * h.z));"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).

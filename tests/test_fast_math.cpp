@@ -1,7 +1,8 @@
-// The float programs' own exp, log, log1p, erfc and pow (kernels/common.cl
-// mfv_exp ...), which the terms call so that PoCL vectorizes them: their
-// errors against the double library, over dense grids of their domains, and
-// their special values; a wrong constant planted in mfv_exp fails the sweep.
+// The float programs' own exp, log, log1p, erfc, pow and acos
+// (kernels/common.cl mfv_exp ...), which the terms and whole models call so
+// that PoCL vectorizes them: their errors against the double library, over
+// dense grids of their domains, and their special values; a wrong constant
+// planted in mfv_exp or mfv_acos fails the sweep.
 #include "device_fixture.hpp"
 #include "kernel_dir.hpp"
 #include "runtime/opencl.hpp"
@@ -170,5 +171,104 @@ TEST_CASE("A wrong constant planted in mfv_exp fails the fast-math sweep", "[dev
     const Worst w = worst_ulps(planted);
     CAPTURE(from, to, w.exp);
     CHECK(w.exp > kExpUlps);
+  }
+}
+
+namespace {
+
+const char* kAcosKernel = R"(
+__kernel void fast_acos(__global const float* x, __global float* out) {
+  size_t i = get_global_id(0);
+  out[i] = mfv_acos(x[i]);
+}
+)";
+
+std::vector<float> run_acos(Runtime& rt, const std::vector<float>& x) {
+  cl::Program prog = rt.build({"common.cl"}, {}, kAcosKernel);
+  cl::Buffer in(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, x.size() * sizeof(float),
+                const_cast<float*>(x.data()));
+  cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, x.size() * sizeof(float));
+  cl::Kernel k(prog, "fast_acos");
+  k.setArg(0, in);
+  k.setArg(1, out);
+  rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(x.size()));
+  std::vector<float> r(x.size());
+  rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, r.size() * sizeof(float), r.data());
+  return r;
+}
+
+// acos's domain [-1, 1]: 400001 points evenly, the 4096 floats next to each
+// end (1 - k 2^-24, where acos ~ sqrt(2 (1 - x)) is steepest), the floats
+// around the ±1/2 switch of the two forms, and the tiny arguments down to
+// the subnormals.
+std::vector<float> acos_points() {
+  std::vector<float> x = grid(-1, 1, 400000);
+  for (int k = 0; k < 4096; ++k)
+    for (float sign : {1.0f, -1.0f}) {
+      x.push_back(sign * float(1.0 - k * 0x1p-24));
+      x.push_back(sign * float(0.5 + (k - 2048) * 0x1p-25));
+      x.push_back(sign * std::ldexp(1.0f + k / 4096.0f, -1 - k % 149));
+    }
+  return x;
+}
+
+// The largest error of mfv_acos over acos_points, in float ulps of the double acos.
+double worst_acos_ulps(Runtime& rt) {
+  const std::vector<float> x = acos_points();
+  const std::vector<float> r = run_acos(rt, x);
+  double w = 0;
+  for (size_t i = 0; i < x.size(); ++i) w = std::max(w, ulps(r[i], std::acos(double(x[i]))));
+  return w;
+}
+
+// The bound, derived a priori and checked against the measured worst on
+// PoCL 3.1 (1.24 ulps, docs/performance.md): the fit's own error, computed
+// in double over t in [0, 1/2] with the float coefficients, is below 5.5e-9
+// of asin (0.09 ulp); a² and P's steps add about 0.05 ulp (t z P is under
+// 5 % of asin(t)) and the last sum half an ulp: asin within 0.65 ulp of its
+// own. |x| <= 1/2: asin <= 0.524 against a result >= π/3 (twice the ulp),
+// so 0.33 ulp, plus π/2's float (0.37) and the subtraction (0.5): 1.2 ulps.
+// Above 1/2: 1 - a and the halving are exact, the square root rounds once
+// (half an ulp through asin ~ t), the doubling is exact: 1.2 ulps. x < 0:
+// π - r adds π's float (0.36 ulp) and a rounding (0.5), r's error counting
+// at most once (the result is at least r): 2.1 ulps. Bound 3.
+const double kAcosUlps = 3;
+
+}  // namespace
+
+TEST_CASE("mfv_acos is within its derived bound of the double library, exact at the ends", "[device][fast_math]") {
+  Runtime* rt = test::device_runtime();
+  if (!rt) return;
+  const double w = worst_acos_ulps(*rt);
+  CAPTURE(w);
+  CHECK(w <= kAcosUlps);
+
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> sx = {1.0f, -1.0f, 0.0f, -0.0f, nan, 1.0f + 0x1p-23f, -1.0f - 0x1p-23f, 0.5f, -0.5f};
+  const std::vector<float> s = run_acos(*rt, sx);
+  CHECK(s[0] == 0.0f);                        // acos(1), exactly
+  CHECK(s[1] == float(M_PI));                 // acos(-1): π rounded
+  CHECK(s[2] == float(M_PI / 2));             // acos(0)
+  CHECK(s[3] == float(M_PI / 2));             // acos(-0)
+  CHECK(std::isnan(s[4]));                    // NaN stays NaN
+  CHECK(s[5] == 0.0f);                        // a cosine rounded above 1: acos(1), not NaN
+  CHECK(s[6] == float(M_PI));                 // ... below -1: acos(-1)
+  CHECK(ulps(s[7], std::acos(0.5)) <= kAcosUlps);   // π/3 at the switch of the two forms
+  CHECK(ulps(s[8], std::acos(-0.5)) <= kAcosUlps);  // 2π/3
+}
+
+TEST_CASE("A wrong constant planted in mfv_acos fails its sweep", "[device][fast_math][planted]") {
+  if (!test::device_runtime()) return;
+  const std::pair<const char*, const char*> plants[] = {
+      {"(1.6666752422e-1f", "(1.6666e-1f"},   // asin's leading coefficient cut to 5 digits
+      {"hi = a > 0.5f", "hi = a > 0.75f"},    // the switch moved: asin's fit (made for z <= 1/4) used to z = 9/16
+  };
+  for (const auto& [from, to] : plants) {
+    test::PlantedKernelDir dir;
+    REQUIRE(dir.replace("common.cl", from, to));
+    Runtime planted("", dir.path());
+    const double w = worst_acos_ulps(planted);
+    CAPTURE(from, to, w);
+    CHECK(w > kAcosUlps);
   }
 }

@@ -107,8 +107,8 @@ TEST_CASE("Planted: the glTF metal's Fresnel on the dielectric f0 fails the defa
 TEST_CASE("Planted: Ward with alpha_t and alpha_b swapped fails the default gate", "[device][suite][planted]") {
   expect_reference_failure(
       "models.cl",
-      "real f = p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
-      "real f = p[0] * ward_exp(h, p[2], p[1]) * (R(0.25) * MFV_INV_PI) / (p[1] * p[2]) / (sqrt(l.z) * sqrt(v.z));",
+      "real f = p[0] * ward_exp(h, p[1], p[2]) * (R(0.25) * MFV_INV_PI) / p[1] / p[2] / (sqrt(l.z) * sqrt(v.z));",
+      "real f = p[0] * ward_exp(h, p[2], p[1]) * (R(0.25) * MFV_INV_PI) / p[1] / p[2] / (sqrt(l.z) * sqrt(v.z));",
       "ward_004[", "energy", "ward_004[at=0.3,ab=0.1]");
 }
 
