@@ -334,14 +334,18 @@ TEST_CASE("The kelemen vectorization test fails on G_kelemen's two quotients tha
                            {"albedo_rqmc_values__d2_g6", "masking_values", "reciprocity_values_microfacet"});
 }
 
-TEST_CASE("Whole models' albedo and reciprocity kernels vectorize on AVX2 and on AVX-512", "[vectorize][device]") {
+namespace {
+
+// The named kernels of `command`'s programs, each wide on both targets.
+template <size_t N>
+void require_wide(const char* command, const char* const (&names)[N]) {
   const mfv::test::PlantedKernelDir kernels;
-  const auto w = vectorization(kernels.path(), kWholeModels);
+  const auto w = vectorization(kernels.path(), command);
   if (!have_remarks(w)) {
     mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
     return;
   }
-  for (const char* k : kWholeModelKernels) {
+  for (const char* k : names) {
     INFO(k);
     REQUIRE(w.count(k));
     CHECK(w.at(k).avx2 != "scalar");
@@ -349,22 +353,19 @@ TEST_CASE("Whole models' albedo and reciprocity kernels vectorize on AVX2 and on
   }
 }
 
-TEST_CASE("The whole-model vectorization test fails on an early horizon return, on Philox's products SLP pairs and "
-          "on a horizon test SLP pairs",
-          "[vectorize][device]") {
-  // planted, each alone: the test above fails on a Lambert kernel, on the
-  // target(s) measured (5 December 2026, PoCL 3.1)
-  struct Case {
-    const mfv::test::Plant* plant;
-    const char* kernel;
-    bool avx2_scalar, avx512_scalar;
-  };
-  for (const Case& c : {Case{&mfv::test::kModelAlbedoEarlyReturn, "model_albedo_values__m1", true, false},
-                        Case{&mfv::test::kModelAlbedoPhiloxPaired, "model_albedo_values__m1", false, true},
-                        Case{&mfv::test::kHorizonsFmin, "model_reciprocity_values__m1", true, true}}) {
+// One plant a case, each alone: its kernel scalar or not on each target, as
+// measured (5 December 2026, PoCL 3.1), so that require_wide fails on it.
+struct PlantCase {
+  const mfv::test::Plant* plant;
+  const char* kernel;
+  bool avx2_scalar, avx512_scalar;
+};
+
+void require_planted_widths(const char* command, std::initializer_list<PlantCase> cases) {
+  for (const PlantCase& c : cases) {
     INFO(c.plant->name << ": " << c.kernel);
     const mfv::test::PlantedKernelDir kernels(c.plant->file, c.plant->from, c.plant->to);
-    const auto w = vectorization(kernels.path(), kWholeModels);
+    const auto w = vectorization(kernels.path(), command);
     if (!have_remarks(w)) {
       mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
       return;
@@ -374,6 +375,22 @@ TEST_CASE("The whole-model vectorization test fails on an early horizon return, 
     CHECK((w.at(c.kernel).avx512 == "scalar") == c.avx512_scalar);
     CHECK(w.at(c.kernel).avx512 != "-");
   }
+}
+
+}  // namespace
+
+TEST_CASE("Whole models' albedo and reciprocity kernels vectorize on AVX2 and on AVX-512", "[vectorize][device]") {
+  require_wide(kWholeModels, kWholeModelKernels);
+}
+
+TEST_CASE("The whole-model vectorization test fails on an early horizon return, on Philox's products SLP pairs and "
+          "on a horizon test SLP pairs",
+          "[vectorize][device]") {
+  // planted, each alone: the test above fails on a Lambert kernel
+  require_planted_widths(kWholeModels,
+                         {{&mfv::test::kModelAlbedoEarlyReturn, "model_albedo_values__m1", true, false},
+                          {&mfv::test::kModelAlbedoPhiloxPaired, "model_albedo_values__m1", false, true},
+                          {&mfv::test::kHorizonsFmin, "model_reciprocity_values__m1", true, true}});
 }
 
 TEST_CASE("The kernels of charlie with charlie_sheen vectorize on AVX2 and on AVX-512: no kernel of its program "
@@ -428,43 +445,14 @@ TEST_CASE("The neubelt_sheen vectorization test fails on G_neubelt_sheen's two c
 
 TEST_CASE("The rest of the catalog's whole models (eon, Phong, Ward) vectorize on AVX2 and on AVX-512",
           "[vectorize][device]") {
-  const mfv::test::PlantedKernelDir kernels;
-  const auto w = vectorization(kernels.path(), kCatalogModels);
-  if (!have_remarks(w)) {
-    mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
-    return;
-  }
-  for (const char* k : kCatalogModelKernels) {
-    INFO(k);
-    REQUIRE(w.count(k));
-    CHECK(w.at(k).avx2 != "scalar");
-    CHECK(w.at(k).avx512 != "scalar");
-  }
+  require_wide(kCatalogModels, kCatalogModelKernels);
 }
 
 TEST_CASE("The catalog vectorization test fails on the library's log1p in Phong, on EON's E_FON paired and on "
           "Ward's squares paired",
           "[vectorize][device]") {
-  // planted, each alone: the test above fails on these kernels, on the
-  // target(s) measured (5 December 2026, PoCL 3.1)
-  struct Case {
-    const mfv::test::Plant* plant;
-    const char* kernel;
-    bool avx2_scalar, avx512_scalar;
-  };
-  for (const Case& c : {Case{&mfv::test::kPhongLibraryLog1p, "model_albedo_values__m6", true, true},
-                        Case{&mfv::test::kEonFonPaired, "model_albedo_values__m3", true, true},
-                        Case{&mfv::test::kWardSquaresPaired, "model_albedo_values__m9", true, false}}) {
-    INFO(c.plant->name << ": " << c.kernel);
-    const mfv::test::PlantedKernelDir kernels(c.plant->file, c.plant->from, c.plant->to);
-    const auto w = vectorization(kernels.path(), kCatalogModels);
-    if (!have_remarks(w)) {
-      mfv::test::skip("no PoCL vectorizer remarks (not PoCL, or no device)");
-      return;
-    }
-    REQUIRE(w.count(c.kernel));
-    CHECK((w.at(c.kernel).avx2 == "scalar") == c.avx2_scalar);
-    CHECK((w.at(c.kernel).avx512 == "scalar") == c.avx512_scalar);
-    CHECK(w.at(c.kernel).avx512 != "-");
-  }
+  // planted, each alone: the test above fails on these kernels
+  require_planted_widths(kCatalogModels, {{&mfv::test::kPhongLibraryLog1p, "model_albedo_values__m6", true, true},
+                                          {&mfv::test::kEonFonPaired, "model_albedo_values__m3", true, true},
+                                          {&mfv::test::kWardSquaresPaired, "model_albedo_values__m9", true, false}});
 }
