@@ -116,8 +116,8 @@ static inline void draw_btdf(uint4 rg, uint4 re, real eta, __global float* r) {
   r[PW_WO_X] = wo.x; r[PW_WO_Y] = wo.y; r[PW_WO_Z] = wo.z;
 }
 
-__kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
-                         __global const float* ranges, __global float* rec) {
+__kernel MFV_NO_IMPLICIT_VECTORIZE void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, int g, int f,
+                                                    __global const float* ranges, __global float* rec) {
   size_t i = get_global_id(0);
   ulong idx = first + i;
   uint4 rg = mfv_philox(seed, stream, 0, idx);
@@ -149,7 +149,7 @@ __kernel void agree_eval(ulong seed, uint stream, ulong first, int mode, int d, 
 }
 
 // Evaluates records the host wrote (mfv eval): the same path as agree_eval.
-__kernel void eval_records(int mode, int d, int g, int f, __global float* rec) {
+__kernel MFV_NO_IMPLICIT_VECTORIZE void eval_records(int mode, int d, int g, int f, __global float* rec) {
   __global float* r = rec + get_global_id(0) * PW_RECORD;
   store_value(r, eval_record(mode, d, g, f, r));
 }

@@ -22,7 +22,9 @@ typedef float2 real2;
 // PoCL, rusticl and Oclgrind (no invalid access, no race) agree with the
 // reference. The hint is standard OpenCL C (6.7.2), a hint only: other
 // implementations may ignore it. The reference comparison that caught it
-// (mfv run's same-sample comparison) stays.
+// (mfv run's same-sample comparison) stays. agree's kernels (agree.cl)
+// carry it too: with Phong by components and mfv_exp/mfv_log1p inlined
+// (issue 31), every whole model's agree came out 0 or 1e307 on Intel.
 #define MFV_NO_IMPLICIT_VECTORIZE __attribute__((vec_type_hint(float4)))
 
 // The terms (terms_d/g/f.cl) sit between MFV_TERMS_BEGIN and MFV_TERMS_END:
