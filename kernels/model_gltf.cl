@@ -24,16 +24,17 @@
 // The tangent frame is the anisotropy direction's: anisotropyRotation turns
 // that direction about n, i.e. the whole (l, v) plane, so the BRDF in its own
 // frame does not depend on it (see host/scene/scene.cpp).
+// Either direction below the horizon (a NaN cosine compares as there), or no
+// half vector (v·h not above 0, NaN included): where the glTF models are 0.
+static inline bool no_half_vector(real NoL, real NoV, real VoH) {
+  return (NoL <= R(0.0)) | (NoV <= R(0.0)) | !(VoH > R(0.0));
+}
+
 static inline real model_gltf(real3 l, real3 v, const real* p) {
   real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5], alpha_b = p[6];
   real NoL = l.z, NoV = v.z;
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);  // v·h = |l + v|/2: symmetric, no cancellation
-  // l = -v (both at the horizon; in float32 also where l + v underflows):
-  // no half vector, h = 0/0. The Smith G's χ⁺(v·h) is 0 there (Heitz 2014
-  // eq. 99, G_smith_ggx_correlated), so f is 0, not NaN.
-  if (!(VoH > R(0.0))) return R(0.0);
   real x = R(1.0) - VoH;
   real fw = x * x * x * x * x;  // (1 - |v·h|)^5
   // specular_brdf(alpha) = D G / (4 (n·l)(n·v)) with the catalog's stable GGX D
@@ -55,7 +56,12 @@ static inline real model_gltf(real3 l, real3 v, const real* p) {
   real fr_max = f0_max + (R(1.0) - f0_max) * fw;
   real dielectric = (R(1.0) - weight * fr_max) * base * MFV_INV_PI + weight * fr * spec;
   real metal = (base + (R(1.0) - base) * fw) * spec;  // conductor_fresnel(f0 = baseColor)
-  return (R(1.0) - metallic) * dielectric + metallic * metal;
+  // 0 below the horizon (no reflection) and at l = -v (both at the horizon;
+  // in float32 also where l + v underflows): no half vector, h = 0/0, and
+  // the Smith G's χ⁺(v·h) is 0 there (Heitz 2014 eq. 99), so f is 0, not
+  // NaN. Selected last, as the catalog's models do (models.cl,
+  // above_horizons): an early return keeps PoCL's work-item loop scalar.
+  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : (R(1.0) - metallic) * dielectric + metallic * metal;
 }
 
 // KHR_materials_clearcoat over the glTF model, one colour channel (issue 21;
@@ -82,15 +88,14 @@ static inline real clearcoat_over(real material, real3 l, real3 v, real ca, real
   real NoL = l.z, NoV = v.z;
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);
-  if (!(VoH > R(0.0))) return R(0.0);  // l = -v: no half vector, G's χ⁺(v·h) = 0 (as model_gltf)
   real layer = over_4_cosines(D_ggx(h.z, s2, ca) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, ca), NoL, NoV);
   real x = R(1.0) - NoL;  // the spec's V·Nc (V = the catalog's first direction, see above)
   real weight = clearcoat * (R(0.04) + R(0.96) * x * x * x * x * x);
-  return (R(1.0) - weight) * material + weight * layer;
+  // l = -v: no half vector, G's χ⁺(v·h) = 0 (as model_gltf)
+  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : (R(1.0) - weight) * material + weight * layer;
 }
 
 static inline real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
-  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   real q[7] = {p[0], p[1], p[2], p[3], p[4], R(1.0), R(0.0)};
   return clearcoat_over(model_gltf(l, v, q), l, v, p[5], p[6]);
 }
@@ -102,7 +107,6 @@ static inline real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
 // gltf_sheen), clearcoat_alpha, clearcoat, alpha_b (last: the second width,
 // which stretches the estimators' proposal to (alpha_t, alpha_b) as for gltf).
 static inline real model_gltf_clearcoat_aniso(real3 l, real3 v, const real* p) {
-  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), p[6]};
   return clearcoat_over(model_gltf(l, v, q), l, v, p[4], p[5]);
 }
@@ -139,20 +143,22 @@ static inline real sheen_E(real mu, real alpha) {
 
 static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
   real NoL = l.z, NoV = v.z;
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);  // below the horizon: no reflection
   real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), R(0.0)};
   real material = model_gltf(l, v, q);
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);
-  if (!(VoH > R(0.0))) return R(0.0);  // l = -v: no half vector, G's χ⁺(v·h) = 0 (as model_gltf)
   real sa = p[4], sheen = p[5];
   // no sheen in this channel: no lobe (and no 0 · Inf where the cosines underflow)
   real f_sheen = sheen > R(0.0)
                      ? sheen * over_4_cosines(D_charlie(h.z, s2, sa) * G_charlie_sheen(NoL, NoV, h.z, VoH, sa), NoL, NoV)
                      : R(0.0);
   real max3 = max(sheen, p[6]);
+  // fabs(E) = E (E >= 0: a bilinear mix of the table's albedos), but the two
+  // lookups no longer have one form: LLVM's SLP pass paired them into
+  // 2-lane vectors, which keeps PoCL's work-item loop scalar
   real scaling = min(R(1.0) - max3 * sheen_E(NoV, sa), R(1.0) - max3 * sheen_E(NoL, sa));
-  return f_sheen + material * scaling;
+  // below the horizon, or l = -v (no half vector, G's χ⁺(v·h) = 0): 0, as model_gltf
+  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : f_sheen + material * scaling;
 }
 
 // KHR_materials_transmission, thin-walled (issue 29; catalog
@@ -166,29 +172,30 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
 // and L'. One colour channel; V = l (the catalog's first direction), L = the
 // second, anywhere on the sphere. Parameters p[0..4]: alpha (roughness²),
 // metallic, base, f0 (((ior − 1)/(ior + 1))², specularFactor 1), transmission.
-// Not inlined, its inputs by components: Intel's CPU runtime miscompiles the
-// whole-model agree kernels where this body is inlined (every model's values
-// wrong, lambert 0: the Intel portability test) or where it takes vectors or
-// p through a call (its own values wrong or NaN); Intel OpenCL 2026.22.
-static real __attribute__((noinline)) gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz,
-                                                       real alpha, real metallic, real base, real f0,
-                                                       real transmission) {
+// Its inputs by components, and inlined: it was kept out of line because
+// Intel's CPU runtime miscompiled the whole-model agree kernels where it was
+// inlined (every model's values wrong, lambert 0), which agree_eval's
+// MFV_NO_IMPLICIT_VECTORIZE now prevents (agree.cl); out of line, the call
+// kept PoCL's work-item loop scalar. Selects, not early returns, for the
+// same reason (as model_gltf).
+static inline MFV_ALWAYS_INLINE real gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz, real alpha,
+                                    real metallic, real base, real f0, real transmission) {
   bool below = vz < R(0.0);
   real3 l = (real3)(lx, ly, lz);
   real3 lm = (real3)(vx, vy, fabs(vz));  // below: the light mirrored through the surface (thin-walled)
   real NoL = l.z, NoV = lm.z;
-  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
   real s2, VoH;
   real3 h = half_vector(l, lm, &s2, &VoH);
-  if (!(VoH > R(0.0))) return R(0.0);  // no half vector: G's χ⁺(v·h) = 0 (as model_gltf)
   real x = R(1.0) - VoH;
   real fw = x * x * x * x * x;
   real fr = f0 + (R(1.0) - f0) * fw;
   real spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha), NoL, NoV);
-  if (below) return (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;  // a metal transmits nothing
+  real through = (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;  // a metal transmits nothing
   real dielectric = (R(1.0) - fr) * (R(1.0) - transmission) * base * MFV_INV_PI + fr * spec;
   real metal = (base + (R(1.0) - base) * fw) * spec;
-  return (R(1.0) - metallic) * dielectric + metallic * metal;
+  real f = below ? through : (R(1.0) - metallic) * dielectric + metallic * metal;
+  // no half vector: G's χ⁺(v·h) = 0 (as model_gltf)
+  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : f;
 }
 
 // The catalog's model folds the sphere onto the hemisphere of the second
@@ -198,7 +205,7 @@ static real __attribute__((noinline)) gltf_thin_walled(real lx, real ly, real lz
 // the same D and Vis at every ior (the F and 1 − F of one H' add to 1): the
 // derived expectation mfv run --scene tests (closed_form).
 static inline real model_gltf_transmission(real3 l, real3 v, const real* p) {
-  if (l.z <= R(0.0) || v.z <= R(0.0)) return R(0.0);
-  return gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, v.z, p[0], p[1], p[2], p[3], p[4]) +
-         gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, -v.z, p[0], p[1], p[2], p[3], p[4]);
+  return above_horizons(l.z, v.z,
+                        gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, v.z, p[0], p[1], p[2], p[3], p[4]) +
+                            gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, -v.z, p[0], p[1], p[2], p[3], p[4]));
 }

@@ -215,8 +215,13 @@ static inline real Lambda_charlie(real NoV, real alpha) {
   // exp(L(cosθ)) below cosθ = 0.5, exp(2 L(0.5) − L(1 − cosθ)) above
   if (NoV <= R(0.0)) return INFINITY;
   real c = min(NoV, R(1.0));
-  return c < R(0.5) ? mfv_exp(charlie_L(c, alpha))
-                    : mfv_exp(R(2.0) * charlie_L(R(0.5), alpha) - charlie_L(R(1.0) - c, alpha));
+  // L at the one argument the side needs (c or 1 − c), the side chosen after:
+  // the same floats as evaluating L at both and selecting, but one L, not
+  // two that LLVM's SLP pass paired into 2-lane vectors (gltf_sheen's
+  // kernels scalar; docs/performance.md)
+  bool low = c < R(0.5);
+  real l = charlie_L(low ? c : R(1.0) - c, alpha);
+  return mfv_exp(low ? l : R(2.0) * charlie_L(R(0.5), alpha) - l);
 }
 
 static inline real G1_charlie(real NoV, real alpha) {
