@@ -129,11 +129,16 @@ static inline real model_gltf_clearcoat_aniso(real3 l, real3 v, const real* p) {
 // default). max3(sheenColor) = max(sheen, sheen_others).
 #include "abi/sheen_table.h"  // E_sheen, shared with the double reference
 
-static inline real sheen_E(real mu, real alpha) {
+static inline MFV_ALWAYS_INLINE real sheen_E(real mu, real alpha) {
   // bilinear in (mu, log10 alpha) on the table's grid: mu at cell midpoints
   // (m + 0.5)/N, alpha = 10^(-3 + 3 j/(N - 1)) (checks/energy.cpp's grids)
   real x = clamp(mu * (real)SHEEN_E_N - R(0.5), R(0.0), (real)(SHEEN_E_N - 1));
-  real y = clamp((log10(alpha) + R(3.0)) / R(3.0) * (real)(SHEEN_E_N - 1), R(0.0), (real)(SHEEN_E_N - 1));
+  // log10 alpha as mfv_log(alpha) / ln 10 (common.cl): the library's log10
+  // is a call, which keeps PoCL's work-item loop scalar; its error (log's 2
+  // ulps, the product's half) moves y by a few float ulps, the table's
+  // bilinear weight with it, and E by as little
+  real y = clamp((mfv_log(alpha) * R(0.43429448190325182765) + R(3.0)) / R(3.0) * (real)(SHEEN_E_N - 1), R(0.0),
+                 (real)(SHEEN_E_N - 1));
   int i = min((int)x, SHEEN_E_N - 2), j = min((int)y, SHEEN_E_N - 2);
   real fx = x - (real)i, fy = y - (real)j;
   real e0 = mix((real)SHEEN_E[j * SHEEN_E_N + i], (real)SHEEN_E[j * SHEEN_E_N + i + 1], fx);
@@ -156,7 +161,11 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
   // fabs(E) = E (E >= 0: a bilinear mix of the table's albedos), but the two
   // lookups no longer have one form: LLVM's SLP pass paired them into
   // 2-lane vectors, which keeps PoCL's work-item loop scalar
-  real scaling = min(R(1.0) - max3 * sheen_E(NoV, sa), R(1.0) - max3 * sheen_E(NoL, sa));
+  // fabs(E) = E (E >= 0: a bilinear mix, weights in [0, 1], of albedos),
+  // but the two lookups no longer have one form: in one form, LLVM's SLP
+  // pass paired them into 2-lane vectors, which kept PoCL's work-item loop
+  // scalar (docs/performance.md)
+  real scaling = min(R(1.0) - max3 * sheen_E(NoV, sa), R(1.0) - max3 * fabs(sheen_E(NoL, sa)));
   // below the horizon, or l = -v (no half vector, G's χ⁺(v·h) = 0): 0, as model_gltf
   return no_half_vector(NoL, NoV, VoH) ? R(0.0) : f_sheen + material * scaling;
 }

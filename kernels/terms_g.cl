@@ -163,7 +163,11 @@ static inline real G_hammon_clamped(real NoL, real NoV, real NoH, real VoH, real
 static inline real Lambda_ggx_aniso(real NoV, real vx, real vy, real ax, real ay) {
   if (NoV >= R(1.0)) return R(0.0);             // rounding above 1 -> G1 = 1 (seed 000)
   if (NoV <= R(0.0)) return INFINITY;           // θ -> π/2: Λ -> ∞
-  real q = sqr(ax * vx) + sqr(ay * vy);         // α_o² sin²θ_o
+  // α_o² sin²θ_o in one expression (a fused multiply-add, as D_ggx_aniso's
+  // k): the sum of two separate squares was a 2-lane pair for LLVM's SLP
+  // pass, which kept the anisotropic glTF models' kernels scalar on AVX2
+  real tx = ax * vx, ty = ay * vy;
+  real q = tx * tx + ty * ty;
   real x = q / (NoV * NoV);
   // cos² underflows (NoV below ~1e-19): Λ = α_o tanθ / 2, as Lambda_ggx
   if (isinf(x)) return R(0.5) * sqrt(q) / NoV;
