@@ -57,10 +57,17 @@ static inline real model_oren_nayar(real3 l, real3 v, const real* p) {
   real s2 = p[1] * p[1];
   real A = R(1.0) - R(0.5) * s2 / (s2 + R(0.33));
   real B = R(0.45) * s2 / (s2 + R(0.09));
-  real ci = min(l.z, R(1.0)), cr = min(v.z, R(1.0));
+  // One clamp: with ci = min(l.z, 1), cr = min(v.z, 1), ci < cr exactly where
+  // l.z < cr, and max(ci, cr) = min(max(cr, l.z), 1): the same floats as the
+  // two clamps (a NaN cosine too, on PoCL and Intel), which were one <2 x
+  // float> compare and select for LLVM's SLP pass and kept the kernels scalar
+  // on haswell (docs/performance.md, "oren_nayar, toon_diffuse and
+  // cook_torrance_004").
+  real cr = min(v.z, R(1.0));
+  bool l_lower = l.z < cr;
   real si2 = l.x * l.x + l.y * l.y, sr2 = v.x * v.x + v.y * v.y;  // sin² from the components
-  real sin_a = sqrt(ci < cr ? si2 : sr2);
-  real sin_b = sqrt(ci < cr ? sr2 : si2), cos_b = max(ci, cr);
+  real sin_a = sqrt(l_lower ? si2 : sr2);
+  real sin_b = sqrt(l_lower ? sr2 : si2), cos_b = min(max(cr, l.z), R(1.0));
   // cos(φi - φr) of the projections; 0 where either has no azimuth
   real pp = sqrt(si2 * sr2);
   real G = pp > R(0.0) ? max(R(0.0), (l.x * v.x + l.y * v.y) / pp) : R(0.0);
