@@ -127,7 +127,14 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
 // (docs/performance.md). The pair is drawn with mfv_philox_split (the same
 // bits): with the models in select form (models.cl above_horizons) SLP
 // paired mfv_philox's two 64-bit products into a <2 x i64> multiply,
-// which PoCL's work-item vectorizer refuses. No generic instance: see
+// which PoCL's work-item vectorizer refuses. f(b, a) + 0, not f(b, a): the
+// two evaluations are one function of swapped directions, and each operation
+// of reciprocity_asym on them was an isomorphic pair from which LLVM's SLP
+// pass paired both evaluations into 2-lane vectors (toon_diffuse's and
+// cook_torrance_004's kernels scalar; docs/performance.md, "oren_nayar,
+// toon_diffuse and cook_torrance_004"); an fadd against the models' select is
+// no pair. The same floats: + 0 turns -0 into +0 only, and reciprocity_asym
+// gives the same value for either zero. No generic instance: see
 // model_values.cl (Intel).
 #define MFV_MODEL_RECIPROCITY_VALUES(NAME, MODEL)                                                                \
   __kernel __attribute__((flatten)) void NAME(__global const IntegralSpec* restrict specs, ulong seed,           \
@@ -138,6 +145,7 @@ __kernel __attribute__((flatten)) void reciprocity_values_microfacet(__global co
     reciprocity_pair_c(s, seed, (uint)k, &ax, &ay, &az, &bx, &by, &bz);                                          \
     real3 a = (real3)(ax, ay, az), b = (real3)(bx, by, bz);                                                      \
     real p[7] = {s->p[0], s->p[1], s->p[2], s->p[3], s->p[4], s->p[5], s->p[6]};                                 \
-    asym[j * get_global_size(0) + k] = reciprocity_asym(eval_model(MODEL, b, a, p), eval_model(MODEL, a, b, p)); \
+    real f1 = eval_model(MODEL, b, a, p) + R(0.0), f2 = eval_model(MODEL, a, b, p);                              \
+    asym[j * get_global_size(0) + k] = reciprocity_asym(f1, f2);                                                 \
   }
 #endif
