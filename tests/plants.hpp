@@ -125,6 +125,33 @@ inline const Plant kWardSquaresPaired = {"Ward's exponent as two separate square
                                          "  return exp(-(tx * tx + ty * ty) / (h.z * h.z));",
                                          "  return exp(-(sqr(tx) + sqr(ty)) / (h.z * h.z));"};
 
+// oren_nayar's two clamps min(l.z, 1) and min(v.z, 1) side by side, as before
+// issue 31's fix (kernels/models.cl model_oren_nayar): the same floats, but
+// LLVM's SLP pass pairs them into one <2 x float> compare and select, and
+// model_albedo_values__m2 stays scalar on AVX2 while AVX-512 vectorizes it
+// (tests/test_vectorize_targets.cpp).
+inline const Plant kOrenNayarClampsPaired = {
+    "oren_nayar's two clamps side by side", "models.cl",
+    "  real cr = min(v.z, R(1.0));\n  bool l_lower = l.z < cr;\n"
+    "  real si2 = l.x * l.x + l.y * l.y, sr2 = v.x * v.x + v.y * v.y;  // sin² from the components\n"
+    "  real sin_a = sqrt(l_lower ? si2 : sr2);\n"
+    "  real sin_b = sqrt(l_lower ? sr2 : si2), cos_b = min(max(cr, l.z), R(1.0));",
+    "  real ci = min(l.z, R(1.0)), cr = min(v.z, R(1.0));\n"
+    "  real si2 = l.x * l.x + l.y * l.y, sr2 = v.x * v.x + v.y * v.y;  // sin² from the components\n"
+    "  real sin_a = sqrt(ci < cr ? si2 : sr2);\n"
+    "  real sin_b = sqrt(ci < cr ? sr2 : si2), cos_b = max(ci, cr);"};
+
+// The whole-model reciprocity kernel taking f(b, a) as it comes, not f(b, a) +
+// 0 (kernels/reciprocity.cl MFV_MODEL_RECIPROCITY_VALUES): the same floats,
+// but reciprocity_asym's operations on the two values are isomorphic pairs
+// from which LLVM's SLP pass pairs both evaluations into 2-lane vectors:
+// model_reciprocity_values__m4 (toon_diffuse) stays scalar on AVX2 and
+// model_reciprocity_values__m11 (cook_torrance_004) on both targets
+// (tests/test_vectorize_targets.cpp).
+inline const Plant kModelReciprocityPaired = {"the whole-model reciprocity kernel's two evaluations paired",
+                                              "reciprocity.cl", "eval_model(MODEL, b, a, p) + R(0.0),",
+                                              "eval_model(MODEL, b, a, p),"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).

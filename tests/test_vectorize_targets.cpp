@@ -88,6 +88,17 @@ const char* const kCatalogModelKernels[] = {
     "model_albedo_values__m9",  "model_reciprocity_values__m9",  "model_albedo_values__m10",
     "model_reciprocity_values__m10"};
 
+// oren_nayar (m2), toon_diffuse (m4) and cook_torrance_004 (m11), 8-wide on
+// both targets since oren_nayar's one clamp and the whole-model reciprocity
+// kernel's f(b, a) + 0 (docs/performance.md, "oren_nayar, toon_diffuse and
+// cook_torrance_004"). Three models' reciprocity integrals reach 3e7 pairs at
+// this scale.
+const char* const kOrenToonCook =
+    "run --check reciprocity --scale 1250 --model oren_nayar toon_diffuse cook_torrance_004";
+const char* const kOrenToonCookKernels[] = {"model_albedo_values__m2",  "model_reciprocity_values__m2",
+                                            "model_albedo_values__m4",  "model_reciprocity_values__m4",
+                                            "model_albedo_values__m11", "model_reciprocity_values__m11"};
+
 std::map<std::string, Widths> vectorization(const std::string& kernel_dir, const std::string& command = kBench) {
   const std::string script = std::string(MFV_KERNEL_SOURCE_DIR) + "/../scripts/pocl-vectorization.sh";
   const auto r = mfv::test::run_mfv_shell("bash " + script + " --targets avx2,avx512 " + MFV_BINARY +
@@ -455,4 +466,19 @@ TEST_CASE("The catalog vectorization test fails on the library's log1p in Phong,
   require_planted_widths(kCatalogModels, {{&mfv::test::kPhongLibraryLog1p, "model_albedo_values__m6", true, true},
                                           {&mfv::test::kEonFonPaired, "model_albedo_values__m3", true, true},
                                           {&mfv::test::kWardSquaresPaired, "model_albedo_values__m9", true, false}});
+}
+
+TEST_CASE("oren_nayar's, toon_diffuse's and cook_torrance_004's whole-model kernels vectorize on AVX2 and on AVX-512",
+          "[vectorize][device]") {
+  require_wide(kOrenToonCook, kOrenToonCookKernels);
+}
+
+TEST_CASE("The oren_nayar/toon_diffuse/cook_torrance_004 vectorization test fails on oren_nayar's clamps paired and on "
+          "the reciprocity kernel's two evaluations paired",
+          "[vectorize][device]") {
+  // planted, each alone: the test above fails on these kernels
+  require_planted_widths(kOrenToonCook,
+                         {{&mfv::test::kOrenNayarClampsPaired, "model_albedo_values__m2", true, false},
+                          {&mfv::test::kModelReciprocityPaired, "model_reciprocity_values__m4", true, false},
+                          {&mfv::test::kModelReciprocityPaired, "model_reciprocity_values__m11", true, true}});
 }
