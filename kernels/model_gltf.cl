@@ -33,6 +33,12 @@ static inline bool no_half_vector(real NoL, real NoV, real VoH) {
 static inline real model_gltf(real3 l, real3 v, const real* p) {
   real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5], alpha_b = p[6];
   real NoL = l.z, NoV = v.z;
+  // below the horizon: no reflection. This one return stays (the rest is
+  // selected last, below): with it, gltf_sheen's albedo kernel is 8-wide on
+  // AVX2 as well, without it scalar there (measured, PoCL 3.1 / LLVM 15: the
+  // blocks it makes keep SLP from pairing the sheen's two table lookups;
+  // docs/performance.md)
+  if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);  // v·h = |l + v|/2: symmetric, no cancellation
   real x = R(1.0) - VoH;
@@ -56,11 +62,11 @@ static inline real model_gltf(real3 l, real3 v, const real* p) {
   real fr_max = f0_max + (R(1.0) - f0_max) * fw;
   real dielectric = (R(1.0) - weight * fr_max) * base * MFV_INV_PI + weight * fr * spec;
   real metal = (base + (R(1.0) - base) * fw) * spec;  // conductor_fresnel(f0 = baseColor)
-  // 0 below the horizon (no reflection) and at l = -v (both at the horizon;
-  // in float32 also where l + v underflows): no half vector, h = 0/0, and
-  // the Smith G's χ⁺(v·h) is 0 there (Heitz 2014 eq. 99), so f is 0, not
-  // NaN. Selected last, as the catalog's models do (models.cl,
-  // above_horizons): an early return keeps PoCL's work-item loop scalar.
+  // 0 at l = -v (both at the horizon; in float32 also where l + v
+  // underflows): no half vector, h = 0/0, and the Smith G's χ⁺(v·h) is 0
+  // there (Heitz 2014 eq. 99), so f is 0, not NaN. Selected last, as the
+  // catalog's models do (models.cl, above_horizons): the glTF models' other
+  // early returns kept gltf_clearcoat's and gltf_transmission's kernels scalar.
   return no_half_vector(NoL, NoV, VoH) ? R(0.0) : (R(1.0) - metallic) * dielectric + metallic * metal;
 }
 

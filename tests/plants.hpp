@@ -152,6 +152,26 @@ inline const Plant kModelReciprocityPaired = {"the whole-model reciprocity kerne
                                               "reciprocity.cl", "eval_model(MODEL, b, a, p) + R(0.0),",
                                               "eval_model(MODEL, b, a, p),"};
 
+// gltf_sheen's two table lookups in one form (kernels/model_gltf.cl
+// model_gltf_sheen, without fabs): the same floats, but LLVM's SLP pass
+// pairs them into 2-lane vectors, and its kernel stays scalar.
+inline const Plant kSheenLookupsPaired = {"gltf_sheen's two table lookups paired", "model_gltf.cl",
+                                          "R(1.0) - max3 * fabs(sheen_E(NoL, sa)));",
+                                          "R(1.0) - max3 * sheen_E(NoL, sa));"};
+
+// gltf_thin_walled out of line, as it was before agree_eval carried
+// MFV_NO_IMPLICIT_VECTORIZE: the call keeps gltf_transmission's kernel scalar.
+inline const Plant kGltfThinWalledOutOfLine = {"gltf_thin_walled out of line", "model_gltf.cl",
+                                               "static inline MFV_ALWAYS_INLINE real gltf_thin_walled(",
+                                               "static real __attribute__((noinline)) gltf_thin_walled("};
+
+// Lambda_ggx_aniso's α²sin² as two separate squares, as before issue 31:
+// LLVM's SLP pass pairs them, and the anisotropic glTF models' kernels stay
+// scalar on AVX2.
+inline const Plant kLambdaAnisoSquaresPaired = {"Lambda_ggx_aniso's two squares paired", "terms_g.cl",
+                                                "  real q = tx * tx + ty * ty;",
+                                                "  real q = sqr(tx) + sqr(ty);"};
+
 // The rough dielectric BTDF with eta_o in place of eta_o^2 in the numerator
 // of Walter et al. 2007 eq. 21 (kernels/btdf.cl): a correct catalog entry's
 // transmitted flux off by a factor eta (issue 29: bsdf_furnace sees it).
