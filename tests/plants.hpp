@@ -43,19 +43,30 @@ inline const Plant kKelemenQuotientsPaired = {
     "  real qv = VoH <= R(0.0) ? R(0.0) : NoV / VoH;\n  real g = (NoL / VoH) * qv;",
     "  real g = (NoL / VoH) * (NoV / VoH);"};
 
-// G1_charlie's and G_charlie_sheen's horizon tests as the early returns they
-// were before (kernels/terms_g.cl): the same floats, but the masking and
-// AlbedoMis kernels of charlie_sheen (masking_values__g23,
+// Charlie's G as it was before issue 31 (kernels/terms_g.cl): Lambda_charlie
+// evaluating charlie_L at c and at 1 - c, and G1_charlie's and
+// G_charlie_sheen's horizon tests as early returns. The same floats, but the
+// masking and AlbedoMis kernels of charlie_sheen (masking_values__g23,
 // albedo_mis_values__g23) stay scalar on AVX2 while AVX-512 vectorizes them
-// (tests/test_vectorize_targets.cpp). Either select alone keeps them wide.
+// (tests/test_vectorize_targets.cpp). With Λ's one L, the early returns
+// alone no longer do (measured 6 December 2026).
 inline const Plant kCharlieEarlyReturns = {
-    "G1_charlie's and G_charlie_sheen's horizon tests as early returns", "terms_g.cl",
+    "Lambda_charlie's two L's, G1_charlie's and G_charlie_sheen's horizon tests as early returns", "terms_g.cl",
+    "  bool low = c < R(0.5);\n  real l = charlie_L(low ? c : R(1.0) - c, alpha);\n"
+    "  return mfv_exp(low ? l : R(2.0) * charlie_L(R(0.5), alpha) - l);\n}\n\n"
+    "static inline real G1_charlie(real NoV, real alpha) {\n"
+    "  // select form: an early return here kept this G's masking and AlbedoMis\n"
+    "  // kernels scalar on AVX2 (8-wide on AVX-512; docs/performance.md). At and\n"
+    "  // below the horizon Λ is ∞ and g is 0 already; the select says so.\n"
     "  real g = R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));\n  return NoV <= R(0.0) ? R(0.0) : g;\n}\n\n"
     "static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {\n"
     "  // KHR_materials_sheen \"Sheen visibility\" (Charlie): V = 1/((1 + Λ(v) + Λ(l)) 4 (n·v)(n·l)),\n"
     "  // returned as G = 4 (n·l)(n·v) V = 1/(1 + Λ(l) + Λ(v))\n  // select form, as G1_charlie's\n"
     "  real g = R(1.0) / (R(1.0) + (Lambda_charlie(NoL, alpha) + Lambda_charlie(NoV, alpha)));  // symmetric in l, v "
     "to the bit\n  return ((NoL <= R(0.0)) | (NoV <= R(0.0)) | (VoH <= R(0.0))) ? R(0.0) : g;",
+    "  return c < R(0.5) ? mfv_exp(charlie_L(c, alpha))\n"
+    "                    : mfv_exp(R(2.0) * charlie_L(R(0.5), alpha) - charlie_L(R(1.0) - c, alpha));\n}\n\n"
+    "static inline real G1_charlie(real NoV, real alpha) {\n"
     "  if (NoV <= R(0.0)) return R(0.0);\n  return R(1.0) / (R(1.0) + Lambda_charlie(NoV, alpha));\n}\n\n"
     "static inline real G_charlie_sheen(real NoL, real NoV, real NoH, real VoH, real alpha) {\n"
     "  if (NoL <= R(0.0) || NoV <= R(0.0) || VoH <= R(0.0)) return R(0.0);\n"

@@ -433,7 +433,8 @@ TEST_CASE("The kernels of charlie with charlie_sheen vectorize on AVX2 and on AV
   require_no_difference(w);
 }
 
-TEST_CASE("The charlie_sheen vectorization test fails on G1_charlie's and G_charlie_sheen's early returns",
+TEST_CASE("The charlie_sheen vectorization test fails on Charlie's G as before: two L's in its Lambda, early "
+          "horizon returns",
           "[vectorize][device]") {
   require_avx2_only_scalar(mfv::test::kCharlieEarlyReturns, kEnergyCharlie,
                            {"masking_values__g23", "albedo_mis_values__g23"});
