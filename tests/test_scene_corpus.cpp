@@ -423,8 +423,8 @@ TEST_CASE("the clearcoat model's kernel agrees with its reference and a planted 
   INFO(ok.out);
   CHECK(ok.code == 0);
   // the base not darkened by the coat's share: (1 - weight) dropped
-  const test::PlantedKernelDir planted("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
-                                       "return material + weight * layer;");
+  const test::PlantedKernelDir planted("model_gltf.cl", "(R(1.0) - weight) * material + weight * layer;",
+                                       "material + weight * layer;");
   auto bad = run_mfv("--kernel-dir " + planted.path() + " agree --only 'MODEL gltf_clearcoat' --samples 50000");
   INFO(bad.out);
   CHECK(bad.code == 1);
@@ -449,8 +449,8 @@ TEST_CASE("coated materials are checked with their coat lobe, and a planted coat
   CHECK(ok.code == 0);
   CHECK(ok.out.find("gltf_clearcoat alpha=") != std::string::npos);
   CHECK(ok.out.find("set: ggx alpha=0.09") != std::string::npos);  // the 0.5 coat's roughness 0.3: its own D
-  const test::PlantedKernelDir planted("model_gltf.cl", "return (R(1.0) - weight) * material + weight * layer;",
-                                       "return material + weight * layer;");
+  const test::PlantedKernelDir planted("model_gltf.cl", "(R(1.0) - weight) * material + weight * layer;",
+                                       "material + weight * layer;");
   auto bad = run_mfv("--kernel-dir " + planted.path() + " run --scene " + scene + " --check energy --seed 5 --out " +
                      (t.dir / "out").string());
   INFO(bad.out);
