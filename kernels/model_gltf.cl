@@ -35,9 +35,9 @@ static inline real model_gltf(real3 l, real3 v, const real* p) {
   real NoL = l.z, NoV = v.z;
   // below the horizon: no reflection. This one return stays (the rest is
   // selected last, below): with it, gltf_sheen's albedo kernel is 8-wide on
-  // AVX2 as well, without it scalar there (measured, PoCL 3.1 / LLVM 15: the
-  // blocks it makes keep SLP from pairing the sheen's two table lookups;
-  // docs/performance.md)
+  // AVX2 as well; without it, LLVM's SLP pass pairs the sheen's two table
+  // lookups there and the kernel is scalar (measured with PoCL 3.1 / LLVM
+  // 15, not derived; docs/performance.md)
   if (NoL <= R(0.0) || NoV <= R(0.0)) return R(0.0);
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);  // v·h = |l + v|/2: symmetric, no cancellation
@@ -164,9 +164,6 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
                      ? sheen * over_4_cosines(D_charlie(h.z, s2, sa) * G_charlie_sheen(NoL, NoV, h.z, VoH, sa), NoL, NoV)
                      : R(0.0);
   real max3 = max(sheen, p[6]);
-  // fabs(E) = E (E >= 0: a bilinear mix of the table's albedos), but the two
-  // lookups no longer have one form: LLVM's SLP pass paired them into
-  // 2-lane vectors, which keeps PoCL's work-item loop scalar
   // fabs(E) = E (E >= 0: a bilinear mix, weights in [0, 1], of albedos),
   // but the two lookups no longer have one form: in one form, LLVM's SLP
   // pass paired them into 2-lane vectors, which kept PoCL's work-item loop
@@ -194,7 +191,7 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
 // kept PoCL's work-item loop scalar. Selects, not early returns, for the
 // same reason (as model_gltf).
 static inline MFV_ALWAYS_INLINE real gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz, real alpha,
-                                    real metallic, real base, real f0, real transmission) {
+                                                      real metallic, real base, real f0, real transmission) {
   bool below = vz < R(0.0);
   real3 l = (real3)(lx, ly, lz);
   real3 lm = (real3)(vx, vy, fabs(vz));  // below: the light mirrored through the surface (thin-walled)
