@@ -26,11 +26,11 @@
 // frame does not depend on it (see host/scene/scene.cpp).
 // Either direction below the horizon (a NaN cosine compares as there), or no
 // half vector (v·h not above 0, NaN included): where the glTF models are 0.
-static inline bool no_half_vector(real NoL, real NoV, real VoH) {
+static inline MFV_ALWAYS_INLINE bool no_half_vector(real NoL, real NoV, real VoH) {
   return (NoL <= R(0.0)) | (NoV <= R(0.0)) | !(VoH > R(0.0));
 }
 
-static inline real model_gltf(real3 l, real3 v, const real* p) {
+static inline MFV_ALWAYS_INLINE real model_gltf(real3 l, real3 v, const real* p) {
   real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], f0_max = p[4], weight = p[5], alpha_b = p[6];
   real NoL = l.z, NoV = v.z;
   // below the horizon: no reflection. This one return stays (the rest is
@@ -90,7 +90,7 @@ static inline real model_gltf(real3 l, real3 v, const real* p) {
 // (isotropic, specularFactor 1), clearcoat_alpha, clearcoat (last: 0 = no coat,
 // the default a whole model's p[6] takes, kernels/agree.cl).
 // mix(material, clearcoat_brdf(ca), clearcoat · fresnel_coat(V·Nc)), V = l (above)
-static inline real clearcoat_over(real material, real3 l, real3 v, real ca, real clearcoat) {
+static inline MFV_ALWAYS_INLINE real clearcoat_over(real material, real3 l, real3 v, real ca, real clearcoat) {
   real NoL = l.z, NoV = v.z;
   real s2, VoH;
   real3 h = half_vector(l, v, &s2, &VoH);
@@ -101,7 +101,7 @@ static inline real clearcoat_over(real material, real3 l, real3 v, real ca, real
   return no_half_vector(NoL, NoV, VoH) ? R(0.0) : (R(1.0) - weight) * material + weight * layer;
 }
 
-static inline real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
+static inline MFV_ALWAYS_INLINE real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
   real q[7] = {p[0], p[1], p[2], p[3], p[4], R(1.0), R(0.0)};
   return clearcoat_over(model_gltf(l, v, q), l, v, p[5], p[6]);
 }
@@ -112,7 +112,7 @@ static inline real model_gltf_clearcoat(real3 l, real3 v, const real* p) {
 // base, f0 (also fresnel_mix's max: an upper bound on the base's energy, as
 // gltf_sheen), clearcoat_alpha, clearcoat, alpha_b (last: the second width,
 // which stretches the estimators' proposal to (alpha_t, alpha_b) as for gltf).
-static inline real model_gltf_clearcoat_aniso(real3 l, real3 v, const real* p) {
+static inline MFV_ALWAYS_INLINE real model_gltf_clearcoat_aniso(real3 l, real3 v, const real* p) {
   real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), p[6]};
   return clearcoat_over(model_gltf(l, v, q), l, v, p[4], p[5]);
 }
@@ -152,7 +152,7 @@ static inline MFV_ALWAYS_INLINE real sheen_E(real mu, real alpha) {
   return mix(e0, e1, fy);
 }
 
-static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
+static inline MFV_ALWAYS_INLINE real model_gltf_sheen(real3 l, real3 v, const real* p) {
   real NoL = l.z, NoV = v.z;
   real q[7] = {p[0], p[1], p[2], p[3], p[3], R(1.0), R(0.0)};
   real material = model_gltf(l, v, q);
@@ -184,20 +184,26 @@ static inline real model_gltf_sheen(real3 l, real3 v, const real* p) {
 // and L'. One colour channel; V = l (the catalog's first direction), L = the
 // second, anywhere on the sphere. Parameters p[0..4]: alpha (roughness²),
 // metallic, base, f0 (((ior − 1)/(ior + 1))², specularFactor 1), transmission.
-// Its inputs by components, and inlined: it was kept out of line because
-// Intel's CPU runtime miscompiled the whole-model agree kernels where it was
-// inlined (every model's values wrong, lambert 0), which agree_eval's
-// MFV_NO_IMPLICIT_VECTORIZE now prevents (agree.cl); out of line, the call
-// kept PoCL's work-item loop scalar. Selects, not early returns, for the
-// same reason (as model_gltf).
-static inline MFV_ALWAYS_INLINE real gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz, real alpha,
-                                                      real metallic, real base, real f0, real transmission) {
-  bool below = vz < R(0.0);
-  real3 l = (real3)(lx, ly, lz);
-  real3 lm = (real3)(vx, vy, fabs(vz));  // below: the light mirrored through the surface (thin-walled)
-  real NoL = l.z, NoV = lm.z;
+//
+// The catalog's model folds the sphere onto the hemisphere of the second
+// direction: f(l, v) + f(l, v mirrored below), so that its albedo (an
+// integral over v above) is R + T, the power reflected and transmitted. With
+// a white base, full transmission and no metal, R + T is the F = 1 albedo of
+// the same D and Vis at every ior (the F and 1 − F of one H' add to 1): the
+// derived expectation mfv run --scene tests (closed_form).
+// Both halves in one evaluation: with v above, v mirrored below mirrors back
+// to v itself, so the transmitted half's H', D, Vis and F are the reflected
+// half's, to the bit. The reference twin evaluates the two halves apart
+// (thin_walled twice) and the sum is the same: R + T, or 0 + 0 where there
+// is no half vector. One evaluation, not two isomorphic calls: LLVM's SLP
+// pass paired the two calls' selects and their sum into 2-lane vectors,
+// which kept the whole-model reciprocity kernel scalar on AVX2 (issue 31,
+// docs/performance.md); selects, not early returns, as model_gltf.
+static inline MFV_ALWAYS_INLINE real model_gltf_transmission(real3 l, real3 v, const real* p) {
+  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], transmission = p[4];
+  real NoL = l.z, NoV = v.z;
   real s2, VoH;
-  real3 h = half_vector(l, lm, &s2, &VoH);
+  real3 h = half_vector(l, v, &s2, &VoH);
   real x = R(1.0) - VoH;
   real fw = x * x * x * x * x;
   real fr = f0 + (R(1.0) - f0) * fw;
@@ -205,19 +211,7 @@ static inline MFV_ALWAYS_INLINE real gltf_thin_walled(real lx, real ly, real lz,
   real through = (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;  // a metal transmits nothing
   real dielectric = (R(1.0) - fr) * (R(1.0) - transmission) * base * MFV_INV_PI + fr * spec;
   real metal = (base + (R(1.0) - base) * fw) * spec;
-  real f = below ? through : (R(1.0) - metallic) * dielectric + metallic * metal;
+  real reflected = (R(1.0) - metallic) * dielectric + metallic * metal;
   // no half vector: G's χ⁺(v·h) = 0 (as model_gltf)
-  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : f;
-}
-
-// The catalog's model folds the sphere onto the hemisphere of the second
-// direction: f(l, v) + f(l, v mirrored below), so that its albedo (an
-// integral over v above) is R + T, the power reflected and transmitted. With
-// a white base, full transmission and no metal, R + T is the F = 1 albedo of
-// the same D and Vis at every ior (the F and 1 − F of one H' add to 1): the
-// derived expectation mfv run --scene tests (closed_form).
-static inline real model_gltf_transmission(real3 l, real3 v, const real* p) {
-  return above_horizons(l.z, v.z,
-                        gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, v.z, p[0], p[1], p[2], p[3], p[4]) +
-                            gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, -v.z, p[0], p[1], p[2], p[3], p[4]));
+  return above_horizons(l.z, v.z, no_half_vector(NoL, NoV, VoH) ? R(0.0) : reflected + through);
 }

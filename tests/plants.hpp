@@ -170,11 +170,42 @@ inline const Plant kSheenLookupsPaired = {"gltf_sheen's two table lookups paired
                                           "R(1.0) - max3 * fabs(sheen_E(NoL, sa)));",
                                           "R(1.0) - max3 * sheen_E(NoL, sa));"};
 
-// gltf_thin_walled out of line, as it was before agree_eval carried
-// MFV_NO_IMPLICIT_VECTORIZE: the call keeps gltf_transmission's kernel scalar.
-inline const Plant kGltfThinWalledOutOfLine = {"gltf_thin_walled out of line", "model_gltf.cl",
-                                               "static inline MFV_ALWAYS_INLINE real gltf_thin_walled(",
-                                               "static real __attribute__((noinline)) gltf_thin_walled("};
+// model_gltf without MFV_ALWAYS_INLINE, as before issue 31's glTF
+// reciprocity kernels: called twice in a whole-model reciprocity kernel (and
+// through gltf_clearcoat, _clearcoat_aniso and _sheen), LLVM keeps it out of
+// line, and the call keeps those four kernels scalar on both targets.
+inline const Plant kGltfOutOfLine = {"model_gltf left to the inliner", "model_gltf.cl",
+                                     "static inline MFV_ALWAYS_INLINE real model_gltf(",
+                                     "static inline real model_gltf("};
+
+// gltf_transmission's two halves as two calls of one thin-walled lobe, as
+// they were before (kernels/model_gltf.cl): the reflected half at v and the
+// transmitted half at v mirrored below. The same floats, but LLVM's SLP pass
+// pairs the two calls' selects and their sum into 2-lane vectors, and the
+// model's reciprocity kernel stays scalar on AVX2. The new body is left
+// after the planted return, unreached.
+inline const Plant kTransmissionHalvesPaired = {
+    "gltf_transmission's two halves as two calls", "model_gltf.cl",
+    "static inline MFV_ALWAYS_INLINE real model_gltf_transmission(real3 l, real3 v, const real* p) {\n",
+    "static inline MFV_ALWAYS_INLINE real gltf_thin_walled(real lx, real ly, real lz, real vx, real vy, real vz,\n"
+    "                                                      const real* p) {\n"
+    "  real alpha = p[0], metallic = p[1], base = p[2], f0 = p[3], transmission = p[4];\n"
+    "  bool below = vz < R(0.0);\n"
+    "  real3 l = (real3)(lx, ly, lz), lm = (real3)(vx, vy, fabs(vz));\n"
+    "  real NoL = l.z, NoV = lm.z, s2, VoH;\n"
+    "  real3 h = half_vector(l, lm, &s2, &VoH);\n"
+    "  real x = R(1.0) - VoH, fw = x * x * x * x * x, fr = f0 + (R(1.0) - f0) * fw;\n"
+    "  real spec = over_4_cosines(D_ggx(h.z, s2, alpha) * G_smith_ggx_correlated(NoL, NoV, h.z, VoH, alpha),\n"
+    "                             NoL, NoV);\n"
+    "  real through = (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;\n"
+    "  real dielectric = (R(1.0) - fr) * (R(1.0) - transmission) * base * MFV_INV_PI + fr * spec;\n"
+    "  real metal = (base + (R(1.0) - base) * fw) * spec;\n"
+    "  real f = below ? through : (R(1.0) - metallic) * dielectric + metallic * metal;\n"
+    "  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : f;\n"
+    "}\n"
+    "static inline MFV_ALWAYS_INLINE real model_gltf_transmission(real3 l, real3 v, const real* p) {\n"
+    "  return above_horizons(l.z, v.z, gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, v.z, p) +\n"
+    "                                      gltf_thin_walled(l.x, l.y, l.z, v.x, v.y, -v.z, p));\n"};
 
 // Lambda_ggx_aniso's α²sin² as two separate squares, as before issue 31:
 // LLVM's SLP pass pairs them, and the anisotropic glTF models' kernels stay
