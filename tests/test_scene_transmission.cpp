@@ -135,9 +135,15 @@ TEST_CASE("mfv run --scene passes thin-walled transmission and fails a lobe whos
   CHECK(good.code == 0);
   CHECK(good.out.find("pass   closed_form") != std::string::npos);
   CHECK(good.out.find("material 'clear film' [materials[0]] pass: gltf_transmission") != std::string::npos);
-  // the transmission lobe's half vector of the light below, not of its mirror
-  const PlantedKernelDir planted("model_gltf.cl", "real3 h = half_vector(l, lm, &s2, &VoH);",
-                                 "real3 h = half_vector(l, (real3)(vx, vy, vz), &s2, &VoH);");
+  // the transmitted half's lobe (D, Vis and F) at the half vector of the light below, not of its mirror
+  const PlantedKernelDir planted(
+      "model_gltf.cl", "  real through = (R(1.0) - metallic) * (R(1.0) - fr) * transmission * base * spec;",
+      "  real s2b, VoHb;\n"
+      "  real3 hb = half_vector(l, (real3)(v.x, v.y, -v.z), &s2b, &VoHb);\n"
+      "  real xb = R(1.0) - VoHb, frb = f0 + (R(1.0) - f0) * xb * xb * xb * xb * xb;\n"
+      "  real specb = over_4_cosines(D_ggx(hb.z, s2b, alpha) * G_smith_ggx_correlated(NoL, NoV, hb.z, VoHb, alpha),\n"
+      "                              NoL, NoV);\n"
+      "  real through = (R(1.0) - metallic) * (R(1.0) - frb) * transmission * base * specb;");
   auto bad = run(planted.path());
   INFO(bad.out);
   CHECK(bad.code == 1);
