@@ -191,9 +191,9 @@ static inline MFV_ALWAYS_INLINE real model_gltf_sheen(real3 l, real3 v, const re
 // a white base, full transmission and no metal, R + T is the F = 1 albedo of
 // the same D and Vis at every ior (the F and 1 − F of one H' add to 1): the
 // derived expectation mfv run --scene tests (closed_form).
-// Both halves in one evaluation: with v above, v mirrored below mirrors back
-// to v itself, so the transmitted half's H', D, Vis and F are the reflected
-// half's, to the bit. The reference twin evaluates the two halves apart
+// Both halves in one evaluation: with v above (where the model is not 0),
+// v mirrored below mirrors back to v itself, so the transmitted half's H',
+// D, Vis and F are the reflected half's, to the bit. The reference twin evaluates the two halves apart
 // (thin_walled twice) and the sum is the same: R + T, or 0 + 0 where there
 // is no half vector. One evaluation, not two isomorphic calls: LLVM's SLP
 // pass paired the two calls' selects and their sum into 2-lane vectors,
@@ -212,6 +212,7 @@ static inline MFV_ALWAYS_INLINE real model_gltf_transmission(real3 l, real3 v, c
   real dielectric = (R(1.0) - fr) * (R(1.0) - transmission) * base * MFV_INV_PI + fr * spec;
   real metal = (base + (R(1.0) - base) * fw) * spec;
   real reflected = (R(1.0) - metallic) * dielectric + metallic * metal;
-  // no half vector: G's χ⁺(v·h) = 0 (as model_gltf)
-  return above_horizons(l.z, v.z, no_half_vector(NoL, NoV, VoH) ? R(0.0) : reflected + through);
+  // either direction below the horizon, or no half vector (G's χ⁺(v·h) = 0):
+  // 0, as model_gltf (above_horizons' tests are no_half_vector's first two)
+  return no_half_vector(NoL, NoV, VoH) ? R(0.0) : reflected + through;
 }
